@@ -1,0 +1,41 @@
+// A shape placed in the world: generic geometry under an affine transform. The world ray is
+// taken into object space with the inverse transform (its direction is not renormalized, so
+// t is the same in both spaces), intersected there, and the hit is brought back with its
+// error bound (pbrt-v3 §3.9.4), so that rays can leave it robustly (offset_ray_origin).
+#pragma once
+
+#include "common/accel/mesh_accel.h"
+#include "common/geometry/local_hit.h"
+#include "common/math/affine.h"
+#include "common/math/ray.h"
+#include "common/scene/shape.h"
+
+namespace tessera {
+
+struct Instance {
+  ShapeGeometry geometry;
+  Affine to_world;
+  Affine to_object;                 // inverse of to_world
+  const MeshAccel* mesh = nullptr;  // for MeshShape geometry
+  Bounds3 world_bounds;
+};
+
+// Builds an instance; nullopt when `to_world` is singular or not finite.
+std::optional<Instance> make_instance(const ShapeGeometry& geometry, const Affine& to_world,
+                                      const MeshAccel* mesh);
+
+struct WorldHit {
+  double t = 0;
+  Vec3 point;           // world space
+  Vec3 point_error;     // per-component error bound of `point`
+  Vec3 normal;          // unit outward geometric normal, world space
+  Vec3 shading_normal;  // unit shading normal (interpolated for smooth meshes), world space
+  Vec3 object_point;    // the hit in object space (solid textures, texture coordinates)
+  std::uint32_t part = 0;
+};
+
+// Nearest hit with t in (0, t_max), or false.
+bool intersect_instance(const Instance& instance, const Ray& world_ray, double t_max,
+                        WorldHit& hit, IntersectionCounters& counters);
+
+}  // namespace tessera

@@ -1,0 +1,28 @@
+// Ray/shape intersection for the generic shapes of common/scene/shape.h, in object space.
+//
+// Every routine finds the nearest hit with t in (0, t_max) of a ray given in the shape's object
+// space, fills `hit` and returns true, or returns false. They are robust by construction
+// (docs/STABILITY.md): numerically stable quadratics, hit points re-projected onto the surface
+// with an error bound, watertight triangles. A ray leaving a surface from an origin produced by
+// offset_ray_origin() with that bound never hits the same surface again at that point.
+#pragma once
+
+#include "common/accel/mesh_accel.h"
+#include "common/geometry/local_hit.h"
+#include "common/math/ray.h"
+#include "common/scene/shape.h"
+
+namespace tessera {
+
+bool intersect_sphere(const Ray& ray, double t_max, LocalHit& hit);
+bool intersect_cube(const Ray& ray, double t_max, LocalHit& hit);
+bool intersect_tapered_cylinder(const TaperedCylinder& shape, const Ray& ray, double t_max,
+                                LocalHit& hit);
+// Meshes go through their own BVH (common/accel/mesh_accel.h).
+bool intersect_mesh(const MeshAccel& mesh, bool interpolate_normals, const Ray& ray,
+                    double t_max, LocalHit& hit, IntersectionCounters& counters);
+
+// Bounds of a generic shape in its object space.
+Bounds3 object_bounds(const ShapeGeometry& shape, const MeshAccel* mesh);
+
+}  // namespace tessera

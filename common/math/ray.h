@@ -1,0 +1,48 @@
+// Rays and axis-aligned bounds.
+#pragma once
+
+#include <limits>
+
+#include "common/math/affine.h"
+#include "common/math/vec3.h"
+
+namespace tessera {
+
+inline constexpr double kInfinity = std::numeric_limits<double>::infinity();
+
+struct Ray {
+  Vec3 origin;
+  Vec3 direction;  // not necessarily unit length; parameters t are in units of it
+  double time = 0;  // shutter time, for motion blur
+};
+
+struct Bounds3 {
+  Vec3 lo{kInfinity, kInfinity, kInfinity};
+  Vec3 hi{-kInfinity, -kInfinity, -kInfinity};
+
+  bool empty() const { return lo.x > hi.x || lo.y > hi.y || lo.z > hi.z; }
+  void extend(const Vec3& p) {
+    lo = min(lo, p);
+    hi = max(hi, p);
+  }
+  void extend(const Bounds3& b) {
+    lo = min(lo, b.lo);
+    hi = max(hi, b.hi);
+  }
+  Vec3 centroid() const { return (lo + hi) * 0.5; }
+  Vec3 diagonal() const { return hi - lo; }
+  double surface_area() const {
+    if (empty()) return 0;
+    const Vec3 d = diagonal();
+    return 2 * (d.x * d.y + d.y * d.z + d.z * d.x);
+  }
+  // The bounds of this box after an affine transform (all eight corners).
+  Bounds3 transformed(const Affine& t) const;
+};
+
+// Slab test against precomputed reciprocal direction. Returns whether [t0, t1] overlaps the box
+// within [0, t_max]; the far distance is enlarged by 2*gamma(3) so that a ray grazing a box
+// face is never culled by rounding (pbrt-v3 §3.9.2).
+bool intersect_bounds(const Bounds3& b, const Vec3& origin, const Vec3& inv_dir, double t_max);
+
+}  // namespace tessera

@@ -1,0 +1,24 @@
+// Light sources of SDL §3.2.2: positional point lights and spotlights, in world space.
+#pragma once
+
+#include "common/math/vec3.h"
+#include "common/scene/rgb.h"
+
+namespace tessera {
+
+struct Spot {
+  Vec3 direction{0, 0, -1};   // where the cone points (unit length after loading)
+  double cutoff_degrees = 180;  // half-angle of the cone
+  double exponent = 0;          // cos^exponent fall-off inside the cone
+  friend bool operator==(const Spot&, const Spot&) = default;
+};
+
+struct Light {
+  Vec3 position;
+  Rgb color{1, 1, 1};  // both the diffuse and the specular colour of the light
+  bool is_spot = false;
+  Spot spot;  // meaningful when is_spot
+  friend bool operator==(const Light&, const Light&) = default;
+};
+
+}  // namespace tessera

@@ -1,0 +1,28 @@
+// Triangle meshes as loaded from OBJ (and, later, 3VN/3DV/3DM) files.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "common/math/vec3.h"
+
+namespace tessera {
+
+struct MeshTriangle {
+  std::array<std::uint32_t, 3> v{};  // indices into Mesh::positions
+  // Indices into Mesh::normals, or kNoNormal where the file gave none for that corner.
+  std::array<std::uint32_t, 3> n{kNoNormal, kNoNormal, kNoNormal};
+  static constexpr std::uint32_t kNoNormal = 0xffffffffu;
+  friend bool operator==(const MeshTriangle&, const MeshTriangle&) = default;
+};
+
+struct Mesh {
+  std::string source;  // the file it came from, for messages
+  std::vector<Vec3> positions;
+  std::vector<Vec3> normals;
+  std::vector<MeshTriangle> triangles;  // polygons are fan-triangulated on load
+};
+
+}  // namespace tessera

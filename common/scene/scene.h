@@ -1,0 +1,90 @@
+// The parsed scene: plain data, as the loaders produce it and the wire protocol ships it.
+// The renderer builds its own prepared form from it (render/prepared_scene.h).
+#pragma once
+
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "common/math/affine.h"
+#include "common/scene/light.h"
+#include "common/scene/material.h"
+#include "common/scene/mesh.h"
+#include "common/scene/shape.h"
+#include "common/scene/source_location.h"
+
+namespace tessera {
+
+struct Camera {
+  Vec3 eye{0, 0, 5};          // eyePoint
+  Vec3 look_at{0, 0, 0};      // viewPoint
+  Vec3 up{0, 1, 0};           // upDirection
+  double view_angle = 45;     // vertical field of view in degrees (viewAngle)
+  friend bool operator==(const Camera&, const Camera&) = default;
+};
+
+// lightAttenuation: f = min(1, 1 / (kc + kl d + kq d^2)), eq. 4.12.
+struct LightAttenuation {
+  double constant = 1, linear = 0, quadratic = 0;
+  bool is_identity() const { return constant == 1 && linear == 0 && quadratic == 0; }
+  friend bool operator==(const LightAttenuation&, const LightAttenuation&) = default;
+};
+
+// atmosphericAttenuation <front-plane> <front-scale> <back-plane> <back-scale> <r> <g> <b>.
+struct AtmosphericAttenuation {
+  double front_distance = 0, front_scale = 1, back_distance = 1, back_scale = 1;
+  Rgb color;
+  friend bool operator==(const AtmosphericAttenuation&, const AtmosphericAttenuation&) = default;
+};
+
+// fog <fog-start> <fog-end> <r> <g> <b>: linear in the Euclidean distance (eq. 4.22-4.23).
+struct Fog {
+  double start = 0, end = 1;
+  Rgb color;
+  friend bool operator==(const Fog&, const Fog&) = default;
+};
+
+// Global scene attributes of SDL §3.2.7.
+struct SceneGlobals {
+  Rgb background{0, 0, 0};
+  Rgb global_ambient{0.1, 0.1, 0.1};
+  LightAttenuation light_attenuation;
+  std::optional<AtmosphericAttenuation> atmospheric_attenuation;
+  std::optional<Fog> fog;
+  // Lower bounds on how far secondary rays start from a surface. The offsets themselves come
+  // from floating-point error bounds; these only enlarge them when a scene sets them.
+  double shadow_feeler_epsilon = 0;
+  double reflectivity_epsilon = 0;
+  double transparency_epsilon = 0;
+  double mesh_epsilon = 0;
+  bool adapted_shadow_computation = false;
+  double min_reflectivity = 0.01;
+  double min_transparency = 0.01;
+  int max_recursion_depth = 5;
+  bool show_extents = false;
+  // motionBlur <frame-length> <#time-samples>; stored for the motion-blur renderer.
+  double motion_blur_frame_length = 1;
+  int motion_blur_time_samples = 8;
+  friend bool operator==(const SceneGlobals&, const SceneGlobals&) = default;
+};
+
+// One shape instance: geometry in object space, its object-to-world transform and material.
+struct SceneObject {
+  ShapeGeometry geometry;
+  Affine transform;  // object to world (the CT when the shape was written)
+  Material material;
+  SourceLocation where;  // the shape keyword, for messages
+};
+
+struct Scene {
+  Camera camera;
+  SceneGlobals globals;
+  std::vector<Light> lights;
+  std::vector<SceneObject> objects;
+  std::vector<Mesh> meshes;
+  // Things the loader accepted but that change nothing, or that this renderer does not
+  // simulate yet, each with its location. Shown to users, never dropped silently.
+  std::vector<std::string> warnings;
+};
+
+}  // namespace tessera

@@ -1,0 +1,31 @@
+// The generic shapes of SDL §3.3 in their own object space (DESIGN.md §2):
+//   sphere: unit sphere at the origin;  cube: [-1, 1]^3;
+//   tapered cylinder: z in [0, 1], radius 1 at z = 0 and `top_radius` at z = 1 (cone: 0,
+//   cylinder: 1);  mesh: triangles of Scene::meshes[mesh].
+#pragma once
+
+#include <cstddef>
+#include <variant>
+
+namespace tessera {
+
+struct Sphere {
+  friend bool operator==(const Sphere&, const Sphere&) = default;
+};
+struct Cube {
+  friend bool operator==(const Cube&, const Cube&) = default;
+};
+struct TaperedCylinder {
+  double top_radius = 1;
+  bool distort_texture = false;  // caps' texture mapping: distort (true) or clip (false)
+  friend bool operator==(const TaperedCylinder&, const TaperedCylinder&) = default;
+};
+struct MeshShape {
+  std::size_t mesh = 0;  // index into Scene::meshes
+  bool interpolate_normals = false;  // Phong-interpolated vertex normals, else flat
+  friend bool operator==(const MeshShape&, const MeshShape&) = default;
+};
+
+using ShapeGeometry = std::variant<Sphere, Cube, TaperedCylinder, MeshShape>;
+
+}  // namespace tessera
