@@ -1,0 +1,43 @@
+// A float RGB frame buffer and its files. Values are the lighting model's intensities as
+// computed (linear, not gamma-encoded): EXR keeps them as float; PNG and other 8-bit formats
+// clamp them to [0, 1] and quantize.
+#pragma once
+
+#include <cstddef>
+#include <string>
+#include <vector>
+
+#include "common/scene/rgb.h"
+
+namespace tessera {
+
+struct Image {
+  int width = 0;
+  int height = 0;
+  std::vector<float> rgb;  // row-major, top row first, 3 floats per pixel
+
+  Image() = default;
+  Image(int w, int h) : width(w), height(h), rgb(static_cast<std::size_t>(w) * h * 3, 0.0f) {}
+  std::size_t index(int x, int y) const {
+    return (static_cast<std::size_t>(y) * width + x) * 3;
+  }
+  void set(int x, int y, const Rgb& c) {
+    const std::size_t i = index(x, y);
+    rgb[i] = static_cast<float>(c.r);
+    rgb[i + 1] = static_cast<float>(c.g);
+    rgb[i + 2] = static_cast<float>(c.b);
+  }
+  Rgb get(int x, int y) const {
+    const std::size_t i = index(x, y);
+    return {rgb[i], rgb[i + 1], rgb[i + 2]};
+  }
+  friend bool operator==(const Image&, const Image&) = default;
+};
+
+// Writes by extension with OpenImageIO: .exr as 32-bit float, anything else as 8-bit.
+// Throws std::runtime_error with OpenImageIO's message on failure.
+void write_image(const Image& image, const std::string& path);
+// Reads any format OpenImageIO reads into RGB float (alpha dropped, gray expanded).
+Image read_image(const std::string& path);
+
+}  // namespace tessera

@@ -1,0 +1,54 @@
+// The prepared, traceable scene (STYLE.md §4): built once per render (or per job on a worker)
+// from a parsed Scene: instances with inverse transforms, mesh and scene BVHs, the camera
+// frame, and the effect set that decides which work the tracer does at all.
+#pragma once
+
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "common/accel/bvh.h"
+#include "common/accel/mesh_accel.h"
+#include "common/geometry/instance.h"
+#include "common/render/effects.h"
+#include "common/scene/scene.h"
+
+namespace tessera {
+
+// The pinhole camera of §4.1: a vertical field of view `view_angle` through the image centre.
+struct CameraFrame {
+  Vec3 eye;
+  Vec3 forward, right, up;  // orthonormal; right x up = -forward
+  double tan_half_height = 0;
+  // The primary ray through image position (px, py) in pixels, (0, 0) the top-left corner of
+  // the image and (width, height) the bottom-right one.
+  Ray ray_through(double px, double py, int width, int height) const;
+};
+
+class PreparedScene {
+ public:
+  // Throws SceneError for what cannot be traced (degenerate camera). `scene` must outlive
+  // the prepared scene (meshes are referenced, not copied).
+  PreparedScene(const Scene& scene, BvhMode mode);
+  PreparedScene(const PreparedScene&) = delete;
+  PreparedScene& operator=(const PreparedScene&) = delete;
+
+  const Scene& scene() const { return *scene_; }
+  const CameraFrame& camera() const { return camera_; }
+  const EffectSet& effects() const { return effects_; }
+  const std::vector<Instance>& instances() const { return instances_; }
+  const Bvh& bvh() const { return bvh_; }
+  // What the scene asks for that this renderer does not simulate (yet), one line each.
+  const std::vector<std::string>& unsupported() const { return unsupported_; }
+
+ private:
+  const Scene* scene_;
+  CameraFrame camera_;
+  EffectSet effects_;
+  std::vector<std::unique_ptr<MeshAccel>> meshes_;
+  std::vector<Instance> instances_;
+  Bvh bvh_;
+  std::vector<std::string> unsupported_;
+};
+
+}  // namespace tessera

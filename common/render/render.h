@@ -1,0 +1,47 @@
+// The tracer's entry points, shaped like the work (STYLE.md §5): the CLI, the worker and the
+// tests all call these, with no global state.
+//
+// A pixel's value depends only on the prepared scene, the settings, the pixel and the pass:
+// never on the rectangle, thread or host that computes it (render/sampler.h).
+#pragma once
+
+#include <functional>
+#include <span>
+
+#include "common/image/image.h"
+#include "common/render/prepared_scene.h"
+#include "common/render/settings.h"
+#include "common/render/stats.h"
+
+namespace tessera {
+
+// A half-open rectangle of pixels [x0, x1) x [y0, y1); y = 0 is the top row.
+struct PixelRect {
+  int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+  int width() const { return x1 - x0; }
+  int height() const { return y1 - y0; }
+  long long area() const { return static_cast<long long>(width()) * height(); }
+};
+
+// Traces one sample pass (settings.aa_samples samples per pixel) of the pixels of `rect` on
+// the calling thread; out[(y - y0) * width + (x - x0)] receives the pass's mean colour.
+// Adds to `stats` (rays, tests, samples; not seconds).
+void render_pass(const PreparedScene& scene, const RenderSettings& settings,
+                 const PixelRect& rect, int pass, std::span<Rgb> out, RenderStats& stats);
+
+// Traces the listed pixels (x, y) of one pass, for the progressive scheduler whose units are
+// sparse anchors; same values as render_pass.
+struct PixelCoord {
+  int x = 0, y = 0;
+};
+void render_pixels(const PreparedScene& scene, const RenderSettings& settings,
+                   std::span<const PixelCoord> pixels, int pass, std::span<Rgb> out,
+                   RenderStats& stats);
+
+// Renders the whole image with `threads` threads (0 = all cores): settings.passes passes,
+// averaged. `progress(done, total)` is called from worker threads with counts of tiles.
+using ProgressFn = std::function<void(long long done, long long total)>;
+Image render_image(const PreparedScene& scene, const RenderSettings& settings, int threads,
+                   RenderStats& stats, const ProgressFn& progress = {});
+
+}  // namespace tessera
