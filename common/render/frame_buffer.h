@@ -1,0 +1,35 @@
+// Running means of sample passes, per pixel. Pass values are rounded to float32 before they
+// are accumulated, exactly as they travel over the wire, so that the CLI and the coordinator
+// compute bit-identical images from the same passes.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "common/image/image.h"
+
+namespace tessera {
+
+class FrameBuffer {
+ public:
+  FrameBuffer(int width, int height);
+  int width() const { return width_; }
+  int height() const { return height_; }
+
+  // Adds one pass's value for pixel (x, y). Passes may arrive in any order: the sum of the
+  // same values in a different order may differ in the last bit, so callers add passes of a
+  // pixel in pass order (the scheduler guarantees it; the CLI renders them in order).
+  void add_pass(int x, int y, const float rgb[3]);
+  std::uint32_t passes_at(int x, int y) const { return counts_[idx(x, y)]; }
+  // The mean of the passes added so far (black where none).
+  Rgb mean(int x, int y) const;
+  Image resolve() const;
+
+ private:
+  std::size_t idx(int x, int y) const { return static_cast<std::size_t>(y) * width_ + x; }
+  int width_, height_;
+  std::vector<double> sums_;  // 3 per pixel
+  std::vector<std::uint32_t> counts_;
+};
+
+}  // namespace tessera
