@@ -12,7 +12,7 @@ inline constexpr double kInfinity = std::numeric_limits<double>::infinity();
 
 struct Ray {
   Vec3 origin;
-  Vec3 direction;  // not necessarily unit length; parameters t are in units of it
+  Vec3 direction;   // not necessarily unit length; parameters t are in units of it
   double time = 0;  // shutter time, for motion blur
 };
 

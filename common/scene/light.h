@@ -7,7 +7,7 @@
 namespace tessera {
 
 struct Spot {
-  Vec3 direction{0, 0, -1};   // where the cone points (unit length after loading)
+  Vec3 direction{0, 0, -1};     // where the cone points (unit length after loading)
   double cutoff_degrees = 180;  // half-angle of the cone
   double exponent = 0;          // cos^exponent fall-off inside the cone
   friend bool operator==(const Spot&, const Spot&) = default;

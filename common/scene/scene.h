@@ -16,10 +16,10 @@
 namespace tessera {
 
 struct Camera {
-  Vec3 eye{0, 0, 5};          // eyePoint
-  Vec3 look_at{0, 0, 0};      // viewPoint
-  Vec3 up{0, 1, 0};           // upDirection
-  double view_angle = 45;     // vertical field of view in degrees (viewAngle)
+  Vec3 eye{0, 0, 5};       // eyePoint
+  Vec3 look_at{0, 0, 0};   // viewPoint
+  Vec3 up{0, 1, 0};        // upDirection
+  double view_angle = 45;  // vertical field of view in degrees (viewAngle)
   friend bool operator==(const Camera&, const Camera&) = default;
 };
 

@@ -21,7 +21,7 @@ struct TaperedCylinder {
   friend bool operator==(const TaperedCylinder&, const TaperedCylinder&) = default;
 };
 struct MeshShape {
-  std::size_t mesh = 0;  // index into Scene::meshes
+  std::size_t mesh = 0;              // index into Scene::meshes
   bool interpolate_normals = false;  // Phong-interpolated vertex normals, else flat
   friend bool operator==(const MeshShape&, const MeshShape&) = default;
 };
