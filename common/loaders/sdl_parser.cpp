@@ -1,0 +1,485 @@
+#include "common/loaders/sdl_parser.h"
+
+#include <algorithm>
+#include <climits>
+#include <cmath>
+#include <memory>
+#include <unordered_map>
+#include <unordered_set>
+#include <utility>
+
+#include "common/loaders/lexical.h"
+#include "common/loaders/obj_loader.h"
+#include "common/loaders/scene_source.h"
+#include "common/loaders/sdl_loader.h"
+
+namespace tessera::sdl {
+
+struct SourceFile {
+  std::string path;  // root-relative
+  std::string text;
+  LexedText lexed;  // tokens point into `text`
+};
+
+struct Macro {
+  std::string name;  // as written in its def
+  std::vector<Token> tokens;
+  Token where;  // the name in the def
+};
+
+// ---------------------------------------------------------------------------------------------
+// LoadContext: what one load shares across its files
+
+class LoadContext {
+ public:
+  LoadContext(const SceneSource& source, const Limits& limits) : source_(source), limits_(limits) {}
+
+  Scene load(const std::string& path) {
+    const SourceLocation start{path, 1, 1};
+    const std::optional<std::string> resolved = resolve_scene_path("", path);
+    if (!resolved) throw SceneError(start, "scene path " + in_quotes(path) + " is not a file name");
+    const SourceFile& file = sdl_file(*resolved, start, "scene file");
+    include_chain_.push_back(*resolved);
+    FileParser parser(*this, file, /*included=*/false);
+    parser.run();
+    parser.validate_camera();
+    return std::move(scene_);
+  }
+
+  Scene& scene() { return scene_; }
+  const Limits& limits() const { return limits_; }
+  std::unordered_map<std::string, Macro>& macros() { return macros_; }
+  const std::string& path_of(const Token& token) const { return files_[token.file]->path; }
+  SourceLocation location(const Token& token) const {
+    return {path_of(token), token.line, token.column};
+  }
+  [[noreturn]] void fail(const Token& at, const std::string& message) const {
+    throw SceneError(location(at), message);
+  }
+
+  void count_token(const Token& token) {
+    if (++tokens_ > limits_.max_tokens) {
+      fail(token, "the scene is too large: more than " + std::to_string(limits_.max_tokens) +
+                      " tokens to parse, counting includes and macro uses");
+    }
+  }
+  void enter_nesting(const Token& at) {
+    if (++nesting_ > limits_.max_nesting) {
+      fail(at, "include and use are nested too deeply (more than " +
+                   std::to_string(limits_.max_nesting) + " levels)");
+    }
+  }
+  void leave_nesting() { --nesting_; }
+
+  void warn(const std::string& warning) {
+    if (!warning_set_.insert(warning).second) return;
+    if (scene_.warnings.size() < limits_.max_warnings) {
+      scene_.warnings.push_back(warning);
+    } else if (scene_.warnings.size() == limits_.max_warnings) {
+      scene_.warnings.push_back("further warnings are omitted");
+    }
+  }
+
+  void include(const std::string& path, const Token& name, const Token& keyword) {
+    const auto cycle_start = std::find(include_chain_.begin(), include_chain_.end(), path);
+    if (cycle_start != include_chain_.end()) {
+      std::string cycle;
+      for (auto it = cycle_start; it != include_chain_.end(); ++it) cycle += *it + " -> ";
+      fail(name, "include cycle: " + cycle + path);
+    }
+    enter_nesting(keyword);
+    const SourceFile& file = sdl_file(path, location(name), "included file");
+    include_chain_.push_back(path);
+    FileParser parser(*this, file, /*included=*/true);
+    parser.run();
+    include_chain_.pop_back();
+    leave_nesting();
+  }
+
+  std::size_t mesh(const std::string& path, const Token& name) {
+    const auto known = mesh_ids_.find(path);
+    if (known != mesh_ids_.end()) return known->second;
+    const std::string bytes = read(path, location(name), "mesh file");
+    Mesh mesh = load_obj(bytes, path);
+    if (mesh.triangles.empty()) fail(name, "mesh " + in_quotes(path) + " has no triangles");
+    scene_.meshes.push_back(std::move(mesh));
+    mesh_ids_.emplace(path, scene_.meshes.size() - 1);
+    return scene_.meshes.size() - 1;
+  }
+
+ private:
+  std::string read(const std::string& path, const SourceLocation& at, const std::string& kind) {
+    std::optional<std::string> bytes = source_.read(path);
+    if (!bytes) throw SceneError(at, kind + " " + in_quotes(path) + " not found");
+    const std::size_t limit = limits_.max_file_bytes;
+    if (bytes->size() > limit) {
+      const std::string size = limit % (1u << 20) == 0 ? std::to_string(limit >> 20) + " MiB"
+                                                       : std::to_string(limit) + " bytes";
+      throw SceneError(at, kind + " " + in_quotes(path) + " is larger than " + size);
+    }
+    return std::move(*bytes);
+  }
+
+  // An SDL file, read and lexed once however often it is included.
+  const SourceFile& sdl_file(const std::string& path, const SourceLocation& at,
+                             const std::string& kind) {
+    const auto known = file_ids_.find(path);
+    if (known != file_ids_.end()) return *files_[known->second];
+    auto file = std::make_unique<SourceFile>();
+    file->path = path;
+    file->text = read(path, at, kind);
+    const auto id = static_cast<std::uint32_t>(files_.size());
+    file->lexed = lex_sdl(file->text, id);
+    files_.push_back(std::move(file));
+    file_ids_.emplace(path, id);
+    return *files_.back();
+  }
+
+  const SceneSource& source_;
+  Limits limits_;
+  Scene scene_;
+  std::vector<std::unique_ptr<SourceFile>> files_;  // indexed by Token::file
+  std::unordered_map<std::string, std::uint32_t> file_ids_;
+  std::unordered_map<std::string, std::size_t> mesh_ids_;  // into Scene::meshes
+  std::unordered_map<std::string, Macro> macros_;          // by lower-case name
+  std::vector<std::string> include_chain_;                 // files being parsed, outermost first
+  std::unordered_set<std::string> warning_set_;
+  int nesting_ = 0;
+  std::uint64_t tokens_ = 0;
+};
+
+// ---------------------------------------------------------------------------------------------
+// FileParser: the token stream
+
+FileParser::FileParser(LoadContext& context, const SourceFile& file, bool included)
+    : context_(context), file_(file), included_(included) {
+  frames_.push_back({&file.lexed.tokens, 0, nullptr});
+}
+
+Scene& FileParser::scene() { return context_.scene(); }
+
+SourceLocation FileParser::location(const Token& token) const { return context_.location(token); }
+
+void FileParser::fail(const Token& at, const std::string& message) const {
+  context_.fail(at, message);
+}
+
+void FileParser::fail_at_end(const std::string& what) const {
+  throw SceneError({file_.path, file_.lexed.end_line, file_.lexed.end_column},
+                   "unexpected end of file, expected " + what);
+}
+
+std::optional<Token> FileParser::next() {
+  // A replay is left only when the token after its last one is asked for: while its last
+  // token is being handled it is still on the stack, so a macro that uses itself in tail
+  // position is caught as recursion.
+  while (frames_.back().next == frames_.back().tokens->size()) {
+    if (frames_.size() == 1) return std::nullopt;
+    frames_.pop_back();
+    context_.leave_nesting();
+  }
+  Frame& frame = frames_.back();
+  const Token& token = (*frame.tokens)[frame.next++];
+  context_.count_token(token);
+  return token;
+}
+
+Token FileParser::expect(const std::string& what) {
+  const std::optional<Token> token = next();
+  if (!token) fail_at_end(what);
+  return *token;
+}
+
+void FileParser::run() {
+  while (const std::optional<Token> token = next()) {
+    keyword_ = *token;
+    keyword_name_ = {};
+    if (token->text == "{" || token->text == "}") {
+      fail(*token, "unexpected " + in_quotes(token->text) + " (braces belong to 'def <name> { }')");
+    }
+    const Keyword* entry = find_keyword(token->text);
+    if (entry == nullptr) fail(*token, "unknown keyword " + in_quotes(token->text));
+    keyword_name_ = entry->name;
+    entry->handler(*this);
+  }
+}
+
+// ---------------------------------------------------------------------------------------------
+// FileParser: parameters
+
+namespace {
+
+bool in_range(double v, Range range) {
+  switch (range) {
+    case Range::Any:
+      return true;
+    case Range::NonNegative:
+      return v >= 0;
+    case Range::Positive:
+      return v > 0;
+    case Range::UnitInterval:
+      return v >= 0 && v <= 1;
+    case Range::OpenAngle:
+      return v > 0 && v < 180;
+    case Range::Cutoff:
+      return v > 0 && v <= 180;
+  }
+  return false;
+}
+
+const char* describe(Range range) {
+  switch (range) {
+    case Range::Any:
+      return "a number";
+    case Range::NonNegative:
+      return "non-negative";
+    case Range::Positive:
+      return "positive";
+    case Range::UnitInterval:
+      return "in [0, 1]";
+    case Range::OpenAngle:
+      return "strictly between 0 and 180 degrees";
+    case Range::Cutoff:
+      return "in (0, 180] degrees";
+  }
+  return "";
+}
+
+}  // namespace
+
+std::string FileParser::of_keyword(const char* param) const {
+  return std::string(param) + " of '" + std::string(keyword_name_) + "'";
+}
+
+Token FileParser::word(const std::string& what) {
+  const Token token = expect(what);
+  if (token.text == "{" || token.text == "}") {
+    fail(token, "expected " + what + ", found " + in_quotes(token.text));
+  }
+  return token;
+}
+
+// Messages are built only on the error paths: numbers are most of a large scene's tokens.
+Number FileParser::read_number(const char* param, Range range) {
+  const std::optional<Token> token = next();
+  if (!token) fail_at_end("a number for " + of_keyword(param));
+  const DecimalResult result = parse_decimal(token->text);
+  if (result.status == DecimalStatus::OutOfRange) {
+    fail(*token,
+         "number " + in_quotes(token->text) + " for " + of_keyword(param) + " is out of range");
+  }
+  if (result.status != DecimalStatus::Ok) {
+    fail(*token,
+         "expected a number for " + of_keyword(param) + ", found " + in_quotes(token->text));
+  }
+  if (!in_range(result.value, range)) {
+    fail(*token,
+         of_keyword(param) + " must be " + describe(range) + ", found " + in_quotes(token->text));
+  }
+  return {result.value, *token};
+}
+
+int FileParser::integer(const char* param, int min, int max) {
+  const std::optional<Token> token = next();
+  if (!token) fail_at_end("an integer for " + of_keyword(param));
+  const DecimalResult result = parse_decimal(token->text);
+  if (result.status != DecimalStatus::Ok || result.value != std::floor(result.value)) {
+    fail(*token,
+         "expected an integer for " + of_keyword(param) + ", found " + in_quotes(token->text));
+  }
+  if (result.value < min || result.value > max) {
+    const std::string interval =
+        max != INT_MAX       ? "between " + std::to_string(min) + " and " + std::to_string(max)
+        : result.value < min ? "at least " + std::to_string(min)
+                             : "at most " + std::to_string(max);
+    fail(*token, of_keyword(param) + " must be " + interval + ", found " + in_quotes(token->text));
+  }
+  return static_cast<int>(result.value);
+}
+
+bool FileParser::flag(const char* param) { return number(param) != 0; }
+
+Vec3 FileParser::vec3(const char* x, const char* y, const char* z) {
+  const double vx = number(x);
+  const double vy = number(y);
+  const double vz = number(z);
+  return {vx, vy, vz};
+}
+
+Rgb FileParser::color(const char* r, const char* g, const char* b) {
+  const double red = number(r, Range::NonNegative);
+  const double green = number(g, Range::NonNegative);
+  const double blue = number(b, Range::NonNegative);
+  return {red, green, blue};
+}
+
+// ---------------------------------------------------------------------------------------------
+// FileParser: effects of statements
+
+void FileParser::push_ct() {
+  const std::size_t limit = context_.limits().max_push_depth;
+  if (ct_stack_.size() >= limit) {
+    fail(keyword_, "too many nested 'push' (more than " + std::to_string(limit) + ")");
+  }
+  ct_stack_.push_back(ct_);
+}
+
+void FileParser::pop_ct() {
+  if (ct_stack_.empty()) fail(keyword_, "'pop' without a matching 'push'");
+  ct_ = ct_stack_.back();
+  ct_stack_.pop_back();
+}
+
+void FileParser::add_object(const ShapeGeometry& geometry) {
+  const std::string name = "'" + std::string(keyword_name_) + "'";
+  if (!ct_.is_finite()) fail(keyword_, name + " has a transform that is not finite (too large?)");
+  if (!ct_.inverse()) fail(keyword_, name + " has a singular transform (zero scale?)");
+  Scene& s = scene();
+  const std::size_t limit = context_.limits().max_objects;
+  if (s.objects.size() >= limit) {
+    fail(keyword_, "too many objects (more than " + std::to_string(limit) + ")");
+  }
+  s.objects.push_back({geometry, ct_, material_, location(keyword_)});
+}
+
+void FileParser::add_light(const Light& light) {
+  Scene& s = scene();
+  const std::size_t limit = context_.limits().max_lights;
+  if (s.lights.size() >= limit) {
+    fail(keyword_, "too many lights (more than " + std::to_string(limit) + ")");
+  }
+  s.lights.push_back(light);
+}
+
+std::string FileParser::resolve(const Token& name) {
+  const std::optional<std::string> path =
+      resolve_scene_path(context_.path_of(name), std::string(name.text));
+  if (!path) {
+    fail(name,
+         std::string(keyword_name_) + " " + in_quotes(name.text) + " leaves the scene's folder");
+  }
+  return *path;
+}
+
+std::size_t FileParser::mesh(const Token& name) {
+  const std::string path = resolve(name);
+  const std::size_t slash = path.rfind('/');
+  const std::size_t dot = path.rfind('.');
+  const std::string extension =
+      dot == std::string::npos || (slash != std::string::npos && dot < slash)
+          ? std::string()
+          : to_lower(std::string_view(path).substr(dot + 1));
+  if (extension == "3vn" || extension == "3dv" || extension == "3dm") {
+    std::string upper = extension;
+    std::transform(upper.begin(), upper.end(), upper.begin(),
+                   [](char c) { return c >= 'a' && c <= 'z' ? static_cast<char>(c - 32) : c; });
+    fail(name, "mesh format " + upper + " is not supported yet");
+  }
+  if (extension != "obj") {
+    fail(name, "mesh " + in_quotes(name.text) + " has an unsupported format (supported: .obj)");
+  }
+  return context_.mesh(path, name);
+}
+
+void FileParser::include(const Token& name) { context_.include(resolve(name), name, keyword_); }
+
+void FileParser::define() {
+  const Token name = word("a macro name after 'def'");
+  const std::string opening = "'{' after 'def " + std::string(name.text) + "'";
+  const Token open = expect(opening);
+  if (open.text != "{") fail(open, "expected " + opening + ", found " + in_quotes(open.text));
+  Macro macro{std::string(name.text), {}, name};
+  int depth = 1;
+  while (true) {
+    const std::optional<Token> token = next();
+    if (!token) {
+      fail_at_end("'}' to close 'def " + std::string(name.text) + "' opened at " +
+                  std::to_string(open.line) + ":" + std::to_string(open.column));
+    }
+    if (token->text == "{") ++depth;
+    if (token->text == "}" && --depth == 0) break;
+    macro.tokens.push_back(*token);
+  }
+  auto& macros = context_.macros();
+  const std::string key = to_lower(name.text);
+  const auto existing = macros.find(key);
+  if (existing != macros.end()) {
+    fail(name, "macro " + in_quotes(name.text) + " is already defined at " +
+                   location(existing->second.where).to_string());
+  }
+  macros.emplace(key, std::move(macro));
+}
+
+void FileParser::use() {
+  const Token name = word("a macro name after 'use'");
+  const auto& macros = context_.macros();
+  const auto found = macros.find(to_lower(name.text));
+  if (found == macros.end()) fail(name, "macro " + in_quotes(name.text) + " is not defined");
+  const Macro& macro = found->second;
+  for (const Frame& frame : frames_) {
+    if (frame.macro == &macro) {
+      fail(name,
+           "macro " + in_quotes(macro.name) + " uses itself (directly or through other macros)");
+    }
+  }
+  context_.enter_nesting(keyword_);
+  frames_.push_back({&macro.tokens, 0, &macro});
+}
+
+bool FileParser::accept_global() {
+  if (!included_) return true;
+  context_.warn(location(keyword_).to_string() + ": '" + std::string(keyword_name_) +
+                "' in an included file is ignored");
+  return false;
+}
+
+void FileParser::validate_camera() const {
+  const Camera& camera = context_.scene().camera;
+  const SourceLocation position_at =
+      last_camera_position_ ? location(*last_camera_position_) : SourceLocation{file_.path, 1, 1};
+  Vec3 difference = camera.look_at - camera.eye;
+  if (!is_finite(difference)) difference = camera.look_at * 0.5 - camera.eye * 0.5;
+  const Vec3 view = unit_or_zero(difference);
+  if (view == Vec3{}) {
+    throw SceneError(position_at, "eyePoint and viewPoint are the same point");
+  }
+  const Vec3 up = unit_or_zero(camera.up);
+  if (!(length(cross(up, view)) > 1e-9)) {
+    throw SceneError(up_direction_ ? location(*up_direction_) : position_at,
+                     "upDirection is zero or parallel to the view direction");
+  }
+}
+
+Vec3 unit_or_zero(const Vec3& v) {
+  // Scaling by the largest component first keeps the squared length from under- or
+  // overflowing.
+  const double largest = max_component(abs(v));
+  if (!(largest > 0) || !std::isfinite(largest)) return {};
+  return normalize_or(v / largest, Vec3{});
+}
+
+Scene load_sdl_with_limits(const SceneSource& source, const std::string& path,
+                           const Limits& limits) {
+  LoadContext context(source, limits);
+  return context.load(path);
+}
+
+}  // namespace tessera::sdl
+
+// ---------------------------------------------------------------------------------------------
+// Entry points
+
+namespace tessera {
+
+Scene load_sdl(const SceneSource& source, const std::string& path) {
+  return sdl::load_sdl_with_limits(source, path, sdl::Limits{});
+}
+
+Scene load_sdl_file(const std::filesystem::path& file) {
+  std::filesystem::path root = file.parent_path();
+  if (root.empty()) root = ".";
+  const DirectorySource source(root);
+  return load_sdl(source, file.filename().string());
+}
+
+}  // namespace tessera

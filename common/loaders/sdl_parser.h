@@ -1,0 +1,144 @@
+// Internal to the SDL loader: the parser of one file (its token stream, current transform and
+// material) and the operations the keyword handlers of sdl_keywords.cpp are written with.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "common/loaders/scene_source.h"
+#include "common/loaders/sdl_lexer.h"
+#include "common/scene/scene.h"
+
+namespace tessera::sdl {
+
+// Limits that keep hostile scenes from hurting the service. load_sdl uses the defaults;
+// tests lower them to reach them cheaply.
+struct Limits {
+  int max_nesting = 64;                    // include and use replays, nested, together
+  std::size_t max_objects = 1'000'000;     // shapes in the scene
+  std::size_t max_lights = 1'000'000;      // lights in the scene
+  std::size_t max_file_bytes = 16u << 20;  // per SDL or mesh file
+  std::uint64_t max_tokens = 64ull << 20;  // parsed in all, replays and includes counted
+  std::size_t max_push_depth = 65'536;     // CTs saved by push
+  std::size_t max_warnings = 100;
+};
+
+class LoadContext;  // what one load shares across files (sdl_parser.cpp)
+struct SourceFile;
+struct Macro;
+
+// What a number parameter must satisfy; the message names the interval.
+enum class Range {
+  Any,
+  NonNegative,   // >= 0
+  Positive,      // > 0
+  UnitInterval,  // [0, 1]
+  OpenAngle,     // (0, 180), degrees
+  Cutoff,        // (0, 180], degrees
+};
+
+struct Number {
+  double value = 0;
+  Token token;  // where it was written, for errors found later
+};
+
+class FileParser {
+ public:
+  FileParser(LoadContext& context, const SourceFile& file, bool included);
+  FileParser(const FileParser&) = delete;
+  FileParser& operator=(const FileParser&) = delete;
+
+  // Parses every statement of the file.
+  void run();
+  // At the end of the top-level file: the camera must have a view direction and an up vector
+  // that is not parallel to it.
+  void validate_camera() const;
+
+  // ---- The statement being parsed
+  const Token& keyword() const { return keyword_; }
+  std::string_view keyword_name() const { return keyword_name_; }  // canonical spelling
+  Scene& scene();
+  SourceLocation location(const Token& token) const;
+  [[noreturn]] void fail(const Token& at, const std::string& message) const;
+
+  // ---- Parameters of the current keyword. `param` is the manual's name ("<dx>"), used in
+  // messages such as "expected a number for <dx> of 'translate', found 'abc'".
+  Token word(const std::string& what);  // any token but a brace: a file or macro name
+  Number read_number(const char* param, Range range = Range::Any);
+  double number(const char* param, Range range = Range::Any) {
+    return read_number(param, range).value;
+  }
+  int integer(const char* param, int min, int max);
+  bool flag(const char* param);  // any number; non-zero is true
+  Vec3 vec3(const char* x, const char* y, const char* z);
+  Rgb color(const char* r, const char* g, const char* b);  // non-negative components
+
+  // ---- Effects of statements
+  Affine& ct() { return ct_; }
+  void push_ct();
+  void pop_ct();
+  Material& material() { return material_; }
+  void add_object(const ShapeGeometry& geometry);
+  void add_light(const Light& light);
+  // The index in Scene::meshes of the mesh file `name` (loaded once per resolved path).
+  std::size_t mesh(const Token& name);
+  // `name` resolved relative to the file it is written in; an error when it leaves the root.
+  std::string resolve(const Token& name);
+  void include(const Token& name);
+  void define();
+  void use();
+  // Global attributes apply only in the top-level file: in an included file this adds a
+  // warning and returns false.
+  bool accept_global();
+  void note_camera_position() { last_camera_position_ = keyword_; }
+  void note_up_direction() { up_direction_ = keyword_; }
+
+ private:
+  struct Frame {
+    const std::vector<Token>* tokens = nullptr;
+    std::size_t next = 0;
+    const Macro* macro = nullptr;  // the macro being replayed, null for the file itself
+  };
+
+  std::optional<Token> next();
+  Token expect(const std::string& what);  // the next token, or "unexpected end of file"
+  [[noreturn]] void fail_at_end(const std::string& what) const;
+  std::string of_keyword(const char* param) const;  // "<dx> of 'translate'"
+
+  LoadContext& context_;
+  const SourceFile& file_;
+  bool included_;
+  std::vector<Frame> frames_;
+  Token keyword_;
+  std::string_view keyword_name_;
+  Affine ct_;
+  std::vector<Affine> ct_stack_;
+  Material material_;
+  std::optional<Token> last_camera_position_;  // the last eyePoint or viewPoint
+  std::optional<Token> up_direction_;
+};
+
+// The unit vector along `v`, also for tiny or huge lengths; zero when `v` has no direction.
+Vec3 unit_or_zero(const Vec3& v);
+
+// load_sdl with chosen limits.
+Scene load_sdl_with_limits(const SceneSource& source, const std::string& path,
+                           const Limits& limits);
+
+// ---- The keyword table (sdl_keywords.cpp)
+
+using KeywordHandler = void (*)(FileParser&);
+
+struct Keyword {
+  std::string_view name;  // canonical spelling; matching is case-insensitive
+  KeywordHandler handler;
+};
+
+// The keyword spelled `name` in any case, or null.
+const Keyword* find_keyword(std::string_view name);
+
+}  // namespace tessera::sdl

@@ -1,0 +1,151 @@
+// Shapes (§3.3): geometry, flags, meshes and the keywords of later issues.
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "tests/loaders/loader_test_util.h"
+
+namespace tessera::test {
+namespace {
+
+TEST(SdlShapes, GenericShapes) {
+  const Scene scene = load_text(
+      "sphere cube\n"
+      "cone 1 cone 0\n"
+      "cylinder 0 cylinder -2.5\n"
+      "taperedCylinder 0.25 1 taperedCylinder 0 0.0");
+  ASSERT_EQ(scene.objects.size(), 8u);
+  EXPECT_EQ(scene.objects[0].geometry, ShapeGeometry(Sphere{}));
+  EXPECT_EQ(scene.objects[1].geometry, ShapeGeometry(Cube{}));
+  EXPECT_EQ(scene.objects[2].geometry, ShapeGeometry(TaperedCylinder{0, true}));
+  EXPECT_EQ(scene.objects[3].geometry, ShapeGeometry(TaperedCylinder{0, false}));
+  EXPECT_EQ(scene.objects[4].geometry, ShapeGeometry(TaperedCylinder{1, false}));
+  EXPECT_EQ(scene.objects[5].geometry, ShapeGeometry(TaperedCylinder{1, true}));  // non-zero
+  EXPECT_EQ(scene.objects[6].geometry, ShapeGeometry(TaperedCylinder{0.25, true}));
+  EXPECT_EQ(scene.objects[7].geometry, ShapeGeometry(TaperedCylinder{0, false}));
+  EXPECT_EQ(scene.objects[6].where.line, 4);
+  EXPECT_EQ(scene.objects[7].where.column, 24);
+}
+
+TEST(SdlShapes, ShapeParameterErrors) {
+  EXPECT_TRUE(fails_at(
+      "cone", 1, 5, "unexpected end of file, expected a number for <distort-texture> of 'cone'"));
+  EXPECT_TRUE(fails_at("taperedCylinder -0.5 0", 1, 17,
+                       "<small-radius> of 'taperedCylinder' must be non-negative, found '-0.5'"));
+  EXPECT_TRUE(fails_at("cylinder yes", 1, 10,
+                       "expected a number for <distort-texture> of 'cylinder', found 'yes'"));
+}
+
+TEST(SdlShapes, MeshLoadsAnObjFileResolvedRelativeToTheScene) {
+  const Scene scene =
+      load_text("mesh models/tri.obj 1\nmesh models/tri.obj 0", {{"models/tri.obj", kTriangleObj}});
+  ASSERT_EQ(scene.meshes.size(), 1u);  // loaded once, shared
+  EXPECT_EQ(scene.meshes[0].source, "models/tri.obj");
+  EXPECT_EQ(scene.meshes[0].triangles.size(), 1u);
+  ASSERT_EQ(scene.objects.size(), 2u);
+  EXPECT_EQ(scene.objects[0].geometry, ShapeGeometry(MeshShape{0, true}));
+  EXPECT_EQ(scene.objects[1].geometry, ShapeGeometry(MeshShape{0, false}));
+}
+
+TEST(SdlShapes, DifferentSpellingsOfOneMeshPathShareIt) {
+  const Scene scene = load_text(
+      "mesh a/tri.obj 0  mesh ./a/../a/tri.obj 0  mesh a/other.OBJ 0",
+      {{"a/tri.obj", kTriangleObj}, {"a/other.OBJ", "v 0 0 0\nv 1 0 0\nv 0 0 1\nf 1 2 3"}});
+  ASSERT_EQ(scene.meshes.size(), 2u);
+  EXPECT_EQ(std::get<MeshShape>(scene.objects[1].geometry).mesh, 0u);
+  EXPECT_EQ(std::get<MeshShape>(scene.objects[2].geometry).mesh, 1u);
+  EXPECT_EQ(scene.meshes[1].source, "a/other.OBJ");
+}
+
+TEST(SdlShapes, MeshNamesInIncludedFilesAreRelativeToThatFile) {
+  const Scene scene =
+      load_text("include parts/car.sdl", {{"parts/car.sdl", "mesh wheel.obj 0\nmesh ../body.obj 0"},
+                                          {"parts/wheel.obj", kTriangleObj},
+                                          {"body.obj", kTriangleObj}});
+  ASSERT_EQ(scene.meshes.size(), 2u);
+  EXPECT_EQ(scene.meshes[0].source, "parts/wheel.obj");
+  EXPECT_EQ(scene.meshes[1].source, "body.obj");
+}
+
+TEST(SdlShapes, MeshUsesTheCtAndMaterial) {
+  const Scene scene =
+      load_text("diffuse 0 1 0 translate 0 0 4 mesh tri.obj 0", {{"tri.obj", kTriangleObj}});
+  EXPECT_EQ(scene.objects[0].material.diffuse, Rgb(0, 1, 0));
+  EXPECT_TRUE(near(scene.objects[0].transform.apply_point({0, 0, 0}), {0, 0, 4}));
+}
+
+TEST(SdlShapes, MeshFormatErrors) {
+  EXPECT_TRUE(fails_at("mesh car.3vn 0", 1, 6, "mesh format 3VN is not supported yet"));
+  EXPECT_TRUE(fails_at("mesh car.3Dv 0", 1, 6, "mesh format 3DV is not supported yet"));
+  EXPECT_TRUE(fails_at("mesh car.3DM 0", 1, 6, "mesh format 3DM is not supported yet"));
+  EXPECT_TRUE(fails_at("mesh car.ply 0", 1, 6,
+                       "mesh 'car.ply' has an unsupported format (supported: .obj)"));
+  EXPECT_TRUE(fails_at("mesh dir.obj/car 0", 1, 6,
+                       "mesh 'dir.obj/car' has an unsupported format (supported: .obj)"));
+}
+
+TEST(SdlShapes, MeshFileErrors) {
+  EXPECT_TRUE(fails_at("sphere\nmesh  nope.obj 0", 2, 7, "mesh file 'nope.obj' not found"));
+  EXPECT_TRUE(fails_at("mesh ../up.obj 0", 1, 6, "mesh '../up.obj' leaves the scene's folder"));
+  EXPECT_TRUE(fails_at("mesh /etc/x.obj 0", 1, 6, "mesh '/etc/x.obj' leaves the scene's folder"));
+  EXPECT_TRUE(fails_at("mesh empty.obj 0", 1, 6, "mesh 'empty.obj' has no triangles",
+                       {{"empty.obj", "v 0 0 0\nv 1 0 0\n# no faces\n"}}));
+  EXPECT_TRUE(fails_at("mesh tri.obj", 1, 13,
+                       "unexpected end of file, expected a number for <interpolate-normals> of "
+                       "'mesh'",
+                       {{"tri.obj", kTriangleObj}}));
+  EXPECT_TRUE(fails_at("mesh", 1, 5,
+                       "unexpected end of file, expected a file name for <filename> of 'mesh'"));
+}
+
+TEST(SdlShapes, ObjErrorsAreLocatedInTheObjFile) {
+  EXPECT_TRUE(fails_with("mesh m/bad.obj 0", "m/bad.obj", 2, 5,
+                         "vertex index 7 is out of range (1 defined so far)",
+                         {{"m/bad.obj", "v 0 0 0\nf 1 7 1\n"}}));
+}
+
+TEST(SdlShapes, MeshWithASingularCtIsAnError) {
+  EXPECT_TRUE(fails_at("scale 0 1 1 mesh tri.obj 0", 1, 13,
+                       "'mesh' has a singular transform (zero scale?)",
+                       {{"tri.obj", kTriangleObj}}));
+}
+
+TEST(SdlShapes, KeywordsOfLaterIssuesAreNotSupportedYet) {
+  for (const std::string keyword : {"union",
+                                    "intersection",
+                                    "difference",
+                                    "torus",
+                                    "oneSheetHyperboloid",
+                                    "twoSheetHyperboloid",
+                                    "ellipticCylinder",
+                                    "ellipticCone",
+                                    "ellipticParaboloid",
+                                    "hyperbolicParaboloid",
+                                    "pinchedSurfaceWithHoles",
+                                    "pinchedSurfaceWithLobe",
+                                    "fourLobes",
+                                    "steinersRomanSurface",
+                                    "toothCube",
+                                    "buckyball",
+                                    "diamond",
+                                    "dodecahedron",
+                                    "icosahedron",
+                                    "octahedron",
+                                    "pyramid",
+                                    "tetrahedron",
+                                    "teapot",
+                                    "mbClear",
+                                    "mbRotate",
+                                    "mbTranslate",
+                                    "mbScale",
+                                    "mbEnable"}) {
+    EXPECT_TRUE(fails_at("sphere\n   " + keyword + " 1 2 3", 2, 4,
+                         "'" + keyword + "' is not supported yet"))
+        << keyword;
+  }
+  // Matched case-insensitively, and named in the canonical spelling.
+  EXPECT_TRUE(fails_at("TORUS 1 2", 1, 1, "'torus' is not supported yet"));
+}
+
+}  // namespace
+}  // namespace tessera::test
