@@ -23,7 +23,7 @@ struct BvhNode {
 };
 
 struct Bvh {
-  std::vector<BvhNode> nodes;              // depth-first; nodes[0] is the root when non-empty
+  std::vector<BvhNode> nodes;                  // depth-first; nodes[0] is the root when non-empty
   std::vector<std::uint32_t> primitive_order;  // leaf ranges index into this
 };
 

@@ -35,7 +35,7 @@ struct WorldHit {
 };
 
 // Nearest hit with t in (0, t_max), or false.
-bool intersect_instance(const Instance& instance, const Ray& world_ray, double t_max,
-                        WorldHit& hit, IntersectionCounters& counters);
+bool intersect_instance(const Instance& instance, const Ray& world_ray, double t_max, WorldHit& hit,
+                        IntersectionCounters& counters);
 
 }  // namespace tessera

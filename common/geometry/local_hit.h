@@ -8,10 +8,10 @@
 namespace tessera {
 
 struct LocalHit {
-  double t = 0;      // ray parameter of the hit (the ray's direction need not be unit length)
-  Vec3 point;        // hit point, re-projected onto the surface where the shape allows it
-  Vec3 point_error;  // per-component bound on |point - exact hit point|
-  Vec3 normal;       // outward geometric normal (not necessarily unit length)
+  double t = 0;         // ray parameter of the hit (the ray's direction need not be unit length)
+  Vec3 point;           // hit point, re-projected onto the surface where the shape allows it
+  Vec3 point_error;     // per-component bound on |point - exact hit point|
+  Vec3 normal;          // outward geometric normal (not necessarily unit length)
   Vec3 shading_normal;  // interpolated normal for smooth meshes, else equal to `normal`
   // Which part of the shape was hit (cube face 0..5; tapered cylinder 0 wall, 1 base cap at
   // z = 0, 2 top cap at z = 1; mesh triangle index), for texture mapping.

@@ -19,8 +19,8 @@ bool intersect_cube(const Ray& ray, double t_max, LocalHit& hit);
 bool intersect_tapered_cylinder(const TaperedCylinder& shape, const Ray& ray, double t_max,
                                 LocalHit& hit);
 // Meshes go through their own BVH (common/accel/mesh_accel.h).
-bool intersect_mesh(const MeshAccel& mesh, bool interpolate_normals, const Ray& ray,
-                    double t_max, LocalHit& hit, IntersectionCounters& counters);
+bool intersect_mesh(const MeshAccel& mesh, bool interpolate_normals, const Ray& ray, double t_max,
+                    LocalHit& hit, IntersectionCounters& counters);
 
 // Bounds of a generic shape in its object space.
 Bounds3 object_bounds(const ShapeGeometry& shape, const MeshAccel* mesh);

@@ -1,0 +1,106 @@
+#include "common/accel/mesh_accel.h"
+
+#include <gtest/gtest.h>
+
+#include <random>
+
+#include "common/geometry/shapes.h"
+#include "common/geometry/triangle.h"
+
+namespace tessera {
+namespace {
+
+Mesh random_triangles(std::mt19937_64& rng, int n, double world, double size) {
+  std::uniform_real_distribution<double> u(0, 1);
+  Mesh mesh;
+  for (int i = 0; i < n; ++i) {
+    const Vec3 c{world * u(rng), world * u(rng), world * u(rng)};
+    MeshTriangle t;
+    for (int k = 0; k < 3; ++k) {
+      t.v[static_cast<std::size_t>(k)] = static_cast<std::uint32_t>(mesh.positions.size());
+      mesh.positions.push_back(c + Vec3{u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5} * size);
+    }
+    mesh.triangles.push_back(t);
+  }
+  return mesh;
+}
+
+// The nearest triangle by testing every one.
+bool brute_force(const Mesh& mesh, const Ray& ray, double& t, std::uint32_t& index) {
+  bool found = false;
+  t = kInfinity;
+  for (std::uint32_t i = 0; i < mesh.triangles.size(); ++i) {
+    const MeshTriangle& tri = mesh.triangles[i];
+    TriangleHit h;
+    if (intersect_triangle(mesh.positions[tri.v[0]], mesh.positions[tri.v[1]],
+                           mesh.positions[tri.v[2]], ray, t, h)) {
+      t = h.t, index = i, found = true;
+    }
+  }
+  return found;
+}
+
+TEST(MeshAccel, SahAndNoneMatchBruteForceOnRandomTriangles) {
+  std::mt19937_64 rng(77);
+  std::uniform_real_distribution<double> u(0, 1);
+  const Mesh mesh = random_triangles(rng, 2000, 10, 1.2);
+  const MeshAccel sah = build_mesh_accel(mesh, BvhMode::Sah);
+  const MeshAccel none = build_mesh_accel(mesh, BvhMode::None);
+  EXPECT_EQ(sah.mesh, &mesh);
+  EXPECT_EQ(sah.bounds.lo, none.bounds.lo);
+  EXPECT_EQ(sah.bounds.hi, none.bounds.hi);
+  IntersectionCounters sah_counters, none_counters;
+  int hits = 0;
+  for (int r = 0; r < 1000; ++r) {
+    const Vec3 o{30 * u(rng) - 10, 30 * u(rng) - 10, 30 * u(rng) - 10};
+    const Vec3 target{10 * u(rng), 10 * u(rng), 10 * u(rng)};
+    const Ray ray{o, (target - o) * (0.1 + u(rng))};
+    double t = 0;
+    std::uint32_t index = 0;
+    const bool expected = brute_force(mesh, ray, t, index);
+    LocalHit a, b;
+    ASSERT_EQ(intersect_mesh(sah, false, ray, kInfinity, a, sah_counters), expected) << r;
+    ASSERT_EQ(intersect_mesh(none, false, ray, kInfinity, b, none_counters), expected) << r;
+    if (!expected) continue;
+    ++hits;
+    EXPECT_EQ(a.t, t);
+    EXPECT_EQ(b.t, t);
+    EXPECT_EQ(a.part, index);
+    EXPECT_EQ(b.part, index);
+  }
+  EXPECT_GT(hits, 300);
+  // Without a tree, every ray that meets the mesh's box tests every triangle.
+  EXPECT_EQ(none_counters.triangle_tests % mesh.triangles.size(), 0u);
+  EXPECT_GE(none_counters.triangle_tests, static_cast<std::uint64_t>(hits) * mesh.triangles.size());
+  // The tree tests a small fraction of the triangles.
+  EXPECT_LT(sah_counters.triangle_tests * 20, none_counters.triangle_tests);
+  EXPECT_LT(sah_counters.bvh_nodes + sah_counters.triangle_tests,
+            (none_counters.bvh_nodes + none_counters.triangle_tests) / 10);
+}
+
+TEST(MeshAccel, EmptyMeshAndDegenerateTriangles) {
+  const Mesh empty;
+  const MeshAccel accel = build_mesh_accel(empty, BvhMode::Sah);
+  EXPECT_TRUE(accel.bounds.empty());
+  EXPECT_TRUE(accel.bvh.nodes.empty());
+  IntersectionCounters counters;
+  LocalHit hit;
+  EXPECT_FALSE(intersect_mesh(accel, false, {{0, 0, -1}, {0, 0, 1}}, kInfinity, hit, counters));
+
+  // A mesh of zero-area triangles is never hit, but builds fine.
+  Mesh flat;
+  flat.positions = {{0, 0, 0}, {1, 1, 0}, {2, 2, 0}, {0, 0, 0}};
+  for (int i = 0; i < 10; ++i) {
+    MeshTriangle t;
+    t.v = {0, 1, static_cast<std::uint32_t>(i % 2 ? 2 : 3)};
+    flat.triangles.push_back(t);
+  }
+  const MeshAccel flat_accel = build_mesh_accel(flat, BvhMode::Sah);
+  EXPECT_FALSE(
+      intersect_mesh(flat_accel, false, {{1, 1, -1}, {0, 0, 1}}, kInfinity, hit, counters));
+  EXPECT_FALSE(
+      intersect_mesh(flat_accel, false, {{-1, -1, 0}, {1, 1, 0}}, kInfinity, hit, counters));
+}
+
+}  // namespace
+}  // namespace tessera
