@@ -18,9 +18,7 @@ struct Image {
 
   Image() = default;
   Image(int w, int h) : width(w), height(h), rgb(static_cast<std::size_t>(w) * h * 3, 0.0f) {}
-  std::size_t index(int x, int y) const {
-    return (static_cast<std::size_t>(y) * width + x) * 3;
-  }
+  std::size_t index(int x, int y) const { return (static_cast<std::size_t>(y) * width + x) * 3; }
   void set(int x, int y, const Rgb& c) {
     const std::size_t i = index(x, y);
     rgb[i] = static_cast<float>(c.r);

@@ -16,6 +16,9 @@ enum class Effect : std::uint32_t {
   Spotlights = 1u << 4,
   AntiAliasing = 1u << 5,
   Meshes = 1u << 6,
+  SurfaceRoughness = 1u << 7,
+  AtmosphericAttenuation = 1u << 8,
+  Fog = 1u << 9,
 };
 
 class EffectSet {

@@ -23,11 +23,15 @@ struct PixelRect {
   long long area() const { return static_cast<long long>(width()) * height(); }
 };
 
+// The effects a render simulates: the scene's, plus anti-aliasing when the settings ask for
+// more than one sample per pixel.
+EffectSet render_effects(const PreparedScene& scene, const RenderSettings& settings);
+
 // Traces one sample pass (settings.aa_samples samples per pixel) of the pixels of `rect` on
 // the calling thread; out[(y - y0) * width + (x - x0)] receives the pass's mean colour.
 // Adds to `stats` (rays, tests, samples; not seconds).
-void render_pass(const PreparedScene& scene, const RenderSettings& settings,
-                 const PixelRect& rect, int pass, std::span<Rgb> out, RenderStats& stats);
+void render_pass(const PreparedScene& scene, const RenderSettings& settings, const PixelRect& rect,
+                 int pass, std::span<Rgb> out, RenderStats& stats);
 
 // Traces the listed pixels (x, y) of one pass, for the progressive scheduler whose units are
 // sparse anchors; same values as render_pass.

@@ -1,0 +1,30 @@
+#include "common/render/effects.h"
+
+#include <array>
+#include <utility>
+
+namespace tessera {
+
+namespace {
+constexpr std::array<std::pair<Effect, const char*>, 10> kEffectNames{{
+    {Effect::HardShadows, "hard_shadows"},
+    {Effect::Reflection, "reflection"},
+    {Effect::Refraction, "refraction"},
+    {Effect::LightAttenuation, "light_attenuation"},
+    {Effect::Spotlights, "spotlights"},
+    {Effect::AntiAliasing, "anti_aliasing"},
+    {Effect::Meshes, "meshes"},
+    {Effect::SurfaceRoughness, "surface_roughness"},
+    {Effect::AtmosphericAttenuation, "atmospheric_attenuation"},
+    {Effect::Fog, "fog"},
+}};
+}  // namespace
+
+std::vector<std::string> EffectSet::names() const {
+  std::vector<std::string> out;
+  for (const auto& [effect, name] : kEffectNames)
+    if (has(effect)) out.emplace_back(name);
+  return out;
+}
+
+}  // namespace tessera

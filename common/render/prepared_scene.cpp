@@ -1,0 +1,100 @@
+#include "common/render/prepared_scene.h"
+
+#include <cmath>
+#include <numbers>
+
+namespace tessera {
+
+namespace {
+
+CameraFrame make_camera_frame(const Camera& camera) {
+  const SourceLocation nowhere{"camera", 0, 0};
+  const Vec3 view = camera.look_at - camera.eye;
+  if (!is_finite(view) || !(length(view) > 0))
+    throw SceneError(nowhere, "eyePoint and viewPoint coincide: the view has no direction");
+  CameraFrame frame;
+  frame.eye = camera.eye;
+  frame.forward = view / length(view);
+  const Vec3 right = cross(frame.forward, camera.up);
+  if (!(length(right) > 1e-12 * length(camera.up)))
+    throw SceneError(nowhere, "upDirection is parallel to the view direction");
+  frame.right = right / length(right);
+  frame.up = cross(frame.right, frame.forward);
+  if (!(camera.view_angle > 0 && camera.view_angle < 180))
+    throw SceneError(nowhere, "viewAngle must lie strictly between 0 and 180 degrees");
+  frame.tan_half_height = std::tan(camera.view_angle * std::numbers::pi / 360);
+  return frame;
+}
+
+// Which effects the scene calls for; anything absent here costs nothing at render time.
+EffectSet scene_effects(const Scene& scene) {
+  const SceneGlobals& g = scene.globals;
+  EffectSet effects;
+  if (!scene.lights.empty() && !scene.objects.empty()) effects.add(Effect::HardShadows);
+  for (const Light& light : scene.lights)
+    if (light.is_spot) effects.add(Effect::Spotlights);
+  if (!g.light_attenuation.is_identity() && !scene.lights.empty())
+    effects.add(Effect::LightAttenuation);
+  if (g.atmospheric_attenuation) effects.add(Effect::AtmosphericAttenuation);
+  if (g.fog) effects.add(Effect::Fog);
+  for (const SceneObject& object : scene.objects) {
+    const Material& m = object.material;
+    if (g.max_recursion_depth > 0 && m.reflectivity > g.min_reflectivity)
+      effects.add(Effect::Reflection);
+    if (g.max_recursion_depth > 0 && m.transparency > g.min_transparency)
+      effects.add(Effect::Refraction);
+    if (m.surface_roughness > 0) effects.add(Effect::SurfaceRoughness);
+    if (std::holds_alternative<MeshShape>(object.geometry)) effects.add(Effect::Meshes);
+  }
+  return effects;
+}
+
+// What the scene asks for that this renderer does not simulate yet: said, never dropped.
+std::vector<std::string> unsupported_features(const Scene& scene) {
+  std::vector<std::string> out;
+  auto note = [&out](const SourceLocation& where, const std::string& what) {
+    const std::string line = where.to_string() + ": " + what + " is not rendered yet";
+    for (const std::string& seen : out)
+      if (seen == line) return;
+    out.push_back(line);
+  };
+  const SourceLocation global{"scene", 0, 0};
+  if (scene.globals.show_extents) note(global, "showExtents");
+  if (scene.globals.adapted_shadow_computation) note(global, "adaptedShadowComputation");
+  for (const SceneObject& object : scene.objects) {
+    const Material& m = object.material;
+    if (m.gloss_strength > 0 && m.reflectivity > 0) note(object.where, "glossStrength");
+    if (m.translucency_strength > 0 && m.transparency > 0)
+      note(object.where, "translucencyStrength");
+    if (m.solid_texture.type != 0) note(object.where, "solidTexture");
+    if (m.flat_texture.kind != FlatTexture::Kind::None) note(object.where, "a flat texture");
+  }
+  return out;
+}
+
+}  // namespace
+
+PreparedScene::PreparedScene(const Scene& scene, BvhMode mode)
+    : scene_(&scene),
+      camera_(make_camera_frame(scene.camera)),
+      effects_(scene_effects(scene)),
+      unsupported_(unsupported_features(scene)) {
+  meshes_.reserve(scene.meshes.size());
+  for (const Mesh& mesh : scene.meshes)
+    meshes_.push_back(std::make_unique<MeshAccel>(build_mesh_accel(mesh, mode)));
+
+  instances_.reserve(scene.objects.size());
+  std::vector<Bounds3> bounds;
+  bounds.reserve(scene.objects.size());
+  for (const SceneObject& object : scene.objects) {
+    const MeshAccel* mesh = nullptr;
+    if (const auto* m = std::get_if<MeshShape>(&object.geometry)) mesh = meshes_.at(m->mesh).get();
+    std::optional<Instance> instance = make_instance(object.geometry, object.transform, mesh);
+    if (!instance) throw SceneError(object.where, "the shape's transform is singular");
+    bounds.push_back(instance->world_bounds);
+    instances_.push_back(std::move(*instance));
+  }
+  bvh_ = build_bvh(bounds, mode);
+}
+
+}  // namespace tessera

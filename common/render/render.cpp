@@ -1,0 +1,118 @@
+#include "common/render/render.h"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <mutex>
+#include <thread>
+
+#include "common/render/frame_buffer.h"
+#include "common/render/pixel_samples.h"
+#include "common/render/tracer.h"
+
+namespace tessera {
+
+namespace {
+
+constexpr int kTileSize = 16;
+
+// One pass of one pixel: the mean of its samples. Sample k of pass p has the global sample
+// index p * samples + k, which keys its random numbers.
+Rgb trace_pixel(const PreparedScene& scene, const RenderSettings& settings, int x, int y, int pass,
+                RenderStats& stats) {
+  Tracer tracer(scene, stats);
+  const std::span<const SampleOffset> offsets = regular_sample_offsets(settings.aa_samples);
+  const auto first = static_cast<std::uint32_t>(pass) * static_cast<std::uint32_t>(offsets.size());
+  Rgb sum;
+  for (std::size_t k = 0; k < offsets.size(); ++k) {
+    SampleStream rng(settings.seed, static_cast<std::uint32_t>(x), static_cast<std::uint32_t>(y),
+                     first + static_cast<std::uint32_t>(k));
+    double px = x + offsets[k].dx, py = y + offsets[k].dy;
+    if (settings.stochastic) {
+      px += (rng.next() - 0.5) * settings.jitter;
+      py += (rng.next() - 0.5) * settings.jitter;
+    }
+    const Ray ray = scene.camera().ray_through(px, py, settings.width, settings.height);
+    ++stats.camera_rays;
+    Rgb c = tracer.trace(ray, RayKind::Camera, 0, 1.0, MediumStack{}, rng);
+    if (!is_finite(c)) {
+      ++stats.nan_samples;  // counted and reported, never written into the image
+      c = Rgb{};
+    }
+    sum += c;
+  }
+  stats.samples += offsets.size();
+  ++stats.pixels;
+  return sum * (1.0 / static_cast<double>(offsets.size()));
+}
+
+}  // namespace
+
+EffectSet render_effects(const PreparedScene& scene, const RenderSettings& settings) {
+  EffectSet effects = scene.effects();
+  if (settings.aa_samples > 1 || (settings.stochastic && settings.passes > 1))
+    effects.add(Effect::AntiAliasing);
+  return effects;
+}
+
+void render_pass(const PreparedScene& scene, const RenderSettings& settings, const PixelRect& rect,
+                 int pass, std::span<Rgb> out, RenderStats& stats) {
+  std::size_t i = 0;
+  for (int y = rect.y0; y < rect.y1; ++y)
+    for (int x = rect.x0; x < rect.x1; ++x)
+      out[i++] = trace_pixel(scene, settings, x, y, pass, stats);
+}
+
+void render_pixels(const PreparedScene& scene, const RenderSettings& settings,
+                   std::span<const PixelCoord> pixels, int pass, std::span<Rgb> out,
+                   RenderStats& stats) {
+  for (std::size_t i = 0; i < pixels.size(); ++i)
+    out[i] = trace_pixel(scene, settings, pixels[i].x, pixels[i].y, pass, stats);
+}
+
+Image render_image(const PreparedScene& scene, const RenderSettings& settings, int threads,
+                   RenderStats& stats, const ProgressFn& progress) {
+  const auto start = std::chrono::steady_clock::now();
+  if (threads <= 0) threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  const int tiles_x = (settings.width + kTileSize - 1) / kTileSize;
+  const int tiles_y = (settings.height + kTileSize - 1) / kTileSize;
+  const long long tile_count = static_cast<long long>(tiles_x) * tiles_y;
+
+  // Tiles own disjoint pixels, so threads add to the frame buffer without locking; each
+  // pixel receives its passes in pass order, as on the coordinator.
+  FrameBuffer frame(settings.width, settings.height);
+  std::atomic<long long> next{0}, done{0};
+  std::mutex stats_mutex;
+  auto work = [&] {
+    RenderStats local;
+    std::vector<Rgb> values(kTileSize * kTileSize);
+    for (long long t; (t = next.fetch_add(1)) < tile_count;) {
+      const int tx = static_cast<int>(t % tiles_x), ty = static_cast<int>(t / tiles_x);
+      const PixelRect rect{tx * kTileSize, ty * kTileSize,
+                           std::min(settings.width, (tx + 1) * kTileSize),
+                           std::min(settings.height, (ty + 1) * kTileSize)};
+      for (int pass = 0; pass < settings.passes; ++pass) {
+        render_pass(scene, settings, rect, pass, values, local);
+        std::size_t i = 0;
+        for (int y = rect.y0; y < rect.y1; ++y)
+          for (int x = rect.x0; x < rect.x1; ++x, ++i) {
+            const float rgb[3] = {static_cast<float>(values[i].r), static_cast<float>(values[i].g),
+                                  static_cast<float>(values[i].b)};
+            frame.add_pass(x, y, rgb);
+          }
+      }
+      const long long finished = done.fetch_add(1) + 1;
+      if (progress) progress(finished, tile_count);
+    }
+    const std::lock_guard lock(stats_mutex);
+    stats += local;
+  };
+  std::vector<std::thread> pool;
+  for (int i = 1; i < threads; ++i) pool.emplace_back(work);
+  work();
+  for (std::thread& t : pool) t.join();
+  stats.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return frame.resolve();
+}
+
+}  // namespace tessera

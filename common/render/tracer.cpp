@@ -1,0 +1,241 @@
+#include "common/render/tracer.h"
+
+#include <algorithm>
+#include <cmath>
+#include <numbers>
+
+#include "common/math/float_error.h"
+
+namespace tessera {
+
+namespace {
+
+// A ray may cross at most this many false interfaces (media of lower priority) in a row.
+constexpr int kMaxFalseInterfaces = 64;
+
+Vec3 reflect(const Vec3& r, const Vec3& n) { return r - n * (2 * dot(n, r)); }
+
+// Eq. 4.3: the normal perturbed by surface roughness, renormalized.
+Vec3 perturb_normal(const Vec3& n, double roughness, SampleStream& rng) {
+  const double rx = rng.next(), ry = rng.next(), rz = rng.next();
+  const Vec3 p = n + Vec3{rx, ry, rz} * roughness - Vec3{1, 1, 1} * (roughness / 2);
+  return normalize_or(p, n);
+}
+
+// The positive part of a cosine, or its absolute value when back faces are lit (§4.1.3).
+double facing(double cosine, bool light_back_faces) {
+  return light_back_faces ? std::fabs(cosine) : std::max(cosine, 0.0);
+}
+
+}  // namespace
+
+bool Tracer::closest_hit(const Ray& ray, Hit& hit) {
+  const std::vector<Instance>& instances = scene_.instances();
+  bool found = false;
+  traverse_bvh(scene_.bvh(), ray, kInfinity, stats_.intersections.bvh_nodes,
+               [&](std::uint32_t index, double t_max) {
+                 WorldHit h;
+                 if (!intersect_instance(instances[index], ray, t_max, h, stats_.intersections))
+                   return t_max;
+                 hit.world = h;
+                 hit.instance = index;
+                 found = true;
+                 return h.t;
+               });
+  return found;
+}
+
+double Tracer::shadow_factor(const Vec3& origin, const Vec3& target) {
+  ++stats_.shadow_rays;
+  const Ray ray{origin, target - origin, 0};
+  const std::vector<Instance>& instances = scene_.instances();
+  const std::vector<SceneObject>& objects = scene_.scene().objects;
+  double factor = 1;
+  // Each object counts once, however often the feeler crosses its surface (eq. 4.24).
+  traverse_bvh(scene_.bvh(), ray, 1.0, stats_.intersections.bvh_nodes,
+               [&](std::uint32_t index, double t_max) {
+                 WorldHit h;
+                 if (!intersect_instance(instances[index], ray, t_max, h, stats_.intersections))
+                   return t_max;
+                 factor *= objects[index].material.transparency;
+                 return factor > 0 ? t_max : -1.0;
+               });
+  return factor;
+}
+
+Vec3 Tracer::spawn_origin(const Hit& hit, const Vec3& direction, double epsilon) const {
+  const SceneGlobals& g = scene_.scene().globals;
+  if (std::holds_alternative<MeshShape>(scene_.instances()[hit.instance].geometry))
+    epsilon = std::max(epsilon, g.mesh_epsilon);
+  return offset_ray_origin(hit.world.point, hit.world.point_error, hit.world.normal, direction,
+                           epsilon);
+}
+
+Rgb Tracer::local_illumination(const Hit& hit, const Material& m, const Vec3& normal,
+                               const Vec3& view_dir) {
+  const Scene& scene = scene_.scene();
+  const SceneGlobals& g = scene.globals;
+  const double opacity = 1 - m.transparency;  // eq. 4.6, 4.10, 4.11
+
+  Rgb color = m.emissive;                      // eq. 4.4
+  Rgb ambient = m.ambient * g.global_ambient;  // eq. 4.5
+  if (!m.retain_ambient_color) ambient *= opacity;
+  color += ambient;
+
+  const double diffuse_scale = m.retain_diffuse_color ? 1 : opacity;
+  const double specular_scale = m.retain_specular_reflection ? 1 : opacity;
+  const bool has_specular = !m.specular.is_zero() && specular_scale > 0;
+  for (const Light& light : scene.lights) {
+    const Vec3 to_light = light.position - hit.world.point;
+    const double distance = length(to_light);
+    if (!(distance > 0)) continue;
+    const Vec3 l = to_light / distance;
+
+    double cone = 1;  // spotlight: zero outside the cut-off, cos^exponent inside (§4.1.3)
+    if (light.is_spot) {
+      const double cos_alpha = std::clamp(dot(-l, light.spot.direction), -1.0, 1.0);
+      if (cos_alpha < std::cos(light.spot.cutoff_degrees * std::numbers::pi / 180)) continue;
+      cone = light.spot.exponent == 0 ? 1 : std::pow(std::max(cos_alpha, 0.0), light.spot.exponent);
+    }
+
+    const double n_dot_l = facing(dot(normal, l), m.light_back_faces);
+    double n_dot_h = 0;
+    if (has_specular) {
+      // The halfway vector -V + L vanishes when light and view are opposite: no highlight.
+      const Vec3 h = normalize_or(l - view_dir, Vec3{});
+      n_dot_h = facing(dot(normal, h), m.light_back_faces);
+    }
+    if (n_dot_l <= 0 && n_dot_h <= 0) continue;
+
+    double attenuation = 1;  // eq. 4.12
+    if (scene_.effects().has(Effect::LightAttenuation)) {
+      const LightAttenuation& a = g.light_attenuation;
+      const double denominator =
+          a.constant + a.linear * distance + a.quadratic * distance * distance;
+      if (denominator > 1) attenuation = 1 / denominator;
+    }
+
+    const double shadow =
+        shadow_factor(spawn_origin(hit, l, g.shadow_feeler_epsilon), light.position);
+    if (shadow <= 0) continue;
+
+    Rgb contribution = m.diffuse * light.color * (n_dot_l * diffuse_scale);  // eq. 4.8
+    if (n_dot_h > 0)                                                         // eq. 4.9
+      contribution +=
+          m.specular * light.color * (std::pow(n_dot_h, m.specular_exponent) * specular_scale);
+    color += contribution * (attenuation * shadow * cone);  // eq. 4.7
+  }
+  return color;
+}
+
+Rgb Tracer::reflection(const Ray& ray, const Hit& hit, const Material& m, const Vec3& normal,
+                       int depth, double weight, const MediumStack& media, SampleStream& rng) {
+  ++stats_.reflection_rays;
+  const Vec3 direction = normalize_or(reflect(ray.direction, normal), ray.direction);  // eq. 4.13
+  const Ray reflected{spawn_origin(hit, direction, scene_.scene().globals.reflectivity_epsilon),
+                      direction, ray.time};
+  return trace(reflected, RayKind::Reflected, depth + 1, weight * m.reflectivity, media, rng) *
+         m.reflectivity;  // eq. 4.14
+}
+
+Rgb Tracer::transmission(const Ray& ray, const Hit& hit, const Material& m, const Vec3& normal,
+                         int depth, double weight, const MediumStack& media, SampleStream& rng) {
+  ++stats_.refraction_rays;
+  const SceneGlobals& g = scene_.scene().globals;
+  const bool entering = dot(hit.world.normal, ray.direction) < 0;
+  const Medium here{hit.instance, m.priority, m.speed_of_light};
+  MediumStack after = entering ? media.entered(here) : media.exited(hit.instance);
+  // Leaving an object the ray was not known to be in (the eye inside glass): its medium is
+  // the one behind the surface.
+  const double c1 =
+      (!entering && !media.contains(hit.instance)) ? m.speed_of_light : media.top().speed_of_light;
+  const double c2 = after.top().speed_of_light;
+
+  Vec3 direction = ray.direction;  // disableRefraction: straight through
+  if (!m.disable_refraction) {
+    // Snell's law by speeds of light (eq. 4.15-4.16, with 1 - (N.r)^2 under the root).
+    const Vec3 n = entering ? normal : -normal;  // against the incoming ray
+    const double cos_i = std::clamp(-dot(n, ray.direction), 0.0, 1.0);
+    const double eta = c2 / c1;
+    const double k = 1 - eta * eta * (1 - cos_i * cos_i);
+    if (k < 0) {
+      // Total internal reflection: the transmitted share reflects and stays in this medium.
+      direction = normalize_or(reflect(ray.direction, n), ray.direction);
+      after = media;
+    } else {
+      direction =
+          normalize_or(ray.direction * eta + n * (eta * cos_i - std::sqrt(k)), ray.direction);
+    }
+  }
+  const Ray refracted{spawn_origin(hit, direction, g.transparency_epsilon), direction, ray.time};
+  return trace(refracted, RayKind::Refracted, depth + 1, weight * m.transparency, after, rng) *
+         m.transparency;  // eq. 4.17
+}
+
+Rgb Tracer::apply_atmosphere(const Rgb& color, double distance) const {
+  const SceneGlobals& g = scene_.scene().globals;
+  Rgb out = color;
+  if (const auto& a = g.atmospheric_attenuation; a && a->front_distance != a->back_distance) {
+    // Eq. 4.20-4.21, s clipped between the front and back scales.
+    double s = a->back_scale + (distance - a->back_distance) * (a->front_scale - a->back_scale) /
+                                   (a->front_distance - a->back_distance);
+    s = std::clamp(s, std::min(a->front_scale, a->back_scale),
+                   std::max(a->front_scale, a->back_scale));
+    out = out * s + a->color * (1 - s);
+  }
+  if (const auto& fog = g.fog; fog && fog->start != fog->end) {
+    // Eq. 4.22-4.23, f clipped to [0, 1].
+    const double f = std::clamp((fog->end - distance) / (fog->end - fog->start), 0.0, 1.0);
+    out = out * f + fog->color * (1 - f);
+  }
+  return out;
+}
+
+Rgb Tracer::trace(const Ray& ray_in, RayKind kind, int depth, double weight,
+                  const MediumStack& media_in, SampleStream& rng) {
+  const Scene& scene = scene_.scene();
+  const SceneGlobals& g = scene.globals;
+  const EffectSet& effects = scene_.effects();
+
+  Ray ray = ray_in;
+  MediumStack media = media_in;
+  double travelled = 0;
+  Hit hit;
+  const Material* m = nullptr;
+  for (int skipped = 0;; ++skipped) {
+    if (!closest_hit(ray, hit)) {
+      return kind == RayKind::Reflected ? Rgb{} : g.background;  // eq. 4.2
+    }
+    travelled += hit.world.t;
+    m = &scene.objects[hit.instance].material;
+    if (!effects.has(Effect::Refraction) || !(m->transparency > g.min_transparency) ||
+        skipped == kMaxFalseInterfaces)
+      break;
+    // A transparent surface whose crossing leaves the governing medium unchanged is a false
+    // interface: it neither shades nor refracts.
+    const bool entering = dot(hit.world.normal, ray.direction) < 0;
+    const Medium here{hit.instance, m->priority, m->speed_of_light};
+    const MediumStack after = entering ? media.entered(here) : media.exited(hit.instance);
+    const bool known = entering || media.contains(hit.instance);
+    if (!known || after.top().instance != media.top().instance) break;
+    media = after;
+    ray.origin = spawn_origin(hit, ray.direction, g.transparency_epsilon);
+  }
+
+  Vec3 normal = hit.world.shading_normal;
+  if (effects.has(Effect::SurfaceRoughness) && m->surface_roughness > 0)
+    normal = perturb_normal(normal, m->surface_roughness, rng);
+
+  Rgb color = local_illumination(hit, *m, normal, ray.direction);
+  if (depth < g.max_recursion_depth) {
+    if (effects.has(Effect::Reflection) && weight * m->reflectivity > g.min_reflectivity)
+      color += reflection(ray, hit, *m, normal, depth, weight, media, rng);
+    if (effects.has(Effect::Refraction) && weight * m->transparency > g.min_transparency)
+      color += transmission(ray, hit, *m, normal, depth, weight, media, rng);
+  }
+  if (effects.has(Effect::AtmosphericAttenuation) || effects.has(Effect::Fog))
+    color = apply_atmosphere(color, travelled);
+  return color;
+}
+
+}  // namespace tessera

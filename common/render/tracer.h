@@ -1,0 +1,47 @@
+// Recursive ray tracing with the lighting model of `002_…` chapter 4 (eq. 4.1-4.24).
+#pragma once
+
+#include "common/render/media.h"
+#include "common/render/prepared_scene.h"
+#include "common/render/sampler.h"
+#include "common/render/stats.h"
+
+namespace tessera {
+
+// How a ray came to be: the background rule (eq. 4.2) returns black for reflected rays.
+enum class RayKind { Camera, Reflected, Refracted };
+
+class Tracer {
+ public:
+  Tracer(const PreparedScene& scene, RenderStats& stats) : scene_(scene), stats_(stats) {}
+
+  // The intensity arriving along `ray` (unit direction). `weight` is the product of the
+  // reflectivities and transparencies along the path so far, compared with minReflectivity
+  // and minTransparency; `depth` counts the reflections and refractions so far.
+  Rgb trace(const Ray& ray, RayKind kind, int depth, double weight, const MediumStack& media,
+            SampleStream& rng);
+
+ private:
+  struct Hit {
+    WorldHit world;
+    std::uint32_t instance = 0;
+  };
+  bool closest_hit(const Ray& ray, Hit& hit);
+  // Eq. 4.24: the product of the transparencies of everything between `origin` and `target`.
+  double shadow_factor(const Vec3& origin, const Vec3& target);
+  // Eq. 4.4-4.12 and 4.24 at a hit: emissive, ambient, and every light's diffuse and specular.
+  Rgb local_illumination(const Hit& hit, const Material& m, const Vec3& normal,
+                         const Vec3& view_dir);
+  Rgb reflection(const Ray& ray, const Hit& hit, const Material& m, const Vec3& normal, int depth,
+                 double weight, const MediumStack& media, SampleStream& rng);
+  Rgb transmission(const Ray& ray, const Hit& hit, const Material& m, const Vec3& normal, int depth,
+                   double weight, const MediumStack& media, SampleStream& rng);
+  // Eq. 4.20-4.23: depth cueing and fog over the distance the ray travelled.
+  Rgb apply_atmosphere(const Rgb& color, double distance) const;
+  Vec3 spawn_origin(const Hit& hit, const Vec3& direction, double epsilon) const;
+
+  const PreparedScene& scene_;
+  RenderStats& stats_;
+};
+
+}  // namespace tessera

@@ -1,0 +1,60 @@
+// Builds small scenes in code for render tests, so that expectations can be computed by hand.
+#pragma once
+
+#include "common/render/prepared_scene.h"
+#include "common/render/render.h"
+#include "common/scene/scene.h"
+
+namespace tessera::test {
+
+// A material that reflects nothing unless a test sets it: no ambient, no diffuse.
+inline Material black_material() {
+  Material m;
+  m.ambient = {};
+  m.diffuse = {};
+  return m;
+}
+
+inline SceneObject object(ShapeGeometry geometry, const Affine& transform, const Material& m) {
+  return SceneObject{geometry, transform, m, {"test.sdl", 1, 1}};
+}
+
+inline Light point_light(const Vec3& position, const Rgb& color) {
+  Light light;
+  light.position = position;
+  light.color = color;
+  return light;
+}
+
+inline Light spot_light(const Vec3& position, const Rgb& color) {
+  Light light = point_light(position, color);
+  light.is_spot = true;
+  return light;
+}
+
+// The camera at (0, 0, 5) looking at the origin, y up, the given vertical field of view.
+inline Camera camera_on_z(double view_angle = 30) {
+  Camera c;
+  c.eye = {0, 0, 5};
+  c.look_at = {0, 0, 0};
+  c.up = {0, 1, 0};
+  c.view_angle = view_angle;
+  return c;
+}
+
+inline RenderSettings settings(int width, int height) {
+  RenderSettings s;
+  s.width = width;
+  s.height = height;
+  return s;
+}
+
+inline Image render(const Scene& scene, const RenderSettings& s, RenderStats* stats = nullptr,
+                    int threads = 1) {
+  const PreparedScene prepared(scene, s.bvh);
+  RenderStats local;
+  Image image = render_image(prepared, s, threads, stats ? *stats : local);
+  return image;
+}
+
+}  // namespace tessera::test
