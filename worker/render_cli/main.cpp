@@ -1,0 +1,43 @@
+// tessera-render: renders a scene file to an image on this machine, with all cores.
+#include <cstdio>
+#include <exception>
+#include <string>
+#include <vector>
+
+#include "common/loaders/sdl_loader.h"
+#include "common/render/render.h"
+#include "worker/render_cli/options.h"
+#include "worker/render_cli/progress.h"
+#include "worker/render_cli/report.h"
+
+int main(int argc, char** argv) {
+  using namespace tessera;
+  const auto parsed = parse_render_cli(std::vector<std::string>(argv + 1, argv + argc));
+  if (std::holds_alternative<CliHelp>(parsed)) {
+    std::fputs(kRenderCliUsage, stdout);
+    return 0;
+  }
+  if (const auto* error = std::get_if<std::string>(&parsed)) {
+    std::fprintf(stderr, "tessera-render: %s\n%s", error->c_str(), kRenderCliUsage);
+    return 2;
+  }
+  const auto& options = std::get<RenderCliOptions>(parsed);
+  try {
+    const Scene scene = load_sdl_file(options.scene_path);
+    const PreparedScene prepared(scene, options.settings.bvh);
+    if (!options.quiet) print_warnings(scene, prepared);
+    TerminalProgress progress;
+    RenderStats stats;
+    const Image image = render_image(
+        prepared, options.settings, options.threads, stats,
+        options.quiet ? ProgressFn{}
+                      : ProgressFn{[&](long long d, long long t) { progress.update(d, t); }});
+    progress.finish();
+    write_image(image, options.output_path);
+    if (!options.quiet) print_report(prepared, options.settings, stats, options.output_path);
+    return 0;
+  } catch (const std::exception& e) {
+    std::fprintf(stderr, "tessera-render: %s\n", e.what());
+    return 1;
+  }
+}

@@ -1,0 +1,28 @@
+// Command-line options of tessera-render.
+#pragma once
+
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "common/render/settings.h"
+
+namespace tessera {
+
+struct RenderCliOptions {
+  std::string scene_path;
+  std::string output_path;
+  RenderSettings settings;
+  int threads = 0;  // 0: all cores
+  bool quiet = false;
+};
+
+struct CliHelp {};  // --help was asked for
+
+// Parses argv; returns the options, CliHelp, or an error message naming the bad argument.
+std::variant<RenderCliOptions, CliHelp, std::string> parse_render_cli(
+    const std::vector<std::string>& args);
+
+extern const char* const kRenderCliUsage;
+
+}  // namespace tessera

@@ -1,0 +1,17 @@
+// What tessera-render prints around a render: warnings first, then the effect set and the
+// statistics.
+#pragma once
+
+#include <string>
+
+#include "common/render/prepared_scene.h"
+#include "common/render/settings.h"
+#include "common/render/stats.h"
+
+namespace tessera {
+
+void print_warnings(const Scene& scene, const PreparedScene& prepared);
+void print_report(const PreparedScene& prepared, const RenderSettings& settings,
+                  const RenderStats& stats, const std::string& output_path);
+
+}  // namespace tessera
