@@ -1,0 +1,116 @@
+#include "common/progressive/plan.h"
+
+#include <algorithm>
+#include <cmath>
+#include <cstdlib>
+#include <stdexcept>
+
+namespace tessera {
+namespace {
+
+long long ceil_div(long long a, long long b) { return (a + b - 1) / b; }
+
+// Tiles of side `tile` (a multiple of `step`) covering the image, in dispatch order.
+std::vector<Tile> tiles(int width, int height, int tile, UnitOrder order) {
+  std::vector<Tile> out;
+  for (int y = 0; y < height; y += tile)
+    for (int x = 0; x < width; x += tile)
+      out.push_back({x, y, std::min(x + tile, width), std::min(y + tile, height)});
+  if (order == UnitOrder::Centre) {
+    // Rectangular rings around the image centre (the seeds' "central" pattern): the ring is
+    // the larger of the two axis distances; within a ring, scanline order keeps it stable.
+    const double cx = width / 2.0, cy = height / 2.0;
+    auto ring = [&](const Tile& r) {
+      const double dx = std::abs((r.x0 + r.x1) / 2.0 - cx);
+      const double dy = std::abs((r.y0 + r.y1) / 2.0 - cy);
+      return std::floor(std::max(dx, dy) / tile);
+    };
+    std::stable_sort(out.begin(), out.end(),
+                     [&](const Tile& a, const Tile& b) { return ring(a) < ring(b); });
+  }
+  return out;
+}
+
+void add_stage(Plan& plan, Stage stage, UnitPixels shape, double density,
+               const PlanOptions& options) {
+  // Tile side: a multiple of the block so no block straddles two units, sized so that a tile
+  // holds about `unit_pixels` traced pixels at this stage's density.
+  const double blocks_per_tile = static_cast<double>(options.unit_pixels) / density;
+  const int k = std::max(1, static_cast<int>(std::sqrt(blocks_per_tile)));
+  const long long side = std::min<long long>(static_cast<long long>(k) * shape.step,
+                                             std::max(plan.width, plan.height));
+  stage.first_unit = static_cast<int>(plan.units.size());
+  const int stage_index = static_cast<int>(plan.stages.size());
+  for (const Tile& r : tiles(plan.width, plan.height, static_cast<int>(side), options.order)) {
+    shape.rect = r;
+    const long long n = pixel_count(shape);
+    if (n == 0) continue;
+    plan.units.push_back({stage_index, shape, n});
+    stage.traced += n;
+  }
+  stage.unit_count = static_cast<int>(plan.units.size()) - stage.first_unit;
+  stage.blocks = ceil_div(plan.width, stage.block) * ceil_div(plan.height, stage.block);
+  plan.total_cost += stage.traced;
+  plan.stages.push_back(stage);
+}
+
+}  // namespace
+
+int level_count(int width, int height) {
+  int levels = 1;
+  while ((1LL << levels) < std::max(width, height)) ++levels;
+  return levels;
+}
+
+int block_side(int levels, int level) { return 1 << (levels - level); }
+
+Plan make_plan(const PlanOptions& o) {
+  if (o.width <= 0 || o.height <= 0 || o.passes <= 0 || o.unit_pixels <= 0)
+    throw std::invalid_argument("make_plan: sizes, passes and unit size must be positive");
+  Plan plan;
+  plan.width = o.width;
+  plan.height = o.height;
+  plan.levels = o.progressive ? level_count(o.width, o.height) : 0;
+  for (int l = 1; l <= plan.levels; ++l) {
+    const int s = block_side(plan.levels, l);
+    Stage stage;
+    stage.level = l;
+    stage.block = s;
+    UnitPixels shape;
+    shape.step = s;
+    double density = 1.0;
+    if (o.preview == PreviewMode::Area && l < plan.levels) {
+      stage.preview_only = true;
+      shape.pattern = PixelPattern::Centres;
+    } else if (o.preview == PreviewMode::Anchor && l > 1) {
+      shape.exclude = 2 * s;
+      density = 0.75;  // three new anchors per four blocks
+    }
+    add_stage(plan, stage, shape, density, o);
+  }
+  for (int p = plan.levels > 0 ? 1 : 0; p < o.passes; ++p) {
+    Stage stage;
+    stage.pass = p;
+    add_stage(plan, stage, UnitPixels{}, 1.0, o);
+  }
+  return plan;
+}
+
+UnitOrder parse_unit_order(const std::string& name) {
+  if (name == "centre" || name == "center" || name == "central") return UnitOrder::Centre;
+  if (name == "scanline") return UnitOrder::Scanline;
+  throw std::invalid_argument("order must be \"centre\" or \"scanline\", not \"" + name + "\"");
+}
+
+PreviewMode parse_preview_mode(const std::string& name) {
+  if (name == "anchor") return PreviewMode::Anchor;
+  if (name == "area") return PreviewMode::Area;
+  throw std::invalid_argument("preview must be \"anchor\" or \"area\", not \"" + name + "\"");
+}
+
+const char* to_string(UnitOrder order) {
+  return order == UnitOrder::Centre ? "centre" : "scanline";
+}
+const char* to_string(PreviewMode mode) { return mode == PreviewMode::Anchor ? "anchor" : "area"; }
+
+}  // namespace tessera

@@ -1,0 +1,66 @@
+// The progressive plan of DESIGN.md §3: refinement levels of anchors, then sample passes, each
+// split into work units of roughly equal cost and ordered centre-out or in scanlines.
+//
+// Level l = 1..L (L = ceil(log2(max(W, H)))) uses blocks of side 2^(L-l). Each block stands for
+// its top-left pixel, its anchor; a level traces only its new anchors, so pass 0 of every pixel
+// is traced exactly once over the levels. Passes 1..P-1 are whole-image passes.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "common/progressive/unit_pixels.h"
+
+namespace tessera {
+
+enum class UnitOrder { Centre, Scanline };
+enum class PreviewMode {
+  Anchor,  // blocks show their anchor's colour; costs nothing extra
+  Area,    // the seeds' preview: every block of every level traces its centre, shown only while
+           // the level is current; costs about a third more
+};
+
+struct PlanOptions {
+  int width = 0, height = 0;
+  int passes = 1;
+  bool progressive = true;  // false: pass 0 is a direct whole-image pass, no levels
+  UnitOrder order = UnitOrder::Centre;
+  PreviewMode preview = PreviewMode::Anchor;
+  long long unit_pixels = 1024;  // target traced pixels per unit
+};
+
+// One row of the per-level table: a refinement level or a sample pass.
+struct Stage {
+  int level = 0;              // 1..L for a level, 0 for a whole-image pass
+  int pass = 0;               // the sample pass its values belong to
+  int block = 1;              // block side in pixels
+  bool preview_only = false;  // values are shown, never accumulated (PreviewMode::Area)
+  long long blocks = 0;       // blocks in the image at this block size
+  long long traced = 0;       // pixels traced by this stage
+  int first_unit = 0, unit_count = 0;
+};
+
+struct WorkUnit {
+  int stage = 0;
+  UnitPixels pixels;
+  long long cost = 0;  // traced pixels
+};
+
+struct Plan {
+  int width = 0, height = 0;
+  int levels = 0;               // L
+  std::vector<Stage> stages;    // in dispatch order
+  std::vector<WorkUnit> units;  // grouped by stage, each stage's units in dispatch order
+  long long total_cost = 0;
+};
+
+int level_count(int width, int height);
+int block_side(int levels, int level);
+Plan make_plan(const PlanOptions& options);
+
+UnitOrder parse_unit_order(const std::string& name);      // "centre"/"center"/"scanline"; throws
+PreviewMode parse_preview_mode(const std::string& name);  // "anchor"/"area"; throws
+const char* to_string(UnitOrder order);
+const char* to_string(PreviewMode mode);
+
+}  // namespace tessera

@@ -1,0 +1,131 @@
+#include "common/protocol/connection.h"
+
+#include <boost/asio/post.hpp>
+
+namespace tessera {
+
+namespace asio = boost::asio;
+
+FrameConnection::FrameConnection(asio::ip::tcp::socket socket, FrameLimits limits,
+                                 ConnectionTiming timing)
+    : socket_(std::move(socket)), timer_(socket_.get_executor()), limits_(limits), timing_(timing) {
+  boost::system::error_code ec;
+  const auto endpoint = socket_.remote_endpoint(ec);
+  peer_ = ec ? "unknown" : endpoint.address().to_string() + ":" + std::to_string(endpoint.port());
+  socket_.set_option(asio::ip::tcp::no_delay(true), ec);
+}
+
+void FrameConnection::start(FrameHandler on_frame, CloseHandler on_close) {
+  on_frame_ = std::move(on_frame);
+  on_close_ = std::move(on_close);
+  open_ = true;
+  last_sent_ = last_received_ = std::chrono::steady_clock::now();
+  read_prefix();
+  tick();
+}
+
+void FrameConnection::send(const Frame& frame) {
+  if (!open_) return;
+  std::string bytes;
+  try {
+    bytes = encode_frame(frame, limits_);
+  } catch (const ProtocolError& e) {
+    close(e.what());
+    return;
+  }
+  // A peer that does not read its frames must not make us buffer without bound.
+  if (queued_bytes_ + bytes.size() > 2 * limits_.max_body) {
+    close("write queue overflow: the peer is not reading");
+    return;
+  }
+  queued_bytes_ += bytes.size();
+  queue_.push_back(std::move(bytes));
+  if (!writing_) write_next();
+}
+
+void FrameConnection::close(const std::string& reason) {
+  if (!open_) return;
+  open_ = false;
+  boost::system::error_code ignored;
+  socket_.shutdown(asio::ip::tcp::socket::shutdown_both, ignored);
+  socket_.close(ignored);
+  timer_.cancel();
+  queue_.clear();
+  queued_bytes_ = 0;
+  // The handlers usually hold the session that holds us: drop them. The close handler runs
+  // later, never inside a caller that is iterating over connections.
+  on_frame_ = nullptr;
+  if (auto on_close = std::move(on_close_))
+    asio::post(socket_.get_executor(),
+               [on_close = std::move(on_close), reason] { on_close(reason); });
+}
+
+void FrameConnection::close_after_flush(const std::string& reason) {
+  if (!writing_) return close(reason);
+  closing_reason_ = reason;
+}
+
+void FrameConnection::read_prefix() {
+  asio::async_read(socket_, asio::buffer(prefix_),
+                   [self = shared_from_this()](boost::system::error_code ec, std::size_t) {
+                     if (!self->open_) return;
+                     if (ec)
+                       return self->close(ec == asio::error::eof ? "peer closed" : ec.message());
+                     try {
+                       self->read_body(decode_body_length(self->prefix_, self->limits_));
+                     } catch (const ProtocolError& e) {
+                       self->close(e.what());
+                     }
+                   });
+}
+
+void FrameConnection::read_body(std::size_t size) {
+  body_.resize(size);
+  asio::async_read(socket_, asio::buffer(body_),
+                   [self = shared_from_this()](boost::system::error_code ec, std::size_t) {
+                     if (!self->open_) return;
+                     if (ec) return self->close(ec.message());
+                     self->last_received_ = std::chrono::steady_clock::now();
+                     Frame frame;
+                     try {
+                       frame = decode_body(self->body_, self->limits_);
+                     } catch (const ProtocolError& e) {
+                       return self->close(e.what());
+                     }
+                     self->body_ = std::string();
+                     if (frame.type != MessageType::Heartbeat && self->on_frame_)
+                       self->on_frame_(std::move(frame));
+                     if (self->open_) self->read_prefix();
+                   });
+}
+
+void FrameConnection::write_next() {
+  if (queue_.empty() || !open_) {
+    writing_ = false;
+    if (closing_reason_) close(*closing_reason_);
+    return;
+  }
+  writing_ = true;
+  asio::async_write(socket_, asio::buffer(queue_.front()),
+                    [self = shared_from_this()](boost::system::error_code ec, std::size_t) {
+                      if (!self->open_) return;
+                      if (ec) return self->close(ec.message());
+                      self->queued_bytes_ -= self->queue_.front().size();
+                      self->queue_.pop_front();
+                      self->last_sent_ = std::chrono::steady_clock::now();
+                      self->write_next();
+                    });
+}
+
+void FrameConnection::tick() {
+  const auto now = std::chrono::steady_clock::now();
+  if (now - last_received_ > timing_.silence) return close("peer silent for too long");
+  if (now - last_sent_ >= timing_.heartbeat && !writing_)
+    send(Frame{MessageType::Heartbeat, nlohmann::json::object(), {}});
+  timer_.expires_after(timing_.heartbeat / 2);
+  timer_.async_wait([self = shared_from_this()](boost::system::error_code ec) {
+    if (!ec && self->open_) self->tick();
+  });
+}
+
+}  // namespace tessera

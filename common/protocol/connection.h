@@ -1,0 +1,68 @@
+// One framed TCP connection on a single-threaded io_context, shared by the coordinator's worker
+// sessions and the worker's session: length-prefixed reads, a bounded write queue, heartbeats
+// when idle, and a close when the peer is silent, misbehaves or the queue overflows. Every
+// member runs on the io_context's thread; the close handler runs exactly once, posted.
+#pragma once
+
+#include <chrono>
+#include <deque>
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <utility>  // before Asio: Boost 1.74 uses std::exchange without it
+
+#include <boost/asio/ip/tcp.hpp>
+#include <boost/asio/read.hpp>
+#include <boost/asio/steady_timer.hpp>
+#include <boost/asio/write.hpp>
+
+#include "common/protocol/frame.h"
+
+namespace tessera {
+
+struct ConnectionTiming {
+  std::chrono::milliseconds heartbeat{2000};  // send a heartbeat after this long without sending
+  std::chrono::milliseconds silence{10000};   // close after this long without receiving
+};
+
+class FrameConnection : public std::enable_shared_from_this<FrameConnection> {
+ public:
+  using FrameHandler = std::function<void(Frame)>;
+  using CloseHandler = std::function<void(const std::string& reason)>;
+
+  FrameConnection(boost::asio::ip::tcp::socket socket, FrameLimits limits, ConnectionTiming timing);
+  void start(FrameHandler on_frame, CloseHandler on_close);
+  void send(const Frame& frame);
+  void close(const std::string& reason);
+  // Closes once every queued frame is written (a reject the peer should read first).
+  void close_after_flush(const std::string& reason);
+  // Raises the frame limits once the peer is trusted (after authentication).
+  void set_limits(FrameLimits limits) { limits_ = limits; }
+  bool open() const { return open_; }
+  const std::string& peer() const { return peer_; }
+
+ private:
+  void read_prefix();
+  void read_body(std::size_t size);
+  void write_next();
+  void tick();
+
+  boost::asio::ip::tcp::socket socket_;
+  boost::asio::steady_timer timer_;
+  FrameLimits limits_;
+  ConnectionTiming timing_;
+  std::string peer_;
+  FrameHandler on_frame_;
+  CloseHandler on_close_;
+  bool open_ = false;
+  std::uint8_t prefix_[kFramePrefix] = {};
+  std::string body_;
+  std::deque<std::string> queue_;
+  std::size_t queued_bytes_ = 0;
+  bool writing_ = false;
+  std::optional<std::string> closing_reason_;
+  std::chrono::steady_clock::time_point last_sent_, last_received_;
+};
+
+}  // namespace tessera

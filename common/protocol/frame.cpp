@@ -1,0 +1,105 @@
+#include "common/protocol/frame.h"
+
+namespace tessera {
+namespace {
+
+void put_u32(std::string& out, std::size_t v) {
+  for (int shift = 24; shift >= 0; shift -= 8)
+    out.push_back(static_cast<char>((v >> shift) & 0xff));
+}
+
+std::size_t get_u32(const std::uint8_t* p) {
+  return static_cast<std::size_t>(p[0]) << 24 | static_cast<std::size_t>(p[1]) << 16 |
+         static_cast<std::size_t>(p[2]) << 8 | p[3];
+}
+
+bool known_type(std::uint8_t t) {
+  return t >= static_cast<std::uint8_t>(MessageType::Hello) &&
+         t <= static_cast<std::uint8_t>(MessageType::Cancel);
+}
+
+}  // namespace
+
+const char* to_string(MessageType type) {
+  switch (type) {
+    case MessageType::Hello:
+      return "hello";
+    case MessageType::Challenge:
+      return "challenge";
+    case MessageType::Auth:
+      return "auth";
+    case MessageType::Welcome:
+      return "welcome";
+    case MessageType::Reject:
+      return "reject";
+    case MessageType::Heartbeat:
+      return "heartbeat";
+    case MessageType::Job:
+      return "job";
+    case MessageType::Unit:
+      return "unit";
+    case MessageType::Result:
+      return "result";
+    case MessageType::JobFailed:
+      return "job_failed";
+    case MessageType::Cancel:
+      return "cancel";
+  }
+  return "unknown";
+}
+
+std::string encode_frame(const Frame& frame, const FrameLimits& limits) {
+  // Invalid UTF-8 (a scene's bytes in an error message) is replaced rather than thrown.
+  const std::string header =
+      frame.header.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
+  const std::size_t body = 1 + 4 + header.size() + frame.payload.size();
+  if (header.size() > limits.max_header || body > limits.max_body)
+    throw ProtocolError(std::string("frame too large: ") + to_string(frame.type) + " of " +
+                        std::to_string(body) + " bytes");
+  std::string out;
+  out.reserve(kFramePrefix + body);
+  put_u32(out, body);
+  out.push_back(static_cast<char>(frame.type));
+  put_u32(out, header.size());
+  out += header;
+  out += frame.payload;
+  return out;
+}
+
+std::size_t decode_body_length(const std::uint8_t prefix[kFramePrefix], const FrameLimits& limits) {
+  const std::size_t body = get_u32(prefix);
+  if (body < 5) throw ProtocolError("frame body too short: " + std::to_string(body) + " bytes");
+  if (body > limits.max_body)
+    throw ProtocolError("frame of " + std::to_string(body) + " bytes exceeds the limit of " +
+                        std::to_string(limits.max_body));
+  return body;
+}
+
+Frame decode_body(std::string_view body, const FrameLimits& limits) {
+  if (body.size() < 5) throw ProtocolError("frame body too short");
+  const auto* p = reinterpret_cast<const std::uint8_t*>(body.data());
+  if (!known_type(p[0])) throw ProtocolError("unknown message type " + std::to_string(p[0]));
+  const std::size_t header_size = get_u32(p + 1);
+  if (header_size > limits.max_header || header_size > body.size() - 5)
+    throw ProtocolError("bad header length " + std::to_string(header_size));
+  Frame frame;
+  frame.type = static_cast<MessageType>(p[0]);
+  frame.header = nlohmann::json::parse(body.substr(5, header_size), nullptr, false);
+  if (!frame.header.is_object())
+    throw ProtocolError(std::string("header of ") + to_string(frame.type) +
+                        " is not a JSON object");
+  frame.payload.assign(body.substr(5 + header_size));
+  return frame;
+}
+
+std::optional<Frame> FrameDecoder::next() {
+  if (buffer_.size() < kFramePrefix) return std::nullopt;
+  const std::size_t body =
+      decode_body_length(reinterpret_cast<const std::uint8_t*>(buffer_.data()), limits_);
+  if (buffer_.size() < kFramePrefix + body) return std::nullopt;
+  Frame frame = decode_body(std::string_view(buffer_).substr(kFramePrefix, body), limits_);
+  buffer_.erase(0, kFramePrefix + body);
+  return frame;
+}
+
+}  // namespace tessera

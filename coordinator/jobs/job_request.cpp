@@ -1,0 +1,278 @@
+#include "coordinator/jobs/job_request.h"
+
+#include <set>
+
+#include "common/loaders/scene_source.h"
+#include "common/loaders/sdl_loader.h"
+#include "common/render/prepared_scene.h"
+#include "common/render/render.h"
+#include "coordinator/jobs/api_error.h"
+#include "coordinator/jobs/multipart.h"
+#include "coordinator/jobs/tar_reader.h"
+
+namespace tessera {
+namespace {
+
+using nlohmann::json;
+
+ApiError bad_request(const std::string& detail) { return ApiError(400, "bad_request", detail); }
+
+// Submitted files first, then the configured scenes folder; remembers what the scene read so
+// that the bundle holds exactly those files.
+class RecordingSource : public SceneSource {
+ public:
+  RecordingSource(const MemorySource& submitted, const SceneSource* folder)
+      : submitted_(submitted), folder_(folder) {}
+  std::optional<std::string> read(const std::string& path) const override {
+    std::optional<std::string> bytes = submitted_.read(path);
+    if (!bytes && folder_) bytes = folder_->read(path);
+    if (bytes) read_[path] = *bytes;
+    return bytes;
+  }
+  std::map<std::string, std::string> files() const { return read_; }
+
+ private:
+  const MemorySource& submitted_;
+  const SceneSource* folder_;
+  mutable std::map<std::string, std::string> read_;
+};
+
+int get_int(const json& s, const char* key, int fallback, int lo, int hi) {
+  if (!s.contains(key)) return fallback;
+  const json& v = s[key];
+  if (!v.is_number_integer() || v.get<long long>() < lo || v.get<long long>() > hi)
+    throw bad_request(std::string("settings.") + key + " must be an integer in [" +
+                      std::to_string(lo) + ", " + std::to_string(hi) + "]");
+  return v.get<int>();
+}
+
+double get_double(const json& s, const char* key, double fallback, double lo, double hi) {
+  if (!s.contains(key)) return fallback;
+  const json& v = s[key];
+  if (!v.is_number() || v.get<double>() < lo || v.get<double>() > hi)
+    throw bad_request(std::string("settings.") + key + " must be a number in [" +
+                      std::to_string(lo) + ", " + std::to_string(hi) + "]");
+  return v.get<double>();
+}
+
+bool get_bool(const json& s, const char* key, bool fallback) {
+  if (!s.contains(key)) return fallback;
+  if (!s[key].is_boolean())
+    throw bad_request(std::string("settings.") + key + " must be true or false");
+  return s[key].get<bool>();
+}
+
+std::string get_string(const json& s, const char* key, const std::string& fallback) {
+  if (!s.contains(key)) return fallback;
+  if (!s[key].is_string()) throw bad_request(std::string("settings.") + key + " must be a string");
+  return s[key].get<std::string>();
+}
+
+// Query values of a tar upload, typed the way a JSON body would have them.
+json settings_from_query(const std::map<std::string, std::string>& query) {
+  json s = json::object();
+  for (const auto& [key, value] : query) {
+    if (key == "main" || key == "format") continue;
+    json parsed = json::parse(value, nullptr, false);
+    s[key] =
+        parsed.is_discarded() || parsed.is_object() || parsed.is_array() ? json(value) : parsed;
+  }
+  return s;
+}
+
+struct Submission {
+  std::map<std::string, std::string> files;
+  std::string main = "scene.sdl";
+  std::string format = "sdl";
+  json settings = json::object();
+};
+
+Submission read_json_submission(std::string_view body,
+                                const std::optional<std::filesystem::path>& scenes_dir) {
+  const json j = json::parse(body, nullptr, false);
+  if (!j.is_object()) throw ApiError(400, "bad_json", "the body is not a JSON object");
+  static const std::set<std::string> known = {"scene", "scene_file", "format",
+                                              "files", "main",       "settings"};
+  for (const auto& [key, value] : j.items())
+    if (!known.count(key)) throw bad_request("unknown field \"" + key + "\"");
+  Submission sub;
+  sub.format = get_string(j, "format", "sdl");
+  sub.main = get_string(j, "main", "scene.sdl");
+  if (j.contains("files")) {
+    if (!j["files"].is_object()) throw bad_request("files must map paths to file contents");
+    for (const auto& [path, bytes] : j["files"].items()) {
+      if (!bytes.is_string()) throw bad_request("files[\"" + path + "\"] must be a string");
+      sub.files[path] = bytes.get<std::string>();
+    }
+  }
+  if (j.contains("scene")) {
+    if (!j["scene"].is_string()) throw bad_request("scene must be the scene's text");
+    sub.files[sub.main] = j["scene"].get<std::string>();
+  } else if (j.contains("scene_file")) {
+    if (!scenes_dir) throw bad_request("scene_file needs a coordinator started with --scenes-dir");
+    sub.main = get_string(j, "scene_file", "");
+  } else if (!sub.files.count(sub.main)) {
+    throw bad_request("give the scene as \"scene\" (text), \"scene_file\" or in \"files\"");
+  }
+  if (j.contains("settings")) {
+    if (!j["settings"].is_object()) throw bad_request("settings must be an object");
+    sub.settings = j["settings"];
+  }
+  return sub;
+}
+
+Submission read_tar_submission(std::string_view body,
+                               const std::map<std::string, std::string>& query) {
+  Submission sub;
+  try {
+    sub.files = read_tar(body);
+  } catch (const std::exception& e) {
+    throw ApiError(400, "bad_bundle", e.what());
+  }
+  if (auto it = query.find("format"); it != query.end()) sub.format = it->second;
+  if (auto it = query.find("main"); it != query.end()) {
+    sub.main = it->second;
+  } else if (!sub.files.count(sub.main)) {
+    std::vector<std::string> top;  // a single top-level .sdl file is the scene
+    for (const auto& [path, bytes] : sub.files)
+      if (path.find('/') == std::string::npos && path.ends_with(".sdl")) top.push_back(path);
+    if (top.size() != 1) throw bad_request("name the bundle's scene file with ?main=PATH");
+    sub.main = top.front();
+  }
+  sub.settings = settings_from_query(query);
+  return sub;
+}
+
+// Fields `scene` (text), `settings` (JSON), `main`, `format`; `file` parts keep their file
+// names as bundle paths (curl -F 'file=@m.obj;filename=meshes/m.obj').
+Submission read_multipart_submission(std::string_view body, const std::string& boundary) {
+  std::vector<FormPart> parts;
+  try {
+    parts = parse_multipart(body, boundary);
+  } catch (const std::exception& e) {
+    throw ApiError(400, "bad_bundle", e.what());
+  }
+  Submission sub;
+  std::optional<std::string> scene;
+  for (FormPart& part : parts) {
+    if (part.name == "scene") {
+      scene = std::move(part.data);
+    } else if (part.name == "settings") {
+      sub.settings = json::parse(part.data, nullptr, false);
+      if (!sub.settings.is_object())
+        throw ApiError(400, "bad_json", "settings is not a JSON object");
+    } else if (part.name == "main") {
+      sub.main = part.data;
+    } else if (part.name == "format") {
+      sub.format = part.data;
+    } else if (part.name == "file" && part.filename) {
+      sub.files[*part.filename] = std::move(part.data);
+    } else {
+      throw bad_request("unknown form field \"" + part.name + "\"");
+    }
+  }
+  if (scene) sub.files[sub.main] = std::move(*scene);
+  if (!sub.files.count(sub.main)) throw bad_request("the form has no scene (field \"scene\")");
+  return sub;
+}
+
+void check_scene(const Submission& sub, const std::optional<std::filesystem::path>& scenes_dir,
+                 const ServiceLimits& limits, JobRequest& out) {
+  for (const auto& [path, bytes] : sub.files)
+    if (!is_plain_relative_path(path))
+      throw ApiError(400, "bad_bundle", "file path \"" + path + "\" leaves the bundle");
+  if (!is_plain_relative_path(sub.main))
+    throw ApiError(400, "bad_bundle", "scene path \"" + sub.main + "\" leaves the bundle");
+  const MemorySource submitted(sub.files);
+  std::optional<DirectorySource> folder;
+  if (scenes_dir) folder.emplace(*scenes_dir);
+  RecordingSource source(submitted, folder ? &*folder : nullptr);
+  try {
+    Scene scene = load_sdl(source, sub.main);
+    apply_overrides(scene, out.spec.overrides);
+    if (scene.globals.max_recursion_depth > limits.max_depth)
+      throw bad_request("maxRecursionDepth " + std::to_string(scene.globals.max_recursion_depth) +
+                        " is over this service's limit of " + std::to_string(limits.max_depth));
+    const PreparedScene prepared(scene, out.spec.settings.bvh);
+    out.effects = render_effects(prepared, out.spec.settings).names();
+    out.warnings = scene.warnings;
+    for (const auto& u : prepared.unsupported()) out.warnings.push_back(u);
+  } catch (const SceneError& e) {
+    throw ApiError(400, "scene_error", e.what(),
+                   {{"file", e.where().file},
+                    {"line", e.where().line},
+                    {"column", e.where().column},
+                    {"message", e.message()}});
+  }
+  out.bundle.main = sub.main;
+  out.bundle.format = sub.format;
+  out.bundle.files = source.files();
+}
+
+}  // namespace
+
+void parse_settings(const json& s, const ServiceLimits& limits, JobRequest& out) {
+  static const std::set<std::string> known = {
+      "width", "height",   "aa",      "stochastic",  "jitter", "seed",      "passes",
+      "order", "priority", "preview", "progressive", "bvh",    "max_depth", "min_weight"};
+  for (const auto& [key, value] : s.items())
+    if (!known.count(key)) throw bad_request("unknown setting \"" + key + "\"");
+  RenderSettings& r = out.spec.settings;
+  const RenderSettings defaults;
+  r.width = get_int(s, "width", defaults.width, 1, limits.max_side);
+  r.height = get_int(s, "height", defaults.height, 1, limits.max_side);
+  if (static_cast<long long>(r.width) * r.height > limits.max_pixels)
+    throw bad_request("width x height is over this service's limit of " +
+                      std::to_string(limits.max_pixels) + " pixels");
+  r.aa_samples = get_int(s, "aa", defaults.aa_samples, 1, 9);
+  if (r.aa_samples != 1 && r.aa_samples != 5 && r.aa_samples != 9)
+    throw bad_request("settings.aa must be 1, 5 or 9");
+  r.stochastic = get_bool(s, "stochastic", defaults.stochastic);
+  r.jitter = get_double(s, "jitter", defaults.jitter, 0, 16);
+  if (s.contains("seed")) {
+    if (!s["seed"].is_number_unsigned()) throw bad_request("settings.seed must be an integer >= 0");
+    r.seed = s["seed"].get<std::uint64_t>();
+  }
+  r.passes = get_int(s, "passes", defaults.passes, 1, limits.max_passes);
+  r.bvh = get_bool(s, "bvh", true) ? BvhMode::Sah : BvhMode::None;
+  if (s.contains("max_depth"))
+    out.spec.overrides.max_depth = get_int(s, "max_depth", 0, 0, limits.max_depth);
+  if (s.contains("min_weight"))
+    out.spec.overrides.min_weight = get_double(s, "min_weight", 0, 0, 1);
+  out.priority = get_int(s, "priority", 1, 1, 100);
+  out.plan.width = r.width;
+  out.plan.height = r.height;
+  out.plan.passes = r.passes;
+  out.plan.progressive = get_bool(s, "progressive", true);
+  try {
+    out.plan.order = parse_unit_order(get_string(s, "order", "centre"));
+    out.plan.preview = parse_preview_mode(get_string(s, "preview", "anchor"));
+  } catch (const std::invalid_argument& e) {
+    throw bad_request(std::string("settings.") + e.what());
+  }
+}
+
+JobRequest parse_job_request(const JobUpload& upload, const ServiceLimits& limits,
+                             const std::optional<std::filesystem::path>& scenes_dir) {
+  const std::string_view type = upload.content_type;
+  Submission sub;
+  if (type.starts_with("application/x-tar") || type.starts_with("application/tar"))
+    sub = read_tar_submission(upload.body, upload.query);
+  else if (type.starts_with("application/json"))
+    sub = read_json_submission(upload.body, scenes_dir);
+  else if (const auto boundary = multipart_boundary(type))
+    sub = read_multipart_submission(upload.body, *boundary);
+  else
+    throw ApiError(415, "unsupported_media_type",
+                   "POST JSON (application/json), a tar bundle (application/x-tar) or a form "
+                   "(multipart/form-data)");
+  if (sub.format == "vrml")
+    throw ApiError(400, "unsupported_format", "VRML scenes are not supported by this build yet");
+  if (sub.format != "sdl") throw bad_request("format must be \"sdl\" or \"vrml\"");
+  JobRequest out;
+  parse_settings(sub.settings, limits, out);
+  check_scene(sub, scenes_dir, limits, out);
+  return out;
+}
+
+}  // namespace tessera

@@ -1,0 +1,40 @@
+// POST /api/jobs: turns a request body into a validated job request, or an ApiError with the
+// right status. The scene is parsed and prepared here, so a bad scene is a 400 that never
+// reaches a worker; the bundle keeps exactly the files the scene read.
+#pragma once
+
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "common/progressive/plan.h"
+#include "common/protocol/bundle.h"
+#include "common/protocol/job_spec.h"
+#include "coordinator/jobs/limits.h"
+
+namespace tessera {
+
+struct JobRequest {
+  Bundle bundle;
+  JobSpec spec;
+  PlanOptions plan;
+  int priority = 1;
+  std::vector<std::string> effects, warnings;
+};
+
+struct JobUpload {
+  std::string_view body;
+  std::string_view content_type;
+  std::map<std::string, std::string> query;  // settings for tar uploads
+};
+
+JobRequest parse_job_request(const JobUpload& upload, const ServiceLimits& limits,
+                             const std::optional<std::filesystem::path>& scenes_dir);
+
+// The settings object of a request ({"width", "height", "aa", ...}); throws ApiError.
+void parse_settings(const nlohmann::json& settings, const ServiceLimits& limits, JobRequest& out);
+
+}  // namespace tessera

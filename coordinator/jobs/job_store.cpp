@@ -1,0 +1,24 @@
+#include "coordinator/jobs/job_store.h"
+
+namespace tessera {
+
+Job* JobStore::create(JobRequest request) {
+  for (auto it = jobs_.begin(); static_cast<int>(jobs_.size()) >= max_jobs_ && it != jobs_.end();)
+    it = it->second->finished_state() ? jobs_.erase(it) : std::next(it);
+  if (static_cast<int>(jobs_.size()) >= max_jobs_) return nullptr;
+  const std::int64_t id = next_id_++;
+  auto job = std::make_unique<Job>(id, std::move(request.bundle), request.spec, request.plan,
+                                   request.priority);
+  job->effects = std::move(request.effects);
+  job->warnings = std::move(request.warnings);
+  Job* raw = job.get();
+  jobs_[id] = std::move(job);
+  return raw;
+}
+
+Job* JobStore::find(std::int64_t id) {
+  auto it = jobs_.find(id);
+  return it == jobs_.end() ? nullptr : it->second.get();
+}
+
+}  // namespace tessera

@@ -1,0 +1,28 @@
+// The coordinator's jobs by id, oldest first. Finished jobs are evicted, oldest first, when
+// more than ServiceLimits::max_jobs are held.
+#pragma once
+
+#include <cstdint>
+#include <map>
+#include <memory>
+
+#include "coordinator/jobs/job.h"
+#include "coordinator/jobs/job_request.h"
+
+namespace tessera {
+
+class JobStore {
+ public:
+  explicit JobStore(int max_jobs) : max_jobs_(max_jobs) {}
+  // Returns nullptr when the store is full of unfinished jobs.
+  Job* create(JobRequest request);
+  Job* find(std::int64_t id);
+  const std::map<std::int64_t, std::unique_ptr<Job>>& all() const { return jobs_; }
+
+ private:
+  int max_jobs_;
+  std::int64_t next_id_ = 1;
+  std::map<std::int64_t, std::unique_ptr<Job>> jobs_;
+};
+
+}  // namespace tessera

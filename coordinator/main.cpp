@@ -1,0 +1,71 @@
+// tessera-coordinator: the HTTP API and page, the job store and the scheduler, and the port
+// workers connect to (docs/SERVICE.md). One io thread runs everything but rendering.
+#include <algorithm>
+#include <thread>
+
+#include <spdlog/spdlog.h>
+#include <boost/asio/signal_set.hpp>
+
+#include "common/protocol/handshake.h"
+#include "coordinator/http/api.h"
+#include "coordinator/options.h"
+#include "coordinator/workers/local_workers.h"
+#include "coordinator/workers/worker_link.h"
+
+namespace {
+
+void tick_every(boost::asio::steady_timer& timer, tessera::Scheduler& scheduler) {
+  timer.expires_after(std::chrono::milliseconds(250));
+  timer.async_wait([&](boost::system::error_code ec) {
+    if (ec) return;
+    scheduler.tick();
+    tick_every(timer, scheduler);
+  });
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  using namespace tessera;
+  namespace asio = boost::asio;
+  CoordinatorOptions options;
+  try {
+    options = parse_coordinator_options(argc, argv);
+  } catch (const std::exception& e) {
+    spdlog::error("{}", e.what());
+    return 2;
+  }
+  if (options.secret.empty() && !options.insecure) {
+    // Authentication is off only when asked for; local workers get this one by environment.
+    options.secret = make_nonce();
+    spdlog::warn("no --secret given: remote workers cannot join (local workers can)");
+  }
+  try {
+    asio::io_context io;
+    JobStore jobs(options.limits.max_jobs);
+    Scheduler scheduler(jobs, {.max_job_seconds = options.limits.max_job_seconds});
+    const auto address = asio::ip::make_address(options.bind);
+    WorkerListener workers(io, {address, options.worker_port}, {options.secret, options.insecure},
+                           scheduler, options.timing);
+    Api api(jobs, scheduler, {options.limits, options.scenes_dir, options.web_dir});
+    HttpServer http(io, {address, options.http_port}, options.limits.max_body_bytes,
+                    [&api](const HttpRequest& r) { return api.handle(r); });
+    spdlog::info("page and API at http://{}:{}/ ; workers connect to port {}", options.bind,
+                 http.port(), workers.port());
+    const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+    const int threads = options.local_threads > 0
+                            ? options.local_threads
+                            : std::max(1, cores / std::max(1, options.local_workers));
+    LocalWorkers local(options.worker_binary, options.local_workers, threads, workers.port(),
+                       options.insecure ? "" : options.secret);
+    asio::signal_set signals(io, SIGINT, SIGTERM);
+    signals.async_wait([&](boost::system::error_code, int) { io.stop(); });
+    asio::steady_timer timer(io);
+    tick_every(timer, scheduler);
+    io.run();
+  } catch (const std::exception& e) {
+    spdlog::error("{}", e.what());
+    return 1;
+  }
+  return 0;
+}

@@ -1,0 +1,35 @@
+// Command line of tessera-coordinator (docs/SERVICE.md):
+//   --http-port P --worker-port Q [--secret S | --insecure] [--local-workers N]
+//   [--local-threads T] [--scenes-dir DIR] [--web-dir DIR] [--bind ADDR]
+//   [--worker-binary PATH] [--max-job-seconds S] [--max-body-bytes N] [--heartbeat-ms MS]
+//   [--silence-ms MS]
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <string>
+
+#include "common/protocol/connection.h"
+#include "coordinator/jobs/limits.h"
+
+namespace tessera {
+
+struct CoordinatorOptions {
+  std::string bind = "0.0.0.0";
+  unsigned short http_port = 8080;
+  unsigned short worker_port = 7701;
+  std::string secret;  // from --secret or TESSERA_SECRET
+  bool insecure = false;
+  int local_workers = 0;
+  int local_threads = 0;  // per local worker; 0: the cores shared out
+  std::optional<std::filesystem::path> scenes_dir;
+  std::filesystem::path web_dir;
+  std::filesystem::path worker_binary;
+  ServiceLimits limits;
+  ConnectionTiming timing;
+};
+
+// Throws std::invalid_argument with a usage message.
+CoordinatorOptions parse_coordinator_options(int argc, char** argv);
+
+}  // namespace tessera

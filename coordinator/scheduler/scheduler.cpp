@@ -1,0 +1,278 @@
+#include "coordinator/scheduler/scheduler.h"
+
+#include <algorithm>
+
+#include <spdlog/spdlog.h>
+
+#include "common/protocol/unit_message.h"
+
+namespace tessera {
+
+namespace {
+
+// Units beyond the worker's threads, so that the next unit is already there when one ends.
+int capacity(int threads) { return threads + std::max(1, threads / 2); }
+
+double seconds_since(Clock::time_point t, Clock::time_point now) {
+  return std::chrono::duration<double>(now - t).count();
+}
+
+}  // namespace
+
+std::int64_t Scheduler::add_worker(WorkerHello hello, std::shared_ptr<FrameConnection> connection) {
+  const std::int64_t id = next_worker_++;
+  WorkerSlot& w = workers_[id];
+  w.id = id;
+  w.bundles = hello.cached;
+  w.hello = std::move(hello);
+  w.connection = std::move(connection);
+  spdlog::info("worker {} \"{}\" joined from {} with {} threads", id, w.hello.name, w.hello.address,
+               w.hello.threads);
+  return id;
+}
+
+void Scheduler::remove_worker(std::int64_t id) {
+  auto it = workers_.find(id);
+  if (it == workers_.end()) return;
+  int requeued = 0;
+  for (const auto& [job, unit] : it->second.in_flight) {
+    auto run = runs_.find(job);
+    if (run == runs_.end()) continue;
+    UnitRun& u = run->second.units[unit];
+    std::erase(u.holders, id);
+    if (u.state == UnitState::InFlight && u.holders.empty()) {
+      u.state = UnitState::Pending;
+      run->second.in_flight.erase(unit);
+      run->second.pending.push_front(unit);
+      ++requeued;
+    }
+  }
+  spdlog::info("worker {} \"{}\" left; {} units re-queued", id, it->second.hello.name, requeued);
+  workers_.erase(it);
+  fill_slots();
+}
+
+void Scheduler::add_job(Job& job) {
+  JobRun& run = runs_[job.id];
+  run.job = &job;
+  run.units.resize(job.plan.units.size());
+  for (int u = 0; u < static_cast<int>(job.plan.units.size()); ++u) run.pending.push_back(u);
+  // Start level with the others, so a new job neither waits for nor starves the running ones.
+  double least = 0;
+  bool any = false;
+  for (const auto& [id, other] : runs_)
+    if (id != job.id)
+      least = any ? std::min(least, other.virtual_time) : other.virtual_time, any = true;
+  run.virtual_time = least;
+  fill_slots();
+}
+
+bool Scheduler::cancel(std::int64_t job) {
+  auto it = runs_.find(job);
+  if (it == runs_.end()) return false;
+  finish(it->second, JobState::Cancelled);
+  return true;
+}
+
+void Scheduler::tick() {
+  const auto now = Clock::now();
+  std::vector<std::int64_t> expired;
+  for (const auto& [id, run] : runs_)
+    if (run.job->started && seconds_since(*run.job->started, now) > options_.max_job_seconds)
+      expired.push_back(id);
+  for (std::int64_t id : expired)
+    finish(runs_.at(id), JobState::Failed,
+           "time limit of " + std::to_string(static_cast<int>(options_.max_job_seconds)) +
+               " s exceeded");
+  fill_slots();
+}
+
+bool Scheduler::dispatchable(const JobRun& run) const {
+  if (run.pending.empty()) return false;
+  const Job& job = *run.job;
+  const int stage = job.plan.units[run.pending.front()].stage;
+  if (job.plan.stages[stage].pass == 0) return true;
+  // A later pass waits until every earlier stage is complete (pass order in the frame buffer).
+  for (int s = 0; s < stage; ++s)
+    if (job.stage_timing[s].units_done < job.plan.stages[s].unit_count) return false;
+  return true;
+}
+
+void Scheduler::fill_slots() {
+  for (auto& [id, w] : workers_)
+    while (w.connection->open() &&
+           static_cast<int>(w.in_flight.size()) < capacity(w.hello.threads) && dispatch_one(w)) {
+    }
+}
+
+bool Scheduler::dispatch_one(WorkerSlot& w) {
+  JobRun* best = nullptr;
+  for (auto& [id, run] : runs_)
+    if (dispatchable(run) && (!best || run.virtual_time < best->virtual_time)) best = &run;
+  if (!best) return speculate(w);
+  const int unit = best->pending.front();
+  best->pending.pop_front();
+  best->virtual_time += static_cast<double>(best->job->plan.units[unit].cost) / best->job->priority;
+  send_unit(w, *best, unit);
+  return true;
+}
+
+bool Scheduler::speculate(WorkerSlot& w) {
+  // Only a worker with idle threads takes a duplicate; prefetch slots are for new work.
+  if (static_cast<int>(w.in_flight.size()) >= w.hello.threads) return false;
+  const auto now = Clock::now();
+  JobRun* pick_run = nullptr;
+  int pick = -1;
+  for (auto& [id, run] : runs_) {
+    long long units_done = 0;
+    for (const auto& t : run.job->stage_timing) units_done += t.units_done;
+    const double mean =
+        units_done > 0 ? run.job->stats.seconds / static_cast<double>(units_done) : 0;
+    const double wait = std::max(options_.speculation_factor * mean,
+                                 std::chrono::duration<double>(options_.min_speculation).count());
+    for (int u : run.in_flight) {
+      const UnitRun& r = run.units[u];
+      if (r.holders.size() != 1 || r.holders[0] == w.id) continue;
+      if (seconds_since(r.dispatched, now) < wait) continue;
+      if (!pick_run || r.dispatched < pick_run->units[pick].dispatched) pick_run = &run, pick = u;
+    }
+  }
+  if (!pick_run) return false;
+  spdlog::debug("job {}: unit {} also sent to worker {}", pick_run->job->id, pick, w.id);
+  send_unit(w, *pick_run, pick);
+  return true;
+}
+
+void Scheduler::send_unit(WorkerSlot& w, JobRun& run, int unit) {
+  Job& job = *run.job;
+  const auto now = Clock::now();
+  if (!w.open_jobs.count(job.id)) {
+    Frame open{MessageType::Job,
+               {{"job", job.id}, {"hash", job.hash}, {"settings", to_json(job.spec)}},
+               {}};
+    if (!w.bundles.count(job.hash)) {
+      nlohmann::json header;
+      encode_bundle(job.bundle, header, open.payload);
+      open.header["bundle"] = std::move(header);
+      w.bundles.insert(job.hash);
+    }
+    w.connection->send(open);
+    w.open_jobs.insert(job.id);
+  }
+  const WorkUnit& wu = job.plan.units[unit];
+  w.connection->send(Frame{MessageType::Unit,
+                           {{"job", job.id},
+                            {"unit", unit},
+                            {"pass", job.plan.stages[wu.stage].pass},
+                            {"pixels", unit_pixels_to_json(wu.pixels)}},
+                           {}});
+  UnitRun& r = run.units[unit];
+  if (r.holders.empty()) r.dispatched = now;
+  r.holders.push_back(w.id);
+  r.state = UnitState::InFlight;
+  run.in_flight.insert(unit);
+  w.in_flight.insert({job.id, unit});
+  StageTiming& timing = job.stage_timing[wu.stage];
+  if (!timing.first_dispatch) timing.first_dispatch = now;
+  if (!job.started) job.started = now;
+  job.state = JobState::Running;
+}
+
+void Scheduler::on_result(std::int64_t worker, const Frame& frame) {
+  WorkerSlot& w = workers_.at(worker);
+  // Everything is checked before anything changes: a malformed result costs the worker its
+  // connection, and remove_worker() then re-queues all of its units, this one included.
+  const auto job_id = frame.header.at("job").get<std::int64_t>();
+  const int unit = frame.header.at("unit").get<int>();
+  const RenderStats stats = stats_from_json(frame.header.at("stats"));
+  auto it = runs_.find(job_id);
+  if (it == runs_.end()) {  // finished or cancelled meanwhile
+    w.in_flight.erase({job_id, unit});
+    return fill_slots();
+  }
+  JobRun& run = it->second;
+  Job& job = *run.job;
+  if (unit < 0 || unit >= static_cast<int>(run.units.size()))
+    throw ProtocolError("result for unknown unit " + std::to_string(unit));
+  if (!w.in_flight.count({job_id, unit})) {
+    ++w.dropped_results;  // rendered for an earlier connection of this worker: stale
+    return;
+  }
+  const WorkUnit& wu = job.plan.units[unit];
+  const std::vector<float> values =
+      unpack_floats(frame.payload, static_cast<std::size_t>(wu.cost) * 3);
+  w.in_flight.erase({job_id, unit});
+  UnitRun& r = run.units[unit];
+  std::erase(r.holders, worker);
+  if (r.state == UnitState::Done) {
+    ++w.dropped_results;  // a speculative copy lost the race
+    return fill_slots();
+  }
+  r.state = UnitState::Done;
+  run.in_flight.erase(unit);
+  job.apply_result(unit, values);
+  job.stats += stats;
+  WorkerShare& share = job.shares[worker];
+  share.name = w.hello.name;
+  share.units += 1;
+  share.pixels += wu.cost;
+  share.seconds += stats.seconds;
+  w.units_done += 1;
+  w.pixels_done += wu.cost;
+  w.busy_seconds += stats.seconds;
+  job.tiles.push_back({wu.pixels.rect, wu.stage, worker});
+  StageTiming& timing = job.stage_timing[wu.stage];
+  timing.units_done += 1;
+  timing.last_result = Clock::now();
+  if (job.done_cost == job.plan.total_cost) finish(run, JobState::Done);
+  fill_slots();
+}
+
+void Scheduler::on_job_failed(std::int64_t worker, const Frame& frame) {
+  const auto job_id = frame.header.at("job").get<std::int64_t>();
+  auto it = runs_.find(job_id);
+  if (it == runs_.end()) return;
+  finish(it->second, JobState::Failed,
+         "worker " + workers_.at(worker).hello.name + ": " +
+             frame.header.value("error", std::string()));
+}
+
+void Scheduler::finish(JobRun& run, JobState state, const std::string& error) {
+  Job& job = *run.job;
+  job.state = state;
+  job.error = error;
+  job.finished = Clock::now();
+  ++job.version;
+  // Free the workers at once: they drop the job's queued units and its prepared scene.
+  for (auto& [id, w] : workers_) {
+    if (!w.open_jobs.erase(job.id)) continue;
+    w.connection->send(Frame{MessageType::Cancel, {{"job", job.id}}, {}});
+    std::erase_if(w.in_flight, [&](const auto& entry) { return entry.first == job.id; });
+  }
+  spdlog::info("job {} {}{}{}", job.id, to_string(state), error.empty() ? "" : ": ", error);
+  runs_.erase(job.id);  // `run` and `job` references end here
+  fill_slots();
+}
+
+nlohmann::json Scheduler::workers_json() const {
+  const auto now = Clock::now();
+  nlohmann::json out = nlohmann::json::array();
+  for (const auto& [id, w] : workers_) {
+    const double connected = seconds_since(w.joined, now);
+    out.push_back({{"id", id},
+                   {"name", w.hello.name},
+                   {"address", w.hello.address},
+                   {"threads", w.hello.threads},
+                   {"in_flight", w.in_flight.size()},
+                   {"units_done", w.units_done},
+                   {"dropped_results", w.dropped_results},
+                   {"pixels_done", w.pixels_done},
+                   {"busy_seconds", w.busy_seconds},
+                   {"connected_seconds", connected},
+                   {"pixels_per_second",
+                    connected > 0 ? static_cast<double>(w.pixels_done) / connected : 0.0}});
+  }
+  return out;
+}
+
+}  // namespace tessera

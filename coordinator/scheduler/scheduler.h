@@ -1,0 +1,100 @@
+// The scheduler: keeps every worker's slots full (its threads plus a small prefetch, so
+// network latency is hidden), shares workers between jobs by priority, re-queues a lost
+// worker's units, and near the end of a stage sends a straggling unit to an idle worker too:
+// the first result wins and a late duplicate is dropped. Sample passes after the first wait
+// for the previous pass, so each pixel's passes reach the frame buffer in pass order.
+// Everything runs on the coordinator's single io thread.
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <deque>
+#include <map>
+#include <memory>
+#include <set>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include <nlohmann/json.hpp>
+
+#include "common/protocol/connection.h"
+#include "coordinator/jobs/job_store.h"
+
+namespace tessera {
+
+struct SchedulerOptions {
+  double max_job_seconds = 600;
+  // A unit may be duplicated once it has run this many times the job's mean unit time (and
+  // at least `min_speculation`) while workers sit idle.
+  double speculation_factor = 3;
+  std::chrono::milliseconds min_speculation{500};
+};
+
+struct WorkerHello {
+  std::string name, address;
+  int threads = 1;
+  std::set<std::string> cached;  // bundle hashes the worker already holds
+};
+
+class Scheduler {
+ public:
+  Scheduler(JobStore& jobs, SchedulerOptions options) : jobs_(jobs), options_(options) {}
+
+  // The caller welcomes the worker, then calls fill_slots() to give it work.
+  std::int64_t add_worker(WorkerHello hello, std::shared_ptr<FrameConnection> connection);
+  void fill_slots();
+  void remove_worker(std::int64_t worker);
+  // Throw ProtocolError (or a JSON error) for a malformed frame; the caller drops the worker.
+  void on_result(std::int64_t worker, const Frame& frame);
+  void on_job_failed(std::int64_t worker, const Frame& frame);
+
+  void add_job(Job& job);
+  // Cancels a queued or running job and frees its workers at once; false if already finished.
+  bool cancel(std::int64_t job);
+  // Time limits and speculation deadlines; called periodically.
+  void tick();
+
+  nlohmann::json workers_json() const;
+
+ private:
+  enum class UnitState { Pending, InFlight, Done };
+  struct UnitRun {
+    UnitState state = UnitState::Pending;
+    std::vector<std::int64_t> holders;
+    Clock::time_point dispatched;
+  };
+  struct JobRun {
+    Job* job = nullptr;
+    std::deque<int> pending;  // dispatch order; re-queued units go to the front
+    std::vector<UnitRun> units;
+    std::set<int> in_flight;  // the speculation candidates, without scanning every unit
+    double virtual_time = 0;  // fair share: advances by cost / priority per dispatch
+  };
+  struct WorkerSlot {
+    std::int64_t id = 0;
+    WorkerHello hello;
+    std::shared_ptr<FrameConnection> connection;
+    std::set<std::string> bundles;
+    std::set<std::int64_t> open_jobs;
+    std::set<std::pair<std::int64_t, int>> in_flight;
+    long long units_done = 0, pixels_done = 0;
+    long long dropped_results = 0;  // late duplicates and results of earlier connections
+    double busy_seconds = 0;
+    Clock::time_point joined = Clock::now();
+  };
+
+  bool dispatch_one(WorkerSlot& worker);
+  bool dispatchable(const JobRun& run) const;
+  bool speculate(WorkerSlot& worker);
+  void send_unit(WorkerSlot& worker, JobRun& run, int unit);
+  void finish(JobRun& run, JobState state, const std::string& error = {});
+
+  JobStore& jobs_;
+  SchedulerOptions options_;
+  std::map<std::int64_t, JobRun> runs_;
+  std::map<std::int64_t, WorkerSlot> workers_;
+  std::int64_t next_worker_ = 1;
+};
+
+}  // namespace tessera

@@ -1,0 +1,115 @@
+#include "coordinator/workers/worker_link.h"
+
+#include <spdlog/spdlog.h>
+
+#include "common/protocol/handshake.h"
+#include "common/protocol/sha256.h"
+
+namespace tessera {
+
+namespace asio = boost::asio;
+using asio::ip::tcp;
+
+namespace {
+// Before authentication only small frames are accepted, so a stranger cannot make the
+// coordinator buffer megabytes; results of trusted workers may be larger.
+constexpr FrameLimits kHandshakeLimits{.max_body = 64u << 10, .max_header = 32u << 10};
+constexpr FrameLimits kWorkerLimits{.max_body = 16u << 20, .max_header = 64u << 10};
+constexpr std::size_t kMaxCachedHashes = 64;
+}  // namespace
+
+WorkerLink::WorkerLink(tcp::socket socket, const WorkerAuth& auth, Scheduler& scheduler,
+                       ConnectionTiming timing)
+    : connection_(std::make_shared<FrameConnection>(std::move(socket), kHandshakeLimits, timing)),
+      auth_(auth),
+      scheduler_(scheduler) {}
+
+void WorkerLink::start() {
+  auto self = shared_from_this();
+  connection_->start([self](Frame f) { self->on_frame(f); },
+                     [self](const std::string& reason) {
+                       if (self->stage_ == Stage::Ready) {
+                         spdlog::info("worker {}: {}", self->id_, reason);
+                         self->scheduler_.remove_worker(self->id_);
+                       }
+                       self->connection_.reset();  // breaks the cycle through the handlers
+                     });
+}
+
+void WorkerLink::on_frame(const Frame& frame) {
+  try {
+    if (stage_ == Stage::Hello && frame.type == MessageType::Hello) return on_hello(frame);
+    if (stage_ == Stage::Auth && frame.type == MessageType::Auth) return on_auth(frame);
+    if (stage_ == Stage::Ready && frame.type == MessageType::Result)
+      return scheduler_.on_result(id_, frame);
+    if (stage_ == Stage::Ready && frame.type == MessageType::JobFailed)
+      return scheduler_.on_job_failed(id_, frame);
+    connection_->close(std::string("unexpected ") + to_string(frame.type) + " frame");
+  } catch (const std::exception& e) {  // ProtocolError or a mistyped JSON field
+    spdlog::warn("worker {} ({}): {}", id_, connection_->peer(), e.what());
+    connection_->close(e.what());
+  }
+}
+
+void WorkerLink::on_hello(const Frame& frame) {
+  const int version = frame.header.at("version").get<int>();
+  if (version != kProtocolVersion)
+    return reject("protocol version " + std::to_string(version) + " is not " +
+                  std::to_string(kProtocolVersion));
+  hello_.name = frame.header.at("name").get<std::string>().substr(0, 128);
+  hello_.threads = frame.header.at("threads").get<int>();
+  hello_.address = connection_->peer();
+  if (hello_.threads < 1 || hello_.threads > 1024) return reject("threads must be 1..1024");
+  worker_nonce_ = frame.header.at("nonce").get<std::string>();
+  if (worker_nonce_.size() < 16 || worker_nonce_.size() > 128) return reject("bad nonce");
+  for (const auto& h : frame.header.value("cached", nlohmann::json::array()))
+    if (hello_.cached.size() < kMaxCachedHashes) hello_.cached.insert(h.get<std::string>());
+  nonce_ = make_nonce();
+  stage_ = Stage::Auth;
+  connection_->send(Frame{MessageType::Challenge,
+                          {{"version", kProtocolVersion},
+                           {"nonce", nonce_},
+                           {"auth", auth_.insecure ? "none" : "hmac-sha256"}},
+                          {}});
+}
+
+void WorkerLink::on_auth(const Frame& frame) {
+  if (!auth_.insecure) {
+    const std::string expected = worker_proof(auth_.secret, nonce_, worker_nonce_);
+    if (!constant_time_equal(frame.header.value("proof", std::string()), expected))
+      return reject("authentication failed: wrong shared secret");
+  }
+  connection_->set_limits(kWorkerLimits);
+  stage_ = Stage::Ready;
+  id_ = scheduler_.add_worker(hello_, connection_);
+  connection_->send(Frame{
+      MessageType::Welcome,
+      {{"worker", id_},
+       {"proof", auth_.insecure ? "" : coordinator_proof(auth_.secret, nonce_, worker_nonce_)}},
+      {}});
+  scheduler_.fill_slots();
+}
+
+void WorkerLink::reject(const std::string& reason) {
+  spdlog::warn("refused worker from {}: {}", connection_->peer(), reason);
+  connection_->send(Frame{MessageType::Reject, {{"reason", reason}}, {}});
+  connection_->close_after_flush(reason);
+}
+
+WorkerListener::WorkerListener(asio::io_context& io, const tcp::endpoint& endpoint, WorkerAuth auth,
+                               Scheduler& scheduler, ConnectionTiming timing)
+    : acceptor_(io, endpoint), auth_(std::move(auth)), scheduler_(scheduler), timing_(timing) {
+  accept();
+}
+
+void WorkerListener::accept() {
+  acceptor_.async_accept([this](boost::system::error_code ec, tcp::socket socket) {
+    if (!ec)
+      std::make_shared<WorkerLink>(std::move(socket), auth_, scheduler_, timing_)->start();
+    else
+      spdlog::warn("worker accept: {}", ec.message());
+    if (acceptor_.is_open()) accept();
+  });
+}
+
+}  // namespace tessera

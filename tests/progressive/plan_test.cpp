@@ -1,0 +1,165 @@
+#include "common/progressive/plan.h"
+
+#include <gtest/gtest.h>
+
+#include <cstdlib>
+#include <set>
+#include <vector>
+
+namespace tessera {
+namespace {
+
+// How many times each pixel is traced for pass 0 by units that are accumulated.
+std::vector<int> pass0_counts(const Plan& plan) {
+  std::vector<int> counts(static_cast<std::size_t>(plan.width) * plan.height, 0);
+  for (const WorkUnit& u : plan.units) {
+    const Stage& s = plan.stages[u.stage];
+    if (s.pass != 0 || s.preview_only) continue;
+    for (Pixel p : expand(u.pixels)) ++counts[static_cast<std::size_t>(p.y) * plan.width + p.x];
+  }
+  return counts;
+}
+
+TEST(LevelCount, IsCeilLog2OfTheLargerSide) {
+  EXPECT_EQ(level_count(1, 1), 1);
+  EXPECT_EQ(level_count(2, 2), 1);
+  EXPECT_EQ(level_count(3, 2), 2);
+  EXPECT_EQ(level_count(256, 256), 8);
+  EXPECT_EQ(level_count(257, 10), 9);
+  EXPECT_EQ(level_count(640, 480), 10);
+}
+
+TEST(Plan, EveryPixelIsTracedExactlyOnceOverTheLevels) {
+  for (auto [w, h] :
+       {std::pair{1, 1}, {2, 2}, {7, 5}, {64, 64}, {100, 37}, {640, 480}, {33, 129}}) {
+    const Plan plan = make_plan({.width = w, .height = h});
+    for (int c : pass0_counts(plan)) ASSERT_EQ(c, 1) << w << "x" << h;
+    EXPECT_EQ(plan.total_cost, static_cast<long long>(w) * h);
+  }
+}
+
+TEST(Plan, LevelOneIsTwoByTwoBlocks) {
+  const Plan plan = make_plan({.width = 256, .height = 256});
+  ASSERT_EQ(plan.levels, 8);
+  const Stage& first = plan.stages[0];
+  EXPECT_EQ(first.level, 1);
+  EXPECT_EQ(first.block, 128);
+  EXPECT_EQ(first.blocks, 4);
+  EXPECT_EQ(first.traced, 4);
+  std::set<std::pair<int, int>> anchors;
+  for (int i = 0; i < first.unit_count; ++i)
+    for (Pixel p : expand(plan.units[first.first_unit + i].pixels)) anchors.insert({p.x, p.y});
+  EXPECT_EQ(anchors, (std::set<std::pair<int, int>>{{0, 0}, {128, 0}, {0, 128}, {128, 128}}));
+}
+
+TEST(Plan, AnchorCountsPerLevelMatchFigure511) {
+  const Plan plan = make_plan({.width = 256, .height = 256});
+  long long previous = 0;
+  for (int l = 1; l <= plan.levels; ++l) {
+    const Stage& s = plan.stages[l - 1];
+    const long long side = 1LL << l;  // blocks across at level l
+    EXPECT_EQ(s.block, 256 >> l);
+    EXPECT_EQ(s.blocks, side * side);
+    EXPECT_EQ(s.traced, side * side - previous);
+    previous = side * side;
+  }
+}
+
+TEST(Plan, NonPowerOfTwoSizesKeepPartialBlocks) {
+  const Plan plan = make_plan({.width = 5, .height = 3});  // L = 3, sides 4, 2, 1
+  ASSERT_EQ(plan.levels, 3);
+  EXPECT_EQ(plan.stages[0].blocks, 2);  // 2 x 1 blocks of side 4
+  EXPECT_EQ(plan.stages[0].traced, 2);
+  EXPECT_EQ(plan.stages[1].blocks, 6);  // 3 x 2 of side 2
+  EXPECT_EQ(plan.stages[1].traced, 4);
+  EXPECT_EQ(plan.stages[2].traced, 15 - 6);
+}
+
+TEST(Plan, PassesAfterTheLevelsCoverTheWholeImage) {
+  const Plan plan = make_plan({.width = 40, .height = 30, .passes = 3});
+  ASSERT_EQ(plan.stages.size(), static_cast<std::size_t>(plan.levels + 2));
+  for (int p = 1; p <= 2; ++p) {
+    const Stage& s = plan.stages[plan.levels + p - 1];
+    EXPECT_EQ(s.pass, p);
+    EXPECT_EQ(s.level, 0);
+    EXPECT_EQ(s.traced, 1200);
+  }
+  EXPECT_EQ(plan.total_cost, 3 * 1200);
+}
+
+TEST(Plan, DirectModeHasNoLevels) {
+  const Plan plan = make_plan({.width = 40, .height = 30, .passes = 2, .progressive = false});
+  EXPECT_EQ(plan.levels, 0);
+  ASSERT_EQ(plan.stages.size(), 2u);
+  for (int c : pass0_counts(plan)) ASSERT_EQ(c, 1);
+}
+
+TEST(Plan, UnitsHaveRoughlyEqualCost) {
+  const Plan plan = make_plan({.width = 640, .height = 480, .unit_pixels = 1024});
+  for (const WorkUnit& u : plan.units) {
+    EXPECT_LE(u.cost, 2 * 1024);
+    EXPECT_EQ(u.cost, pixel_count(u.pixels));
+  }
+  const Stage& last = plan.stages[plan.levels - 1];
+  EXPECT_GT(last.unit_count, 100);
+}
+
+TEST(Plan, CentreOrderStartsInTheMiddleScanlineAtTheTopLeft) {
+  const Plan centre = make_plan({.width = 512, .height = 512, .unit_pixels = 256});
+  const Plan scan =
+      make_plan({.width = 512, .height = 512, .order = UnitOrder::Scanline, .unit_pixels = 256});
+  const Stage& s = centre.stages[centre.levels - 1];
+  const Tile first = centre.units[s.first_unit].pixels.rect;
+  const int side = first.width();
+  EXPECT_LE(std::abs((first.x0 + first.x1) / 2 - 256), side);
+  EXPECT_LE(std::abs((first.y0 + first.y1) / 2 - 256), side);
+  const Tile last = centre.units[s.first_unit + s.unit_count - 1].pixels.rect;
+  EXPECT_TRUE(last.x0 == 0 || last.y0 == 0 || last.x1 == 512 || last.y1 == 512);
+  const Stage& t = scan.stages[scan.levels - 1];
+  EXPECT_EQ(scan.units[t.first_unit].pixels.rect.x0, 0);
+  EXPECT_EQ(scan.units[t.first_unit].pixels.rect.y0, 0);
+  for (int i = 1; i < t.unit_count; ++i) {
+    const Tile a = scan.units[t.first_unit + i - 1].pixels.rect;
+    const Tile b = scan.units[t.first_unit + i].pixels.rect;
+    EXPECT_TRUE(b.y0 > a.y0 || (b.y0 == a.y0 && b.x0 > a.x0));
+  }
+}
+
+TEST(Plan, AreaPreviewTracesEveryBlockCentreAndCostsAboutAThirdMore) {
+  const Plan plan = make_plan({.width = 256, .height = 256, .preview = PreviewMode::Area});
+  for (int c : pass0_counts(plan)) ASSERT_EQ(c, 1);
+  for (int l = 1; l < plan.levels; ++l) {
+    const Stage& s = plan.stages[l - 1];
+    EXPECT_TRUE(s.preview_only);
+    EXPECT_EQ(s.traced, s.blocks);
+    for (int i = 0; i < s.unit_count; ++i)
+      for (Pixel p : expand(plan.units[s.first_unit + i].pixels)) {
+        EXPECT_EQ(p.x % s.block, s.block / 2);
+        EXPECT_EQ(p.y % s.block, s.block / 2);
+      }
+  }
+  const double ratio = static_cast<double>(plan.total_cost) / (256.0 * 256.0);
+  EXPECT_NEAR(ratio, 4.0 / 3.0, 0.01);
+}
+
+TEST(UnitPixels, CentresAreClampedIntoPartialBlocks) {
+  UnitPixels u{.rect = {0, 0, 5, 3}, .step = 4, .pattern = PixelPattern::Centres};
+  const auto pixels = expand(u);
+  ASSERT_EQ(pixels.size(), 2u);
+  EXPECT_EQ(pixels[0].x, 2);
+  EXPECT_EQ(pixels[0].y, 2);
+  EXPECT_EQ(pixels[1].x, 4);
+  EXPECT_EQ(pixels[1].y, 2);
+  EXPECT_EQ(block_of(pixels[1], 4).x, 4);
+}
+
+TEST(PlanNames, ParseAndPrint) {
+  EXPECT_EQ(parse_unit_order("center"), UnitOrder::Centre);
+  EXPECT_EQ(parse_unit_order("scanline"), UnitOrder::Scanline);
+  EXPECT_THROW(parse_unit_order("spiral"), std::invalid_argument);
+  EXPECT_EQ(parse_preview_mode(to_string(PreviewMode::Area)), PreviewMode::Area);
+  EXPECT_THROW(make_plan({.width = 0, .height = 4}), std::invalid_argument);
+}
+
+}  // namespace
+}  // namespace tessera

@@ -1,0 +1,73 @@
+#include "common/protocol/connection.h"
+
+#include <gtest/gtest.h>
+
+namespace tessera {
+namespace {
+
+namespace asio = boost::asio;
+using asio::ip::tcp;
+
+// A connected pair of sockets on loopback.
+std::pair<tcp::socket, tcp::socket> socket_pair(asio::io_context& io) {
+  tcp::acceptor acceptor(io, tcp::endpoint(asio::ip::address_v4::loopback(), 0));
+  tcp::socket client(io);
+  client.connect(acceptor.local_endpoint());
+  tcp::socket server = acceptor.accept();
+  return {std::move(client), std::move(server)};
+}
+
+TEST(FrameConnection, DeliversFramesAndHidesHeartbeats) {
+  asio::io_context io;
+  auto [a, b] = socket_pair(io);
+  const ConnectionTiming fast{std::chrono::milliseconds(20), std::chrono::milliseconds(2000)};
+  auto left = std::make_shared<FrameConnection>(std::move(a), FrameLimits{}, fast);
+  auto right = std::make_shared<FrameConnection>(std::move(b), FrameLimits{}, fast);
+  std::vector<Frame> received;
+  left->start([](Frame) {}, [](const std::string&) {});
+  right->start(
+      [&](Frame f) {
+        received.push_back(std::move(f));
+        if (received.size() == 2) {
+          left->close("done");
+          right->close("done");
+        }
+      },
+      [](const std::string&) {});
+  left->send(Frame{MessageType::Unit, {{"unit", 1}}, "abc"});
+  asio::steady_timer later(io, std::chrono::milliseconds(100));  // heartbeats flow meanwhile
+  later.async_wait([&](auto) { left->send(Frame{MessageType::Cancel, {{"job", 2}}, ""}); });
+  io.run_for(std::chrono::seconds(5));
+  ASSERT_EQ(received.size(), 2u);
+  EXPECT_EQ(received[0].type, MessageType::Unit);
+  EXPECT_EQ(received[0].payload, "abc");
+  EXPECT_EQ(received[1].header["job"], 2);
+}
+
+TEST(FrameConnection, ClosesOnOversizedFrameAndOnSilence) {
+  asio::io_context io;
+  auto [a, b] = socket_pair(io);
+  auto receiver = std::make_shared<FrameConnection>(
+      std::move(b), FrameLimits{.max_body = 100, .max_header = 50},
+      ConnectionTiming{std::chrono::milliseconds(20), std::chrono::milliseconds(5000)});
+  std::string reason;
+  receiver->start([](Frame) { ADD_FAILURE() << "no frame expected"; },
+                  [&](const std::string& r) { reason = r; });
+  const std::string big = encode_frame(Frame{MessageType::Result, {}, std::string(1000, 'x')});
+  asio::write(a, asio::buffer(big));
+  io.run_for(std::chrono::seconds(5));
+  EXPECT_NE(reason.find("exceeds the limit"), std::string::npos) << reason;
+
+  asio::io_context io2;
+  auto [c, d] = socket_pair(io2);
+  auto quiet = std::make_shared<FrameConnection>(
+      std::move(d), FrameLimits{},
+      ConnectionTiming{std::chrono::milliseconds(20), std::chrono::milliseconds(100)});
+  reason.clear();
+  quiet->start([](Frame) {}, [&](const std::string& r) { reason = r; });
+  io2.run_for(std::chrono::seconds(5));  // `c` never sends: not even heartbeats
+  EXPECT_NE(reason.find("silent"), std::string::npos) << reason;
+}
+
+}  // namespace
+}  // namespace tessera

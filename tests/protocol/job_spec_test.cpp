@@ -1,0 +1,58 @@
+#include "common/protocol/job_spec.h"
+
+#include <gtest/gtest.h>
+
+#include "common/protocol/frame.h"
+
+namespace tessera {
+namespace {
+
+TEST(JobSpec, RoundTrips) {
+  JobSpec spec;
+  spec.settings = {.width = 33,
+                   .height = 17,
+                   .aa_samples = 9,
+                   .stochastic = true,
+                   .jitter = 0.5,
+                   .seed = 1ull << 60,
+                   .passes = 4,
+                   .bvh = BvhMode::None};
+  spec.overrides.max_depth = 2;
+  const JobSpec back = job_spec_from_json(to_json(spec));
+  EXPECT_EQ(back.settings.width, 33);
+  EXPECT_EQ(back.settings.aa_samples, 9);
+  EXPECT_TRUE(back.settings.stochastic);
+  EXPECT_EQ(back.settings.jitter, 0.5);
+  EXPECT_EQ(back.settings.seed, 1ull << 60);
+  EXPECT_EQ(back.settings.bvh, BvhMode::None);
+  EXPECT_EQ(back.overrides, spec.overrides);
+}
+
+TEST(JobSpec, MistypedFieldsAreProtocolErrors) {
+  nlohmann::json j = to_json(JobSpec{});
+  j["width"] = "wide";
+  EXPECT_THROW(job_spec_from_json(j), ProtocolError);
+  EXPECT_THROW(job_spec_from_json(nlohmann::json::object()), ProtocolError);
+}
+
+TEST(JobSpec, OverridesChangeTheSceneGlobals) {
+  Scene scene;
+  apply_overrides(scene, {.max_depth = 1, .min_weight = 0.05});
+  EXPECT_EQ(scene.globals.max_recursion_depth, 1);
+  EXPECT_EQ(scene.globals.min_reflectivity, 0.05);
+  EXPECT_EQ(scene.globals.min_transparency, 0.05);
+}
+
+TEST(Stats, RoundTrip) {
+  RenderStats s;
+  s.camera_rays = 5;
+  s.intersections.bvh_nodes = 99;
+  s.seconds = 1.5;
+  const RenderStats back = stats_from_json(to_json(s));
+  EXPECT_EQ(back.camera_rays, 5u);
+  EXPECT_EQ(back.intersections.bvh_nodes, 99u);
+  EXPECT_EQ(back.seconds, 1.5);
+}
+
+}  // namespace
+}  // namespace tessera

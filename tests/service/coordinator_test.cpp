@@ -1,0 +1,173 @@
+// Unit tests of the coordinator's pure parts: tar bundles, request targets, job requests and
+// the merge of unit results into the frame buffer and the display.
+#include <gtest/gtest.h>
+
+#include <cstdio>
+
+#include "coordinator/http/api.h"
+#include "coordinator/jobs/api_error.h"
+#include "coordinator/jobs/job.h"
+#include "coordinator/jobs/job_request.h"
+#include "coordinator/jobs/multipart.h"
+#include "coordinator/jobs/tar_reader.h"
+
+namespace tessera {
+namespace {
+
+// One ustar entry: header block plus data padded to 512 bytes.
+std::string tar_entry(const std::string& name, const std::string& data, char type = '0',
+                      const std::string& prefix = "") {
+  std::string header(512, '\0');
+  header.replace(0, name.size(), name);
+  char size[12];
+  std::snprintf(size, sizeof size, "%011o", static_cast<unsigned>(data.size()));
+  header.replace(124, 11, size);
+  header[156] = type;
+  header.replace(257, 6, std::string("ustar\0", 6));
+  header.replace(345, prefix.size(), prefix);
+  std::string padded = data;
+  padded.resize((data.size() + 511) / 512 * 512, '\0');
+  return header + padded;
+}
+
+TEST(TarReader, ReadsFilesWithPrefixesAndLongNames) {
+  const std::string archive = tar_entry("scene.sdl", "sphere") + tar_entry("dir/", "", '5') +
+                              tar_entry("b.obj", "v 0 0 0", '0', "meshes") +
+                              tar_entry("././@LongLink", "textures/a-very-long-name.ppm", 'L') +
+                              tar_entry("ignored", "P3") + std::string(1024, '\0');
+  const auto files = read_tar(archive);
+  ASSERT_EQ(files.size(), 3u);
+  EXPECT_EQ(files.at("scene.sdl"), "sphere");
+  EXPECT_EQ(files.at("meshes/b.obj"), "v 0 0 0");
+  EXPECT_EQ(files.at("textures/a-very-long-name.ppm"), "P3");
+}
+
+TEST(TarReader, RefusesTruncatedArchives) {
+  const std::string entry = tar_entry("scene.sdl", std::string(600, 'x'));
+  EXPECT_THROW(read_tar(entry.substr(0, 700)), std::runtime_error);
+  std::string bad = tar_entry("a", "b");
+  bad[124] = 'z';
+  EXPECT_THROW(read_tar(bad), std::runtime_error);
+}
+
+TEST(SplitTarget, DecodesQueries) {
+  const auto [path, query] = split_target("/api/jobs/3/image?format=exr&main=a%2Fb.sdl&x=1+2&flag");
+  EXPECT_EQ(path, "/api/jobs/3/image");
+  EXPECT_EQ(query.at("format"), "exr");
+  EXPECT_EQ(query.at("main"), "a/b.sdl");
+  EXPECT_EQ(query.at("x"), "1 2");
+  EXPECT_EQ(query.at("flag"), "");
+}
+
+TEST(ParseSettings, DefaultsFollowTheRenderer) {
+  JobRequest r;
+  parse_settings(nlohmann::json::object(), ServiceLimits{}, r);
+  const RenderSettings defaults;
+  EXPECT_EQ(r.spec.settings.width, defaults.width);
+  EXPECT_EQ(r.spec.settings.aa_samples, defaults.aa_samples);
+  EXPECT_EQ(r.plan.order, UnitOrder::Centre);
+  EXPECT_TRUE(r.plan.progressive);
+  EXPECT_FALSE(r.spec.overrides.max_depth.has_value());
+}
+
+TEST(ParseSettings, RefusesWhatIsOutOfLimits) {
+  const ServiceLimits limits;
+  for (const char* bad : {R"({"aa": 3})", R"({"width": 0})", R"({"width": 5000})",
+                          R"({"width": 4096, "height": 4096})", R"({"passes": 1000})",
+                          R"({"seed": -2})", R"({"order": "spiral"})", R"({"bvh": 1})",
+                          R"({"unknown": 1})", R"({"max_depth": 40})", R"({"min_weight": 2})"}) {
+    JobRequest r;
+    EXPECT_THROW(parse_settings(nlohmann::json::parse(bad), limits, r), ApiError) << bad;
+  }
+}
+
+TEST(ParseJobRequest, SceneErrorsNameLineAndColumn) {
+  const std::string body = R"({"scene": "sphere\n  nosuchkeyword\n"})";
+  try {
+    parse_job_request({body, "application/json", {}}, ServiceLimits{}, std::nullopt);
+    FAIL() << "expected a scene error";
+  } catch (const ApiError& e) {
+    EXPECT_EQ(e.status(), 400);
+    EXPECT_EQ(e.body()["error"], "scene_error");
+    EXPECT_EQ(e.body()["line"], 2);
+    EXPECT_EQ(e.body()["column"], 3);
+  }
+}
+
+TEST(ParseJobRequest, TheBundleHoldsWhatTheSceneRead) {
+  const std::string body =
+      R"({"scene": "include parts/p.sdl\n", "files": {"parts/p.sdl": "sphere", "unused.obj": ""}})";
+  const JobRequest r =
+      parse_job_request({body, "application/json", {}}, ServiceLimits{}, std::nullopt);
+  EXPECT_EQ(r.bundle.main, "scene.sdl");
+  EXPECT_EQ(r.bundle.files.size(), 2u);
+  EXPECT_TRUE(r.bundle.files.count("parts/p.sdl"));
+  EXPECT_THROW(parse_job_request({"{}", "text/plain", {}}, ServiceLimits{}, std::nullopt),
+               ApiError);
+}
+
+TEST(Multipart, ReadsFieldsAndFiles) {
+  const std::string body =
+      "preamble\r\n--XyZ\r\nContent-Disposition: form-data; name=\"scene\"\r\n\r\n"
+      "include parts/p.sdl\r\n--XyZ\r\nContent-Disposition: form-data; name=\"file\"; "
+      "filename=\"parts/p.sdl\"\r\nContent-Type: text/plain\r\n\r\nsphere\r\n--XyZ\r\n"
+      "Content-Disposition: form-data; name=\"settings\"\r\n\r\n{\"width\": 8}\r\n--XyZ--\r\n";
+  const auto boundary = multipart_boundary("multipart/form-data; boundary=XyZ");
+  ASSERT_EQ(boundary, "XyZ");
+  const auto parts = parse_multipart(body, *boundary);
+  ASSERT_EQ(parts.size(), 3u);
+  EXPECT_EQ(parts[1].name, "file");
+  EXPECT_EQ(parts[1].filename, "parts/p.sdl");
+  EXPECT_EQ(parts[1].data, "sphere");
+  const JobRequest r = parse_job_request({body, "multipart/form-data; boundary=XyZ", {}},
+                                         ServiceLimits{}, std::nullopt);
+  EXPECT_EQ(r.spec.settings.width, 8);
+  EXPECT_EQ(r.bundle.files.size(), 2u);
+  EXPECT_THROW(parse_multipart("--XyZ\r\nno end", "XyZ"), std::runtime_error);
+  EXPECT_FALSE(multipart_boundary("text/plain; boundary=x"));
+}
+
+Job make_job(int w, int h, int passes) {
+  JobSpec spec;
+  spec.settings.width = w;
+  spec.settings.height = h;
+  spec.settings.passes = passes;
+  PlanOptions plan{.width = w, .height = h, .passes = passes};
+  return Job(1, Bundle{"scene.sdl", "sdl", {{"scene.sdl", "sphere"}}}, spec, plan, 1);
+}
+
+// A distinct value per pixel and pass, as a worker would return it.
+std::vector<float> values_for(const Job& job, int unit) {
+  std::vector<float> v;
+  const int pass = job.plan.stages[job.plan.units[unit].stage].pass;
+  for (Pixel p : expand(job.plan.units[unit].pixels))
+    for (int c = 0; c < 3; ++c) v.push_back(static_cast<float>(p.x + 100 * p.y + 0.25 * pass + c));
+  return v;
+}
+
+TEST(JobMerge, CoarseBlocksShowTheirAnchorUntilFinerLevelsArrive) {
+  Job job = make_job(5, 3, 1);  // levels of side 4, 2, 1
+  job.apply_result(0, values_for(job, 0));
+  EXPECT_EQ(job.display.get(3, 2).r, 0.0f);  // block of anchor (0, 0)
+  EXPECT_EQ(job.display.get(4, 1).r, 4.0f);  // block of anchor (4, 0)
+  // Finer results win regardless of arrival order.
+  for (int u = static_cast<int>(job.plan.units.size()) - 1; u >= 1; --u)
+    job.apply_result(u, values_for(job, u));
+  for (int y = 0; y < 3; ++y)
+    for (int x = 0; x < 5; ++x) EXPECT_EQ(job.display.get(x, y).r, x + 100.0 * y) << x << "," << y;
+  EXPECT_EQ(job.done_cost, job.plan.total_cost);
+}
+
+TEST(JobMerge, FinalImageIsTheFrameBufferMean) {
+  Job job = make_job(6, 4, 3);
+  for (int u = 0; u < static_cast<int>(job.plan.units.size()); ++u)
+    job.apply_result(u, values_for(job, u));
+  job.state = JobState::Done;
+  const Image final_image = job.image();
+  EXPECT_EQ(final_image, job.frame_buffer.resolve());
+  EXPECT_EQ(final_image.get(1, 1).r, static_cast<float>(101 + 0.25));  // mean of passes 0..2
+  EXPECT_EQ(final_image, job.display);
+}
+
+}  // namespace
+}  // namespace tessera

@@ -1,0 +1,195 @@
+// The scheduler against fake workers: real FrameConnections on loopback whose far ends the
+// test reads, and results handed to the scheduler directly.
+#include "coordinator/scheduler/scheduler.h"
+
+#include <gtest/gtest.h>
+
+#include <map>
+
+#include "common/protocol/unit_message.h"
+
+namespace tessera {
+namespace {
+
+namespace asio = boost::asio;
+using asio::ip::tcp;
+
+struct FakeWorker {
+  explicit FakeWorker(tcp::socket socket) : peer(std::move(socket)) {}
+  std::int64_t id = 0;
+  tcp::socket peer;
+  FrameDecoder decoder;
+  std::vector<Frame> units;  // unit frames received, in order
+};
+
+class SchedulerTest : public ::testing::Test {
+ protected:
+  SchedulerTest() : acceptor_(io_, tcp::endpoint(asio::ip::address_v4::loopback(), 0)) {}
+
+  JobRequest request(int width, int height, int passes, int priority = 1) {
+    JobRequest r;
+    r.bundle = {"scene.sdl", "sdl", {{"scene.sdl", "sphere"}}};
+    r.spec.settings.width = width;
+    r.spec.settings.height = height;
+    r.spec.settings.passes = passes;
+    r.plan = {.width = width, .height = height, .passes = passes, .unit_pixels = 16};
+    r.priority = priority;
+    return r;
+  }
+
+  Job& add_job(int width, int height, int passes, int priority = 1) {
+    Job* job = store_.create(request(width, height, passes, priority));
+    scheduler_.add_job(*job);
+    return *job;
+  }
+
+  FakeWorker& add_worker(int threads) {
+    tcp::socket client(io_);
+    client.connect(acceptor_.local_endpoint());
+    auto connection =
+        std::make_shared<FrameConnection>(acceptor_.accept(), FrameLimits{}, ConnectionTiming{});
+    connection->start([](Frame) {}, [](const std::string&) {});
+    auto& w = workers_.emplace_back(std::make_unique<FakeWorker>(std::move(client)));
+    w->id = scheduler_.add_worker({"w", "test", threads, {}}, connection);
+    scheduler_.fill_slots();
+    return *w;
+  }
+
+  // Lets the connections write, then collects what each fake worker received.
+  void drain() {
+    for (int i = 0; i < 20; ++i) io_.poll();
+    for (auto& w : workers_) {
+      w->peer.non_blocking(true);
+      char buf[65536];
+      boost::system::error_code ec;
+      for (std::size_t n; (n = w->peer.read_some(asio::buffer(buf), ec)) > 0 && !ec;)
+        w->decoder.feed(std::string_view(buf, n));
+      while (auto f = w->decoder.next())
+        if (f->type == MessageType::Unit) w->units.push_back(std::move(*f));
+    }
+  }
+
+  void send_result(FakeWorker& w, const Frame& unit_frame, const Job& job) {
+    const int unit = unit_frame.header["unit"].get<int>();
+    const std::vector<float> values(static_cast<std::size_t>(job.plan.units[unit].cost) * 3, 0.5f);
+    scheduler_.on_result(w.id,
+                         Frame{MessageType::Result,
+                               {{"job", job.id}, {"unit", unit}, {"stats", to_json(RenderStats{})}},
+                               pack_floats(values)});
+  }
+
+  asio::io_context io_;
+  tcp::acceptor acceptor_;
+  JobStore store_{16};
+  Scheduler scheduler_{store_,
+                       {.speculation_factor = 0, .min_speculation = std::chrono::milliseconds(0)}};
+  std::vector<std::unique_ptr<FakeWorker>> workers_;
+};
+
+TEST_F(SchedulerTest, KeepsThreadsPlusPrefetchInFlight) {
+  add_job(64, 64, 1);
+  FakeWorker& w = add_worker(4);
+  drain();
+  EXPECT_EQ(w.units.size(), 6u);  // 4 threads + 2 prefetch
+}
+
+TEST_F(SchedulerTest, ALostWorkersUnitsGoToOthers) {
+  const Job& job = add_job(64, 64, 1);
+  FakeWorker& a = add_worker(2);
+  drain();
+  ASSERT_EQ(a.units.size(), 3u);
+  FakeWorker& b = add_worker(1);
+  drain();
+  scheduler_.remove_worker(a.id);
+  std::set<int> got;
+  for (std::size_t answered = 0; answered < b.units.size() && answered < 12; ++answered) {
+    if (answered > 0) got.insert(b.units[answered].header["unit"].get<int>());
+    send_result(b, b.units[answered], job);  // makes room for the re-queued units
+    drain();
+  }
+  for (const auto& f : a.units) EXPECT_TRUE(got.count(f.header["unit"].get<int>()));
+}
+
+TEST_F(SchedulerTest, StragglersAreDuplicatedAndTheLateResultDropped) {
+  const Job& job = add_job(2, 2, 1);  // one level, one unit
+  FakeWorker& slow = add_worker(1);
+  drain();
+  ASSERT_EQ(slow.units.size(), 1u);
+  FakeWorker& idle = add_worker(1);
+  scheduler_.tick();
+  drain();
+  ASSERT_EQ(idle.units.size(), 1u);
+  EXPECT_EQ(idle.units[0].header["unit"], slow.units[0].header["unit"]);
+  send_result(idle, idle.units[0], job);
+  EXPECT_EQ(job.state, JobState::Done);
+  send_result(slow, slow.units[0], job);  // the loser: the job is gone from the scheduler
+  EXPECT_EQ(job.done_cost, job.plan.total_cost);
+}
+
+TEST_F(SchedulerTest, ALateDuplicateOfARunningJobIsDropped) {
+  const Job& job = add_job(16, 16, 1);  // several units
+  FakeWorker& slow = add_worker(1);
+  drain();
+  const Frame first = slow.units[0];
+  FakeWorker& idle = add_worker(1);
+  drain();
+  // The idle worker took new units first; answer them until it is given the straggler.
+  for (std::size_t i = 0; i < idle.units.size() && i < 64; ++i) {
+    if (idle.units[i].header["unit"] == first.header["unit"]) break;
+    send_result(idle, idle.units[i], job);
+    scheduler_.tick();
+    drain();
+  }
+  ASSERT_EQ(idle.units.back().header["unit"], first.header["unit"]);
+  send_result(idle, idle.units.back(), job);
+  const long long done = job.done_cost;
+  send_result(slow, first, job);
+  EXPECT_EQ(job.done_cost, done);
+  EXPECT_EQ(scheduler_.workers_json()[0]["dropped_results"], 1);
+}
+
+TEST_F(SchedulerTest, ALaterPassWaitsForTheEarlierOne) {
+  const Job& job = add_job(8, 8, 2);
+  FakeWorker& w = add_worker(64);
+  drain();
+  for (const auto& f : w.units) EXPECT_EQ(f.header["pass"], 0);
+  const std::size_t pass0 = w.units.size();
+  for (std::size_t i = 0; i + 1 < pass0; ++i) send_result(w, w.units[i], job);
+  drain();
+  EXPECT_EQ(w.units.size(), pass0);  // one pass-0 unit still out: nothing of pass 1 yet
+  send_result(w, w.units[pass0 - 1], job);
+  drain();
+  ASSERT_GT(w.units.size(), pass0);
+  EXPECT_EQ(w.units[pass0].header["pass"], 1);
+}
+
+TEST_F(SchedulerTest, WorkersAreSharedByPriority) {
+  const Job& low = add_job(64, 64, 4, 1);
+  const Job& high = add_job(64, 64, 4, 3);
+  FakeWorker& w = add_worker(1);
+  std::map<std::int64_t, long long> cost;
+  for (int round = 0; round < 60; ++round) {
+    drain();
+    const Frame f = w.units.back();
+    const Job& job = f.header["job"] == low.id ? low : high;
+    cost[job.id] += job.plan.units[f.header["unit"].get<int>()].cost;
+    w.units.clear();
+    send_result(w, f, job);
+  }
+  const double ratio = static_cast<double>(cost[high.id]) / static_cast<double>(cost[low.id]);
+  EXPECT_NEAR(ratio, 3.0, 0.6);
+}
+
+TEST_F(SchedulerTest, CancelFreesTheWorkersAtOnce) {
+  const Job& job = add_job(64, 64, 1);
+  FakeWorker& w = add_worker(2);
+  drain();
+  EXPECT_TRUE(scheduler_.cancel(job.id));
+  EXPECT_EQ(job.state, JobState::Cancelled);
+  EXPECT_EQ(scheduler_.workers_json()[0]["in_flight"], 0);
+  EXPECT_FALSE(scheduler_.cancel(job.id));
+  (void)w;
+}
+
+}  // namespace
+}  // namespace tessera

@@ -1,0 +1,371 @@
+#!/usr/bin/env python3
+"""Integration tests of the distributed service (issue 4, item 7): the real coordinator,
+workers and tessera-render as processes on loopback, with random free ports.
+
+usage: service_test.py --build BUILD_DIR --source SOURCE_DIR CASE
+CASE: bit_identical | bundle | worker_faults | auth | http_errors | cancel
+"""
+import argparse
+import io
+import json
+import os
+import signal
+import socket
+import subprocess
+import sys
+import tarfile
+import tempfile
+import time
+import urllib.error
+import urllib.request
+
+ARGS = None
+SECRET = "integration-secret"
+# Small enough to be quick on two cores, large enough to have several levels and passes.
+SETTINGS = {"width": 96, "height": 72, "aa": 5, "stochastic": True, "passes": 2, "seed": 7}
+
+
+def free_port():
+    with socket.socket() as s:
+        s.bind(("127.0.0.1", 0))
+        return s.getsockname()[1]
+
+
+def binary(*parts):
+    return os.path.join(ARGS.build, *parts)
+
+
+class Service:
+    """A coordinator and its workers; everything it started is killed on exit."""
+
+    def __init__(self, *extra, secret=SECRET):
+        self.http_port, self.worker_port = free_port(), free_port()
+        self.procs = []
+        self.tmp = tempfile.TemporaryDirectory()
+        auth = ["--secret", secret] if secret else ["--insecure"]
+        self.coordinator = self.spawn(
+            [binary("coordinator", "tessera-coordinator"), "--bind", "127.0.0.1",
+             "--http-port", str(self.http_port), "--worker-port", str(self.worker_port),
+             *auth, *extra], "coordinator")
+        deadline = time.time() + 10
+        while True:
+            try:
+                self.get("/api/workers")
+                break
+            except OSError:
+                if time.time() > deadline:
+                    raise
+                time.sleep(0.05)
+
+    def spawn(self, argv, name):
+        log = open(os.path.join(self.tmp.name, name + ".log"), "w")
+        proc = subprocess.Popen(argv, stdout=log, stderr=subprocess.STDOUT)
+        self.procs.append(proc)
+        return proc
+
+    def worker(self, name, secret=SECRET, threads=1):
+        argv = [binary("worker", "tessera-worker"), "--coordinator",
+                "127.0.0.1:%d" % self.worker_port, "--threads", str(threads), "--name", name]
+        if secret:
+            argv += ["--secret", secret]
+        return self.spawn(argv, name)
+
+    def wait_workers(self, count, timeout=10):
+        deadline = time.time() + timeout
+        while len(self.get("/api/workers")) < count:
+            if time.time() > deadline:
+                raise AssertionError("workers did not join: %s" % self.get("/api/workers"))
+            time.sleep(0.05)
+
+    def request(self, method, path, body=None, headers=None):
+        req = urllib.request.Request("http://127.0.0.1:%d%s" % (self.http_port, path),
+                                     data=body, method=method, headers=headers or {})
+        try:
+            with urllib.request.urlopen(req, timeout=30) as r:
+                return r.status, dict(r.headers), r.read()
+        except urllib.error.HTTPError as e:
+            return e.code, dict(e.headers), e.read()
+
+    def get(self, path):
+        status, _, body = self.request("GET", path)
+        assert status == 200, (path, status, body)
+        return json.loads(body)
+
+    def submit(self, scene, settings, expect=201):
+        body = json.dumps({"scene": scene, "settings": settings}).encode()
+        status, _, reply = self.request("POST", "/api/jobs", body,
+                                        {"Content-Type": "application/json"})
+        assert status == expect, (status, reply)
+        return json.loads(reply)
+
+    def wait_job(self, job_id, timeout=60):
+        deadline = time.time() + timeout
+        while True:
+            job = self.get("/api/jobs/%d" % job_id)
+            if job["state"] not in ("queued", "running"):
+                return job
+            if time.time() > deadline:
+                raise AssertionError("job %d still %s" % (job_id, job["state"]))
+            time.sleep(0.05)
+
+    def exr(self, job_id, path):
+        status, _, body = self.request("GET", "/api/jobs/%d/image?format=exr" % job_id)
+        assert status == 200, status
+        with open(path, "wb") as f:
+            f.write(body)
+
+    def __enter__(self):
+        return self
+
+    def __exit__(self, *exc):
+        for p in self.procs:
+            if p.poll() is None:
+                p.send_signal(signal.SIGCONT)
+                p.kill()
+            p.wait()
+        if exc[0] is not None:  # show the logs of a failing case
+            for name in sorted(os.listdir(self.tmp.name)):
+                print("----- %s" % name)
+                print(open(os.path.join(self.tmp.name, name)).read()[-3000:])
+        self.tmp.cleanup()
+
+
+def render_cli(scene_path, settings, out):
+    argv = [binary("worker", "tessera-render"), scene_path, "-o", out, "--quiet"]
+    for key in ("width", "height", "aa", "jitter", "seed", "passes"):
+        if key in settings:
+            argv += ["--" + key, str(settings[key])]
+    if settings.get("stochastic"):
+        argv.append("--stochastic")
+    subprocess.run(argv, check=True)
+
+
+def assert_identical(a, b):
+    result = subprocess.run([binary("tests", "service", "exr_equal"), a, b],
+                            capture_output=True, text=True)
+    assert result.returncode == 0, "images differ: " + result.stdout + result.stderr
+
+
+def demo_scene():
+    return os.path.join(ARGS.source, "scenes", "demo.sdl")
+
+
+def render_and_compare(service, settings, tmp, name):
+    job = service.submit(open(demo_scene()).read(), settings)
+    final = service.wait_job(job["id"])
+    assert final["state"] == "done", final
+    assert final["progress"] == 1.0
+    service.exr(job["id"], os.path.join(tmp, name + ".exr"))
+    render_cli(demo_scene(), settings, os.path.join(tmp, name + "-cli.exr"))
+    assert_identical(os.path.join(tmp, name + ".exr"), os.path.join(tmp, name + "-cli.exr"))
+    return final
+
+
+def case_bit_identical():
+    """1 and 3 workers give images bit-identical to tessera-render, in both unit orders."""
+    with tempfile.TemporaryDirectory() as tmp:
+        for workers in (1, 3):
+            with Service() as service:
+                for i in range(workers):
+                    service.worker("w%d" % i)
+                service.wait_workers(workers)
+                final = render_and_compare(service, SETTINGS, tmp, "w%d" % workers)
+                assert len(final["workers"]) == workers or workers == 1, final["workers"]
+                table = final["levels_table"]
+                assert [row["level"] for row in table[:final["levels"]]] == \
+                    list(range(1, final["levels"] + 1))
+                assert table[0]["blocks"] in (2, 4)
+                scan = dict(SETTINGS, order="scanline", preview="area", passes=1)
+                render_and_compare(service, scan, tmp, "scan%d" % workers)
+                # The PNG carries an ETag; asking again with it gets 304, not the image again.
+                status, headers, _ = service.request("GET", "/api/jobs/%d/image" % final["id"])
+                assert status == 200 and headers.get("ETag"), headers
+                status, _, _ = service.request("GET", "/api/jobs/%d/image" % final["id"],
+                                               headers={"If-None-Match": headers["ETag"]})
+                assert status == 304, status
+
+
+def case_bundle():
+    """A tar bundle with a scene and its mesh, a scene of --scenes-dir with an include, and the
+    same scene as a multipart form render like tessera-render on the folder."""
+    features = os.path.join(ARGS.source, "scenes", "features")
+    buf = io.BytesIO()
+    with tarfile.open(fileobj=buf, mode="w", format=tarfile.USTAR_FORMAT) as tar:
+        tar.add(os.path.join(features, "mesh.sdl"), "mesh.sdl")
+        tar.add(os.path.join(features, "meshes", "icosphere.obj"), "meshes/icosphere.obj")
+    settings = {"width": 64, "height": 48}
+    with tempfile.TemporaryDirectory() as tmp, Service("--local-workers", "2",
+                                                       "--local-threads", "1",
+                                                       "--scenes-dir", features) as service:
+        status, _, body = service.request(
+            "POST", "/api/jobs?main=mesh.sdl&width=64&height=48", buf.getvalue(),
+            {"Content-Type": "application/x-tar"})
+        assert status == 201, (status, body)
+        job = json.loads(body)
+        final = service.wait_job(job["id"])
+        assert final["state"] == "done", final
+        service.exr(job["id"], os.path.join(tmp, "svc.exr"))
+        render_cli(os.path.join(features, "mesh.sdl"), settings, os.path.join(tmp, "cli.exr"))
+        assert_identical(os.path.join(tmp, "svc.exr"), os.path.join(tmp, "cli.exr"))
+
+        status, _, body = service.request(
+            "POST", "/api/jobs", json.dumps({"scene_file": "macros.sdl", "settings": settings}).encode(),
+            {"Content-Type": "application/json"})
+        assert status == 201, (status, body)
+        job = json.loads(body)
+        assert service.wait_job(job["id"])["state"] == "done"
+        service.exr(job["id"], os.path.join(tmp, "dir.exr"))
+        render_cli(os.path.join(features, "macros.sdl"), settings, os.path.join(tmp, "dir-cli.exr"))
+        assert_identical(os.path.join(tmp, "dir.exr"), os.path.join(tmp, "dir-cli.exr"))
+
+        # The same scene as a form: the scene text and its included file as a file part.
+        boundary = "tessera-test-boundary"
+        fields = [('name="scene"', open(os.path.join(features, "macros.sdl")).read()),
+                  ('name="file"; filename="parts/lamp_post.sdl"',
+                   open(os.path.join(features, "parts", "lamp_post.sdl")).read()),
+                  ('name="settings"', json.dumps(settings))]
+        form = "".join("--%s\r\nContent-Disposition: form-data; %s\r\n\r\n%s\r\n" %
+                       (boundary, disposition, data) for disposition, data in fields)
+        form += "--%s--\r\n" % boundary
+        status, _, body = service.request(
+            "POST", "/api/jobs", form.encode(),
+            {"Content-Type": "multipart/form-data; boundary=" + boundary})
+        assert status == 201, (status, body)
+        job = json.loads(body)
+        assert service.wait_job(job["id"])["state"] == "done"
+        service.exr(job["id"], os.path.join(tmp, "form.exr"))
+        assert_identical(os.path.join(tmp, "form.exr"), os.path.join(tmp, "dir-cli.exr"))
+
+
+def case_worker_faults():
+    """A worker killed with SIGKILL mid-level, and one that goes silent (SIGSTOP), lose their
+    units to the others; the image is still identical to tessera-render."""
+    settings = dict(SETTINGS, width=320, height=240, aa=9, passes=3)
+    with tempfile.TemporaryDirectory() as tmp, Service("--heartbeat-ms", "200",
+                                                       "--silence-ms", "1500") as service:
+        victims = [service.worker("victim"), service.worker("sleeper")]
+        service.worker("survivor")
+        service.wait_workers(3)
+        job = service.submit(open(demo_scene()).read(), settings)
+        deadline = time.time() + 30
+        while True:
+            status = service.get("/api/jobs/%d" % job["id"])
+            busy = {w["name"]: w["in_flight"] for w in service.get("/api/workers")}
+            if 0.05 < status["progress"] < 0.6 and busy.get("victim") and busy.get("sleeper"):
+                break
+            assert status["state"] == "running" or status["progress"] < 0.05, status
+            assert time.time() < deadline, "job never got under way"
+            time.sleep(0.01)
+        level = status["level"]
+        victims[0].send_signal(signal.SIGKILL)
+        victims[1].send_signal(signal.SIGSTOP)
+        final = service.wait_job(job["id"])
+        assert final["state"] == "done", final
+        names = {w["name"] for w in service.get("/api/workers")}
+        assert "victim" not in names and "sleeper" not in names, names
+        print("killed at level %s, progress %.2f" % (level, status["progress"]))
+        service.exr(job["id"], os.path.join(tmp, "svc.exr"))
+        render_cli(demo_scene(), settings, os.path.join(tmp, "cli.exr"))
+        assert_identical(os.path.join(tmp, "svc.exr"), os.path.join(tmp, "cli.exr"))
+
+
+def case_auth():
+    """A worker with the wrong secret, or none, is refused and exits; the right one joins."""
+    with Service() as service:
+        wrong = service.worker("wrong", secret="not-the-secret")
+        missing = service.worker("missing", secret="")
+        assert wrong.wait(timeout=10) != 0
+        assert missing.wait(timeout=10) != 0
+        assert service.get("/api/workers") == []
+        service.worker("right")
+        service.wait_workers(1)
+        assert [w["name"] for w in service.get("/api/workers")] == ["right"]
+    # A raw peer that sends garbage instead of a hello is dropped; the coordinator lives on.
+    with Service() as service:
+        with socket.create_connection(("127.0.0.1", service.worker_port)) as s:
+            s.sendall(b"\xff\xff\xff\xff" + b"x" * 64)
+            s.settimeout(5)
+            assert s.recv(16) == b""
+        assert service.get("/api/workers") == []
+
+
+def case_http_errors():
+    """Malformed requests and scenes get their 4xx with JSON errors; nothing breaks."""
+    with Service("--max-body-bytes", "65536") as service:
+        def post(body, content_type="application/json"):
+            status, _, reply = service.request("POST", "/api/jobs", body,
+                                               {"Content-Type": content_type})
+            return status, json.loads(reply)
+
+        status, err = post(b"{not json")
+        assert status == 400 and err["error"] == "bad_json", err
+        status, err = post(json.dumps({"scene": "sphere\nfrobnicate 1 2\n"}).encode())
+        assert status == 400 and err["error"] == "scene_error", err
+        assert err["line"] == 2 and err["column"] >= 1 and "detail" in err, err
+        for settings in ({"aa": 3}, {"width": 100000}, {"passes": 0}, {"colour": 1},
+                         {"order": "spiral"}, {"seed": -1}, {"max_depth": 99}):
+            status, err = post(json.dumps({"scene": "sphere", "settings": settings}).encode())
+            assert status == 400 and err["error"] == "bad_request", (settings, err)
+        status, err = post(json.dumps({"scene": "maxRecursionDepth 1000\nsphere"}).encode())
+        assert status == 400, err
+        status, err = post(json.dumps({"scene": "include ../../etc/passwd\n"}).encode())
+        assert status == 400 and err["error"] == "scene_error", err
+        status, err = post(json.dumps({"scene": "sphere", "files": {"../x": "y"}}).encode())
+        assert status == 400 and err["error"] == "bad_bundle", err
+        status, err = post(json.dumps({"scene": "sphere", "format": "vrml"}).encode())
+        assert status == 400 and err["error"] == "unsupported_format", err
+        status, err = post(b"scene", "text/plain")
+        assert status == 415, err
+        status, err = post(json.dumps({"scene": "!" * 100000}).encode())
+        assert status == 413 and err["error"] == "payload_too_large", err
+        for method, path, code in (("GET", "/api/jobs/999", 404), ("GET", "/api/jobs/abc", 404),
+                                   ("DELETE", "/api/workers", 405), ("GET", "/api/nothing", 404),
+                                   ("GET", "/../etc/passwd", 404),
+                                   ("GET", "/api/jobs/1/image?format=gif", 404)):
+            status, _, reply = service.request(method, path)
+            assert status == code, (method, path, status, reply)
+            assert "error" in json.loads(reply), reply
+        status, _, page = service.request("GET", "/")
+        assert status == 200 and b"<html" in page.lower(), status
+        assert service.get("/api/jobs") == []
+
+
+def case_cancel():
+    """DELETE cancels a running job and frees its workers at once."""
+    with Service("--local-workers", "2", "--local-threads", "1") as service:
+        service.wait_workers(2)
+        job = service.submit(open(demo_scene()).read(),
+                             {"width": 1024, "height": 768, "aa": 9, "passes": 8})
+        deadline = time.time() + 20
+        while service.get("/api/jobs/%d" % job["id"])["progress"] <= 0:
+            assert time.time() < deadline
+            time.sleep(0.05)
+        status, _, body = service.request("DELETE", "/api/jobs/%d" % job["id"])
+        assert status == 200 and json.loads(body)["state"] == "cancelled", body
+        workers = service.get("/api/workers")
+        assert all(w["in_flight"] == 0 for w in workers), workers
+        time.sleep(1.0)  # a unit already being traced may finish; nothing new starts
+        before = sum(w["units_done"] for w in service.get("/api/workers"))
+        time.sleep(1.0)
+        after = sum(w["units_done"] for w in service.get("/api/workers"))
+        assert before == after, (before, after)
+        assert service.get("/api/jobs/%d" % job["id"])["state"] == "cancelled"
+        # The freed workers take the next job straight away.
+        small = service.submit(open(demo_scene()).read(), {"width": 32, "height": 24})
+        assert service.wait_job(small["id"], timeout=20)["state"] == "done"
+
+
+def main():
+    global ARGS
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--build", required=True)
+    parser.add_argument("--source", required=True)
+    parser.add_argument("case")
+    ARGS = parser.parse_args()
+    start = time.time()
+    globals()["case_" + ARGS.case]()
+    print("%s passed in %.1f s" % (ARGS.case, time.time() - start))
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,21 @@
+// tessera-worker: renders work units for a coordinator (docs/SERVICE.md).
+#include <spdlog/spdlog.h>
+#include <boost/asio/io_context.hpp>
+
+#include "worker/options.h"
+#include "worker/session/worker_session.h"
+
+int main(int argc, char** argv) {
+  tessera::WorkerConfig config;
+  try {
+    config = tessera::parse_worker_options(argc, argv);
+  } catch (const std::exception& e) {
+    spdlog::error("{}", e.what());
+    return 2;
+  }
+  boost::asio::io_context io;
+  tessera::WorkerSession session(io, config);
+  session.start();
+  io.run();
+  return session.fatal_error().empty() ? 0 : 1;
+}

@@ -1,0 +1,171 @@
+#include "worker/render_loop/render_loop.h"
+
+#include <atomic>
+#include <chrono>
+
+#include <spdlog/spdlog.h>
+
+#include "common/loaders/sdl_loader.h"
+#include "common/protocol/unit_message.h"
+#include "common/render/prepared_scene.h"
+#include "common/render/render.h"
+
+namespace tessera {
+
+namespace {
+constexpr std::size_t kCachedBundles = 8;
+}
+
+// A job as this worker holds it: the bundle, and the scene prepared once, on first use.
+struct PreparedJob {
+  std::int64_t id = 0;
+  JobSpec spec;
+  std::shared_ptr<const Bundle> bundle;
+  std::atomic<bool> cancelled{false};
+  std::atomic<bool> failure_reported{false};
+  std::once_flag prepare_once;
+  std::unique_ptr<Scene> scene;
+  std::unique_ptr<PreparedScene> prepared;
+  std::string error;  // set when preparing failed
+
+  void prepare() {
+    std::call_once(prepare_once, [this] {
+      try {
+        MemorySource source(bundle->files);
+        scene = std::make_unique<Scene>(load_sdl(source, bundle->main));
+        apply_overrides(*scene, spec.overrides);
+        prepared = std::make_unique<PreparedScene>(*scene, spec.settings.bvh);
+      } catch (const std::exception& e) {
+        error = e.what();
+      }
+    });
+  }
+};
+
+RenderLoop::RenderLoop(int threads, ResultSink sink) : sink_(std::move(sink)) {
+  for (int i = 0; i < threads; ++i) threads_.emplace_back([this] { run(); });
+}
+
+RenderLoop::~RenderLoop() {
+  {
+    std::lock_guard lock(mutex_);
+    stopping_ = true;
+    queue_.clear();
+  }
+  wake_.notify_all();
+  for (auto& t : threads_) t.join();
+}
+
+std::vector<std::string> RenderLoop::cached_hashes() const {
+  std::lock_guard lock(mutex_);
+  return {bundle_order_.begin(), bundle_order_.end()};
+}
+
+bool RenderLoop::open_job(std::int64_t job, const JobSpec& spec, const std::string& hash,
+                          std::optional<Bundle> bundle) {
+  std::lock_guard lock(mutex_);
+  auto cached = bundles_.find(hash);
+  std::shared_ptr<const Bundle> files;
+  if (bundle) {
+    files = std::make_shared<const Bundle>(std::move(*bundle));
+    if (cached == bundles_.end()) {
+      bundles_[hash] = files;
+      bundle_order_.push_back(hash);
+      if (bundle_order_.size() > kCachedBundles) {
+        bundles_.erase(bundle_order_.front());
+        bundle_order_.pop_front();
+      }
+    }
+  } else if (cached != bundles_.end()) {
+    files = cached->second;
+  } else {
+    return false;
+  }
+  auto prepared = std::make_shared<PreparedJob>();
+  prepared->id = job;
+  prepared->spec = spec;
+  prepared->bundle = std::move(files);
+  jobs_[job] = std::move(prepared);
+  return true;
+}
+
+void RenderLoop::add_unit(std::int64_t job, std::int64_t unit, int pass, const UnitPixels& pixels) {
+  {
+    std::lock_guard lock(mutex_);
+    auto it = jobs_.find(job);
+    if (it == jobs_.end()) return;  // cancelled meanwhile
+    queue_.push_back({it->second, unit, pass, pixels});
+  }
+  wake_.notify_one();
+}
+
+void RenderLoop::cancel_job(std::int64_t job) {
+  std::lock_guard lock(mutex_);
+  auto it = jobs_.find(job);
+  if (it == jobs_.end()) return;
+  it->second->cancelled = true;
+  jobs_.erase(it);
+  std::erase_if(queue_, [&](const Task& t) { return t.job->id == job; });
+}
+
+void RenderLoop::clear() {
+  std::lock_guard lock(mutex_);
+  for (auto& [id, job] : jobs_) job->cancelled = true;
+  jobs_.clear();
+  queue_.clear();
+}
+
+void RenderLoop::run() {
+  for (;;) {
+    Task task;
+    {
+      std::unique_lock lock(mutex_);
+      wake_.wait(lock, [&] { return stopping_ || !queue_.empty(); });
+      if (stopping_) return;
+      task = std::move(queue_.front());
+      queue_.pop_front();
+    }
+    if (!task.job->cancelled) render(task);
+  }
+}
+
+void RenderLoop::render(const Task& task) {
+  PreparedJob& job = *task.job;
+  job.prepare();
+  if (!job.prepared) {
+    if (!job.failure_reported.exchange(true)) {
+      spdlog::warn("job {}: {}", job.id, job.error);
+      sink_(Frame{MessageType::JobFailed, {{"job", job.id}, {"error", job.error}}, {}});
+    }
+    return;
+  }
+  const auto start = std::chrono::steady_clock::now();
+  const std::vector<Pixel> pixels = expand(task.pixels);
+  std::vector<PixelCoord> coords(pixels.size());
+  for (std::size_t i = 0; i < pixels.size(); ++i) coords[i] = {pixels[i].x, pixels[i].y};
+  std::vector<Rgb> colours(pixels.size());
+  RenderStats stats;
+  try {
+    render_pixels(*job.prepared, job.spec.settings, coords, task.pass, colours, stats);
+  } catch (const std::exception& e) {
+    if (!job.failure_reported.exchange(true))
+      sink_(Frame{MessageType::JobFailed, {{"job", job.id}, {"error", e.what()}}, {}});
+    return;
+  }
+  stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  // Pass values travel as float32, the precision the frame buffer accumulates (frame_buffer.h).
+  std::vector<float> values;
+  values.reserve(colours.size() * 3);
+  for (const Rgb& c : colours) {
+    values.push_back(static_cast<float>(c.r));
+    values.push_back(static_cast<float>(c.g));
+    values.push_back(static_cast<float>(c.b));
+  }
+  if (job.cancelled) return;
+  sink_(Frame{
+      MessageType::Result,
+      {{"job", job.id}, {"unit", task.unit}, {"count", pixels.size()}, {"stats", to_json(stats)}},
+      pack_floats(values)});
+}
+
+}  // namespace tessera
