@@ -30,6 +30,7 @@ class PreparedScene {
   // Throws SceneError for what cannot be traced (degenerate camera). `scene` must outlive
   // the prepared scene (meshes are referenced, not copied).
   PreparedScene(const Scene& scene, BvhMode mode);
+  PreparedScene(Scene&& temporary, BvhMode mode) = delete;  // it would dangle
   PreparedScene(const PreparedScene&) = delete;
   PreparedScene& operator=(const PreparedScene&) = delete;
 

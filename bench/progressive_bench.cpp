@@ -1,0 +1,75 @@
+// The price of progressive refinement (issue 4): the whole progressive plan — every level's
+// anchors, unit by unit, through render_pixels, merged into a frame buffer as the coordinator
+// does — against one direct render_pass of the image, both on one thread, same pixels, same
+// samples. The ratio of the two is the overhead; the target is at most 1.05.
+#include <benchmark/benchmark.h>
+
+#include "common/loaders/sdl_loader.h"
+#include "common/progressive/plan.h"
+#include "common/render/frame_buffer.h"
+#include "common/render/render.h"
+
+namespace tessera {
+namespace {
+
+constexpr int kWidth = 320, kHeight = 240;
+
+RenderSettings demo_settings(int aa) {
+  RenderSettings settings;
+  settings.width = kWidth;
+  settings.height = kHeight;
+  settings.aa_samples = aa;
+  return settings;
+}
+
+const PreparedScene& demo_scene() {
+  static const Scene scene = load_sdl_file(std::string(TESSERA_SOURCE_DIR) + "/scenes/demo.sdl");
+  static const PreparedScene prepared(scene, BvhMode::Sah);
+  return prepared;
+}
+
+void merge(FrameBuffer& frame, int x, int y, const Rgb& c) {
+  const float rgb[3] = {static_cast<float>(c.r), static_cast<float>(c.g), static_cast<float>(c.b)};
+  frame.add_pass(x, y, rgb);
+}
+
+void BM_Direct(benchmark::State& state) {
+  const RenderSettings settings = demo_settings(static_cast<int>(state.range(0)));
+  std::vector<Rgb> out(static_cast<std::size_t>(kWidth) * kHeight);
+  RenderStats stats;
+  for (auto _ : state) {
+    FrameBuffer frame(kWidth, kHeight);
+    render_pass(demo_scene(), settings, {0, 0, kWidth, kHeight}, 0, out, stats);
+    for (int y = 0; y < kHeight; ++y)
+      for (int x = 0; x < kWidth; ++x) merge(frame, x, y, out[y * kWidth + x]);
+    benchmark::DoNotOptimize(frame);
+  }
+}
+
+void BM_Progressive(benchmark::State& state) {
+  const RenderSettings settings = demo_settings(static_cast<int>(state.range(0)));
+  const Plan plan = make_plan({.width = kWidth, .height = kHeight});
+  RenderStats stats;
+  for (auto _ : state) {
+    FrameBuffer frame(kWidth, kHeight);
+    for (const WorkUnit& unit : plan.units) {
+      std::vector<PixelCoord> coords;
+      for (const Pixel& p : expand(unit.pixels)) coords.push_back({p.x, p.y});
+      std::vector<Rgb> out(coords.size());
+      render_pixels(demo_scene(), settings, coords, plan.stages[unit.stage].pass, out, stats);
+      for (std::size_t i = 0; i < coords.size(); ++i)
+        merge(frame, coords[i].x, coords[i].y, out[i]);
+    }
+    benchmark::DoNotOptimize(frame);
+  }
+  state.counters["units"] = static_cast<double>(plan.units.size());
+}
+
+// Interleaved so that the machine's load drifts across both alike.
+BENCHMARK(BM_Direct)->Arg(1)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Progressive)->Arg(1)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Direct)->Arg(9)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_Progressive)->Arg(9)->Unit(benchmark::kMillisecond);
+
+}  // namespace
+}  // namespace tessera
