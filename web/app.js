@@ -262,7 +262,10 @@ $("scene-file").addEventListener("change", async () => {
 setInterval(refreshWorkers, WORKERS_MS);
 setInterval(refreshJobs, 2000);
 refreshWorkers();
+// The job named in the address (#job=N, as scripts/run.sh prints it), else the newest one.
 refreshJobs().then(() => {
+  const named = /^#job=(\d+)$/.exec(location.hash);
   const first = document.querySelector("#jobs li");
-  if (first) show(+first.dataset.id);
+  if (named) show(+named[1]);
+  else if (first) show(+first.dataset.id);
 });

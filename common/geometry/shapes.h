@@ -2,9 +2,10 @@
 //
 // Every routine finds the nearest hit with t in (0, t_max) of a ray given in the shape's object
 // space, fills `hit` and returns true, or returns false. They are robust by construction
-// (docs/STABILITY.md): numerically stable quadratics, hit points re-projected onto the surface
-// with an error bound, watertight triangles. A ray leaving a surface from an origin produced by
-// offset_ray_origin() with that bound never hits the same surface again at that point.
+// (docs/ARCHITECTURE.md, "Robust rays"): numerically stable quadratics, hit points re-projected
+// onto the surface with an error bound, watertight triangles. A ray leaving a surface from an
+// origin produced by offset_ray_origin() with that bound never hits the same surface again at that
+// point.
 #pragma once
 
 #include "common/accel/mesh_accel.h"

@@ -1,0 +1,41 @@
+#!/usr/bin/env bash
+# Installs every Debian 12 package Tessera needs to build, run and test. Idempotent: packages
+# already present are left alone, so the run and test commands can call it every time.
+set -euo pipefail
+
+packages=(
+  # build
+  cmake ninja-build g++ clang-format
+  # libraries (DESIGN.md §6)
+  libboost-dev nlohmann-json3-dev libopenimageio-dev libspdlog-dev
+  libgtest-dev libgmock-dev libbenchmark-dev
+  # tools used by tests and benchmarks; chromium and node drive the web page's test
+  openimageio-tools python3 curl chromium
+)
+# Node from another source (NodeSource's nodejs bundles npm) conflicts with Debian's npm, so
+# these two are asked for only when their commands are missing.
+command -v node >/dev/null || packages+=(nodejs)
+command -v npm >/dev/null || packages+=(npm)
+
+missing=()
+for p in "${packages[@]}"; do
+  dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed" || missing+=("$p")
+done
+sudo=""
+if [ "$(id -u)" -ne 0 ]; then sudo="sudo"; fi
+if [ ${#missing[@]} -gt 0 ]; then
+  echo "installing: ${missing[*]}"
+  $sudo apt-get update -qq
+  DEBIAN_FRONTEND=noninteractive $sudo apt-get install -y -qq --no-install-recommends "${missing[@]}"
+fi
+
+# Debian 12's OpenImageIO CMake config lists /usr/include/opencv4 as an include directory
+# even when OpenCV is not installed; CMake refuses a missing one.
+[ -d /usr/include/opencv4 ] || $sudo mkdir -p /usr/include/opencv4
+
+# playwright-core for the page test, at the version pinned in package-lock.json (the machine
+# may already have node and npm from elsewhere, so this runs whatever apt did).
+e2e="$(dirname "$0")/../tests/service/e2e"
+if [ ! -d "$e2e/node_modules/playwright-core" ]; then
+  npm ci --prefix "$e2e" --no-audit --no-fund --loglevel=error
+fi

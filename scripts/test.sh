@@ -1,0 +1,19 @@
+#!/usr/bin/env bash
+# The test command: installs what is needed, builds, and runs every test. Two builds:
+#   build/       optimized: unit, image and integration tests
+#   build-asan/  AddressSanitizer + UndefinedBehaviorSanitizer: the unit tests
+set -euo pipefail
+cd "$(dirname "$0")/.."
+scripts/install-deps.sh
+jobs=$(nproc)
+
+scripts/build.sh
+cmake -S . -B build-asan -G Ninja -DCMAKE_BUILD_TYPE=Debug -DTESSERA_SANITIZE=ON \
+  -DTESSERA_UNIT_TESTS_ONLY=ON >/dev/null
+cmake --build build-asan -j"$jobs"
+
+echo "== tests (optimized build)"
+ctest --test-dir build --output-on-failure -j"$jobs"
+echo "== unit tests under AddressSanitizer and UndefinedBehaviorSanitizer"
+ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
+  ctest --test-dir build-asan --output-on-failure -j"$jobs" -L unit
