@@ -297,10 +297,10 @@ void atmospheric_attenuation(FileParser& p) {
   AtmosphericAttenuation a;
   const Number front = p.read_number("<front-plane>");
   a.front_distance = front.value;
-  a.front_scale = p.number("<front-scale>");
+  a.front_scale = p.number("<front-scale>", Range::UnitInterval);
   const Number back = p.read_number("<back-plane>");
   a.back_distance = back.value;
-  a.back_scale = p.number("<back-scale>");
+  a.back_scale = p.number("<back-scale>", Range::UnitInterval);
   a.color = p.color("<red>", "<green>", "<blue>");
   if (a.back_distance == a.front_distance) {
     p.fail(back.token, "'atmosphericAttenuation' needs <back-plane> different from <front-plane>");

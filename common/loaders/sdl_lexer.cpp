@@ -18,13 +18,15 @@ LexedText lex_sdl(std::string_view text, std::uint32_t file) {
   std::size_t i = 0;
   while (i < text.size()) {
     const char c = text[i];
-    if (c == '\n') {
+    if (c == '\n' || c == '\r') {
+      // A line ends at LF, CRLF or a lone CR (old Mac files), so that errors name real lines.
+      if (c == '\r' && i + 1 < text.size() && text[i + 1] == '\n') ++i;
       ++line;
       line_start = ++i;
     } else if (is_space(c)) {
       ++i;
     } else if (c == '!') {
-      while (i < text.size() && text[i] != '\n') ++i;
+      while (i < text.size() && text[i] != '\n' && text[i] != '\r') ++i;
     } else if (is_brace(c)) {
       out.tokens.push_back({text.substr(i, 1), file, line, column(i)});
       ++i;

@@ -52,22 +52,23 @@ EffectSet scene_effects(const Scene& scene) {
 // What the scene asks for that this renderer does not simulate yet: said, never dropped.
 std::vector<std::string> unsupported_features(const Scene& scene) {
   std::vector<std::string> out;
-  auto note = [&out](const SourceLocation& where, const std::string& what) {
-    const std::string line = where.to_string() + ": " + what + " is not rendered yet";
+  auto note = [&out](const std::string& where, const std::string& what) {
+    const std::string line = where + ": " + what + " is not rendered yet";
     for (const std::string& seen : out)
       if (seen == line) return;
     out.push_back(line);
   };
-  const SourceLocation global{"scene", 0, 0};
+  const std::string global = "scene";  // global attributes keep no location
   if (scene.globals.show_extents) note(global, "showExtents");
   if (scene.globals.adapted_shadow_computation) note(global, "adaptedShadowComputation");
   for (const SceneObject& object : scene.objects) {
     const Material& m = object.material;
-    if (m.gloss_strength > 0 && m.reflectivity > 0) note(object.where, "glossStrength");
+    if (m.gloss_strength > 0 && m.reflectivity > 0) note(object.where.to_string(), "glossStrength");
     if (m.translucency_strength > 0 && m.transparency > 0)
-      note(object.where, "translucencyStrength");
-    if (m.solid_texture.type != 0) note(object.where, "solidTexture");
-    if (m.flat_texture.kind != FlatTexture::Kind::None) note(object.where, "a flat texture");
+      note(object.where.to_string(), "translucencyStrength");
+    if (m.solid_texture.type != 0) note(object.where.to_string(), "solidTexture");
+    if (m.flat_texture.kind != FlatTexture::Kind::None)
+      note(object.where.to_string(), "a flat texture");
   }
   return out;
 }

@@ -24,6 +24,15 @@ TEST(SdlLexer, SplitsWordsBracesAndSkipsComments) {
   EXPECT_EQ(lexed.end_column, 1);
 }
 
+TEST(SdlLexer, LinesEndAtLfCrLfOrALoneCr) {
+  const sdl::LexedText lexed = sdl::lex_sdl("a\r\nb\rc!x\rd\ne", 0);
+  ASSERT_EQ(lexed.tokens.size(), 5u);
+  for (int i = 0; i < 5; ++i) {
+    EXPECT_EQ(lexed.tokens[i].line, i + 1) << lexed.tokens[i].text;
+    EXPECT_EQ(lexed.tokens[i].column, 1) << lexed.tokens[i].text;
+  }
+}
+
 TEST(SdlLexer, EndOfFileIsJustPastTheLastByte) {
   const sdl::LexedText lexed = sdl::lex_sdl("sphere\ncube", 0);
   EXPECT_EQ(lexed.end_line, 2);

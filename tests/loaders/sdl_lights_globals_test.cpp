@@ -115,6 +115,11 @@ TEST(SdlGlobals, RangeErrors) {
                        "<linear-factor> of 'lightAttenuation' must be non-negative, found '-1'"));
   EXPECT_TRUE(fails_at("sphere\n  lightAttenuation 0 0 0", 2, 3,
                        "'lightAttenuation' needs at least one non-zero factor"));
+  // Eq. 4.20 blends by the scales: outside [0, 1] it would extrapolate to negative colours.
+  EXPECT_TRUE(fails_at("atmosphericAttenuation 1 2 5 0 0 0 0", 1, 26,
+                       "<front-scale> of 'atmosphericAttenuation' must be in [0, 1], found '2'"));
+  EXPECT_TRUE(fails_at("atmosphericAttenuation 1 1 5 -0.5 0 0 0", 1, 30,
+                       "<back-scale> of 'atmosphericAttenuation' must be in [0, 1], found '-0.5'"));
   EXPECT_TRUE(fails_at("atmosphericAttenuation 5 1 5 0 0 0 0", 1, 28,
                        "'atmosphericAttenuation' needs <back-plane> different from "
                        "<front-plane>"));

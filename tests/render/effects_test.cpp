@@ -26,6 +26,22 @@ bool has_name(const EffectSet& effects, const std::string& name) {
   return std::find(names.begin(), names.end(), name) != names.end();
 }
 
+// Stored features the renderer does not simulate yet are reported, never silently dropped:
+// per shape with its location, and only where they would show (gloss needs a mirror).
+TEST(Effects, UnrenderedFeaturesAreReportedWhereTheyAreUsed) {
+  Scene scene = plain_scene();
+  scene.objects[0].where = {"a.sdl", 3, 7};
+  scene.objects[0].material.gloss_strength = 0.5;
+  EXPECT_TRUE(PreparedScene(scene, BvhMode::Sah).unsupported().empty());  // not reflective
+  scene.objects[0].material.reflectivity = 0.5;
+  scene.objects.push_back(scene.objects[0]);  // the same report once, not twice
+  scene.globals.show_extents = true;
+  const PreparedScene prepared(scene, BvhMode::Sah);
+  EXPECT_EQ(prepared.unsupported(),
+            (std::vector<std::string>{"scene: showExtents is not rendered yet",
+                                      "a.sdl:3:7: glossStrength is not rendered yet"}));
+}
+
 TEST(Effects, PlainSceneNeedsNothing) {
   const Scene scene = plain_scene();
   const PreparedScene prepared(scene, BvhMode::Sah);
