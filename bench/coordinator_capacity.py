@@ -3,9 +3,11 @@
 the real protocol (docs/PROTOCOL.md) but answer every unit at once with black pixels, so the
 coordinator's scheduling, merging and I/O are the only work. Prints work units per second.
 
-usage: synthetic_workers.py --build BUILD_DIR [--workers 32] [--threads 4] [--size 2048]
+usage: coordinator_capacity.py --build BUILD_DIR [--workers 32] [--threads 4] [--size 2048]
        [--passes 4]
-The numbers are a lower bound: this script shares the machine with the coordinator.
+The wall-clock rate is a lower bound: this script shares the machine with the coordinator. The
+coordinator's own CPU time is reported too; units per coordinator CPU-second is its capacity on
+a machine of its own.
 """
 import argparse
 import asyncio
@@ -83,6 +85,13 @@ async def serve(port, index, threads, counter):
             writer.write(frame(HEARTBEAT, {}))
 
 
+def cpu_seconds(pid):
+    """User plus system CPU time of a process so far (Linux /proc)."""
+    with open("/proc/%d/stat" % pid) as f:
+        fields = f.read().rsplit(")", 1)[1].split()
+    return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
+
+
 async def main(args):
     ports = []
     for _ in range(2):
@@ -115,6 +124,7 @@ async def main(args):
                                          {"Content-Type": "application/json"})
         job = json.load(urllib.request.urlopen(request))
         start = time.time()
+        cpu_start = cpu_seconds(coordinator.pid)
         while True:
             await asyncio.sleep(0.05)
             url = "http://127.0.0.1:%d/api/jobs/%d" % (http_port, job["id"])
@@ -122,12 +132,14 @@ async def main(args):
             if status["state"] not in ("queued", "running"):
                 break
         elapsed = time.time() - start
+        cpu = cpu_seconds(coordinator.pid) - cpu_start
         units = sum(row["units"] for row in status["levels_table"])
         print("%d synthetic workers x %d slots: %d units (%dx%d, %d passes) in %.2f s: "
               "%.0f units/s, %.1f Mpixel/s merged; job %s"
               % (args.workers, args.threads, units, args.size, args.size, args.passes, elapsed,
                  units / elapsed, args.size * args.size * args.passes / elapsed / 1e6,
                  status["state"]))
+        print("coordinator CPU: %.2f s, %.0f units per CPU-second" % (cpu, units / cpu))
         for t in tasks:
             t.cancel()
     finally:
