@@ -1,0 +1,105 @@
+// The accuracy report (issue 5): what it sweeps, what it measures, and every file it promises.
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include "bench/accuracy/accuracy_report.h"
+#include "bench/accuracy/report_writer.h"
+#include "common/loaders/scene_source.h"
+#include "common/loaders/sdl_loader.h"
+
+namespace tessera::test {
+namespace {
+
+Scene load(const std::string& text) {
+  MemorySource source({{"s.sdl", text}});
+  return load_sdl(source, "s.sdl");
+}
+
+// A large mirror ball over a bright floor: most of its pixels are reflection.
+const char* const kMirrorScene =
+    "eyePoint 0 1 5 light 3 4 5 1 1 1\n"
+    "push scale 1.5 1.5 1.5 diffuse 0 0 0 ambient 0 0 0 reflectivity 0.9 sphere pop\n"
+    "push translate 0 -2 0 scale 10 0.5 10 diffuse 0.8 0.6 0.2 cube pop\n";
+
+bool has_knob(const Sweep& sweep, const std::string& knob) {
+  return std::any_of(sweep.variants.begin(), sweep.variants.end(),
+                     [&](const Variant& v) { return v.knob == knob; });
+}
+
+TEST(AccuracySweep, SweepsRecursionDepthOnlyWhenTheSceneRecurses) {
+  RenderSettings base;
+  const Sweep mirror = make_sweep(load(kMirrorScene), base);
+  EXPECT_TRUE(has_knob(mirror, "recursion depth"));
+  EXPECT_GT(mirror.reference.max_depth, 5);  // deeper than the scene's own depth
+  const Sweep matte = make_sweep(load("light 0 5 5 1 1 1 sphere"), base);
+  EXPECT_FALSE(has_knob(matte, "recursion depth"));
+  EXPECT_TRUE(std::any_of(matte.not_swept.begin(), matte.not_swept.end(),
+                          [](const std::string& s) { return s.rfind("recursion depth", 0) == 0; }));
+}
+
+TEST(AccuracySweep, ParetoFrontKeepsOnlyUndominatedSettings) {
+  std::vector<Measured> m(4);
+  m[0].seconds = 1, m[0].error.rmse = 0.5;  // fastest
+  m[1].seconds = 2, m[1].error.rmse = 0.1;  // better error
+  m[2].seconds = 3, m[2].error.rmse = 0.2;  // dominated by m[1]
+  m[3].seconds = 2, m[3].error.rmse = 0.1;  // ties m[1]: neither dominates
+  mark_pareto_front(m);
+  EXPECT_TRUE(m[0].pareto);
+  EXPECT_TRUE(m[1].pareto);
+  EXPECT_FALSE(m[2].pareto);
+  EXPECT_TRUE(m[3].pareto);
+}
+
+TEST(AccuracyReport, MeasuresEveryKnobAndWritesEveryTableAndPlot) {
+  AccuracyOptions options;
+  options.base.width = 24;
+  options.base.height = 18;
+  options.repeats = 1;
+  options.threads = 1;
+  const AccuracyReport report = measure_accuracy(load(kMirrorScene), "mirror.sdl", options);
+
+  // More samples converge towards the reference: 9 jittered samples beat 1 regular one.
+  const auto rmse_of = [&](const std::string& label) {
+    for (const Measured& m : report.measured)
+      if (m.variant.label == label) return m.error.rmse;
+    ADD_FAILURE() << "no variant " << label;
+    return 0.0;
+  };
+  EXPECT_LT(rmse_of("aa 9 jittered"), rmse_of("aa 1"));
+  // Depth 0 leaves the mirror black: further from the reference than the scene's depth.
+  EXPECT_GT(rmse_of("depth 0"), rmse_of("depth 4"));
+  // One row per level, down to single pixels, each tracing new anchors; the last level's
+  // preview is the finished pass 0.
+  ASSERT_EQ(report.levels.size(), 5u);  // 24x18: blocks of 16, 8, 4, 2, 1
+  EXPECT_EQ(report.levels.back().block, 1);
+  long long traced = 0;
+  for (const LevelRow& row : report.levels) traced += row.traced;
+  EXPECT_EQ(traced, 24 * 18);
+  EXPECT_NEAR(report.levels.back().error.rmse, rmse_of("aa 1"), 1e-6);
+
+  const std::filesystem::path dir =
+      std::filesystem::temp_directory_path() / "tessera_accuracy_test";
+  std::filesystem::remove_all(dir);
+  const std::vector<std::string> files = write_accuracy_report(report, dir.string());
+  ASSERT_EQ(files.size(), 3u);
+  for (const std::string& f : files) EXPECT_GT(std::filesystem::file_size(f), 200u) << f;
+  std::stringstream md;
+  md << std::ifstream(files[0]).rdbuf();
+  for (const char* heading :
+       {"## anti-aliasing (regular)", "## anti-aliasing (jittered)", "## jitter strength",
+        "## sample passes", "## recursion depth", "## Progressive levels", "time_vs_error.svg",
+        "progressive_levels.svg", "★", "soft-shadow samples"})
+    EXPECT_NE(md.str().find(heading), std::string::npos) << heading;
+  std::stringstream svg;
+  svg << std::ifstream(files[1]).rdbuf();
+  EXPECT_NE(svg.str().find("Pareto front"), std::string::npos);
+  EXPECT_NE(svg.str().find("<polyline"), std::string::npos);
+  std::filesystem::remove_all(dir);
+}
+
+}  // namespace
+}  // namespace tessera::test
