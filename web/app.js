@@ -41,13 +41,12 @@ function describeError(status, body) {
   return `HTTP ${status}`;
 }
 
-async function submit(event) {
-  event.preventDefault();
-  $("submit-error").textContent = "";
+// POSTs the scene and settings of the form to `path` (/api/jobs, or /api/predict, which takes
+// the same request and only answers how long it would take).
+async function postScene(path) {
   const settings = collectSettings();
   const files = [...$("scene-file").files];
   const file = files[0];
-  let response;
   if (files.length > 1) {
     // The scene and the files it names, as a form; file names are their bundle paths.
     const scene = files.find((f) => f.name.endsWith(".sdl")) || file;
@@ -55,17 +54,42 @@ async function submit(event) {
     form.append("main", scene.name);
     form.append("settings", JSON.stringify(settings));
     for (const f of files) form.append("file", f, f.name);
-    response = await fetch("/api/jobs", { method: "POST", body: form });
-  } else if (file && file.name.endsWith(".tar")) {
-    const query = new URLSearchParams(Object.entries(settings).map(([k, v]) => [k, String(v)]));
-    response = await fetch(`/api/jobs?${query}`, {
-      method: "POST", headers: { "Content-Type": "application/x-tar" }, body: file });
-  } else {
-    const scene = file ? await file.text() : $("scene-text").value;
-    response = await fetch("/api/jobs", {
-      method: "POST", headers: { "Content-Type": "application/json" },
-      body: JSON.stringify({ scene, format: "sdl", settings }) });
+    return fetch(path, { method: "POST", body: form });
   }
+  if (file && file.name.endsWith(".tar")) {
+    const query = new URLSearchParams(Object.entries(settings).map(([k, v]) => [k, String(v)]));
+    return fetch(`${path}?${query}`, {
+      method: "POST", headers: { "Content-Type": "application/x-tar" }, body: file });
+  }
+  const scene = file ? await file.text() : $("scene-text").value;
+  return fetch(path, {
+    method: "POST", headers: { "Content-Type": "application/json" },
+    body: JSON.stringify({ scene, format: "sdl", settings }) });
+}
+
+// The predicted time of the form's scene with its settings, shown beside the Render button
+// and refreshed (debounced) whenever the scene or a setting changes.
+let predictTimer = null;
+function schedulePrediction() {
+  clearTimeout(predictTimer);
+  predictTimer = setTimeout(async () => {
+    if (!$("scene-text").value.trim() && !$("scene-file").files.length) {
+      $("prediction").textContent = "";
+      return;
+    }
+    const response = await postScene("/api/predict");
+    const body = await response.json().catch(() => null);
+    if (response.status !== 200) $("prediction").textContent = "";
+    else if (body.predicted_seconds === null) $("prediction").textContent = "no workers connected";
+    else $("prediction").textContent =
+      `about ${fmtSeconds(body.predicted_seconds)} on ${body.threads} worker threads`;
+  }, 300);
+}
+
+async function submit(event) {
+  event.preventDefault();
+  $("submit-error").textContent = "";
+  const response = await postScene("/api/jobs");
   const body = await response.json().catch(() => null);
   if (response.status !== 201) {
     $("submit-error").textContent = describeError(response.status, body);
@@ -154,6 +178,7 @@ function renderStatus(job) {
   $("percent").textContent = `${job.percent.toFixed(1)} %`;
   $("progress-bar").style.width = `${job.percent}%`;
   $("eta").textContent = fmtSeconds(job.eta_seconds);
+  $("predicted").textContent = fmtSeconds(job.predicted_seconds);
   $("elapsed").textContent = fmtSeconds(job.elapsed_seconds);
   $("job-error").textContent = job.error || "";
   $("cancel").disabled = !["queued", "running"].includes(job.state);
@@ -165,6 +190,7 @@ function renderStatus(job) {
       <td>${fmtSmall(r.seconds_per_pixel)}</td><td>${r.units_done}/${r.units}</td></tr>`;
   });
   $("levels-table").tBodies[0].innerHTML = rows.join("");
+  drawLevelChart(job.levels_table);
   $("effects").textContent = `Effects: ${job.effects.join(", ") || "none"}` +
     (job.warnings.length ? ` — warnings: ${job.warnings.join("; ")}` : "");
   const s = job.stats;
@@ -172,6 +198,25 @@ function renderStatus(job) {
     `${s.reflection_rays} reflection, ${s.refraction_rays} refraction rays; ` +
     `${s.shape_tests} shape tests, ${s.bvh_nodes} BVH nodes; ${s.nan_samples} NaN samples`;
   view.shares = new Map(job.workers.map((w) => [w.id, w]));
+}
+
+// Bars of time per level (and per pass), for the finished job's price of each refinement.
+function drawLevelChart(rows) {
+  const canvas = $("level-chart");
+  const ctx = canvas.getContext("2d");
+  ctx.clearRect(0, 0, canvas.width, canvas.height);
+  const longest = Math.max(...rows.map((r) => r.seconds), 1e-9);
+  const slot = canvas.width / Math.max(rows.length, 1);
+  ctx.font = "10px sans-serif";
+  ctx.textAlign = "center";
+  rows.forEach((r, i) => {
+    const h = (canvas.height - 28) * (r.seconds / longest);
+    ctx.fillStyle = r.level > 0 ? "#5b9bd5" : "#f0a35e";
+    ctx.fillRect(i * slot + 3, canvas.height - 14 - h, slot - 6, h);
+    ctx.fillStyle = "#ccc";
+    ctx.fillText(r.level > 0 ? `L${r.level}` : `P${r.pass + 1}`, i * slot + slot / 2, canvas.height - 2);
+    ctx.fillText(fmtSeconds(r.seconds), i * slot + slot / 2, canvas.height - 17 - h);
+  });
 }
 
 function colourOf(worker) {
@@ -241,6 +286,8 @@ function drawOverlay() {
 }
 
 $("submit-form").addEventListener("submit", submit);
+$("submit-form").addEventListener("input", schedulePrediction);
+$("submit-form").addEventListener("change", schedulePrediction);
 $("cancel").addEventListener("click", async () => {
   if (view.job !== null) await fetch(`/api/jobs/${view.job}`, { method: "DELETE" });
 });

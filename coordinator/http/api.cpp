@@ -96,6 +96,10 @@ HttpResponse Api::route(const HttpRequest& request, const std::string& path,
     if (method != http::verb::get) throw ApiError(405, "method_not_allowed", "GET /api/workers");
     return json_response(200, scheduler_.workers_json());
   }
+  if (path == "/api/predict") {
+    if (method != http::verb::post) throw ApiError(405, "method_not_allowed", "POST /api/predict");
+    return predict(request, query);
+  }
   if (path == "/api/jobs") {
     if (method == http::verb::post) return create_job(request, query);
     if (method != http::verb::get)
@@ -141,10 +145,31 @@ HttpResponse Api::create_job(const HttpRequest& request,
                    query};
   Job* job = jobs_.create(parse_job_request(upload, config_.limits, config_.scenes_dir));
   if (!job) throw ApiError(503, "busy", "too many unfinished jobs; cancel some or wait");
+  const Prediction prediction =
+      scheduler_.predict(job->seconds_per_pixel_pass, job->plan.total_cost);
+  job->predicted_seconds = prediction.seconds;
+  job->uncalibrated_prediction = prediction.uncalibrated;
   scheduler_.add_job(*job);
   HttpResponse res = json_response(201, job_status_json(*job, Clock::now()));
   res.set(http::field::location, "/api/jobs/" + std::to_string(job->id));
   return res;
+}
+
+HttpResponse Api::predict(const HttpRequest& request,
+                          const std::map<std::string, std::string>& query) {
+  const auto content_type = request[http::field::content_type];
+  const JobRequest job = parse_job_request(
+      {request.body(), std::string_view(content_type.data(), content_type.size()), query},
+      config_.limits, config_.scenes_dir);
+  const long long pixel_passes = make_plan(job.plan).total_cost;
+  const Prediction p = scheduler_.predict(job.seconds_per_pixel_pass, pixel_passes);
+  return json_response(200,
+                       {{"predicted_seconds", p.seconds ? nlohmann::json(*p.seconds) : nullptr},
+                        {"seconds_per_pixel_pass", job.seconds_per_pixel_pass},
+                        {"pixel_passes", pixel_passes},
+                        {"threads", p.threads},
+                        {"calibration", p.factor},
+                        {"effects", job.effects}});
 }
 
 HttpResponse Api::job_image(const HttpRequest& request, const Job& job,

@@ -31,6 +31,8 @@ class Api {
                      const std::map<std::string, std::string>& query);
   HttpResponse create_job(const HttpRequest& request,
                           const std::map<std::string, std::string>& query);
+  // The time a job would take, without submitting it (the page asks as settings change).
+  HttpResponse predict(const HttpRequest& request, const std::map<std::string, std::string>& query);
   HttpResponse job_image(const HttpRequest& request, const Job& job,
                          const std::map<std::string, std::string>& query);
   HttpResponse static_file(const std::string& path);

@@ -62,6 +62,8 @@ nlohmann::json job_summary_json(const Job& job, Clock::time_point now) {
                       {"priority", job.priority}};
   const auto eta = job.eta_seconds(now);
   j["eta_seconds"] = eta ? nlohmann::json(*eta) : nlohmann::json(nullptr);
+  j["predicted_seconds"] =
+      job.predicted_seconds ? nlohmann::json(*job.predicted_seconds) : nlohmann::json(nullptr);
   if (!job.error.empty()) j["error"] = job.error;
   return j;
 }

@@ -53,6 +53,11 @@ struct Job {
   int priority;
   Plan plan;
   std::vector<std::string> effects, warnings;
+  // The prediction made at submission from the probe and the worker threads then connected
+  // (issue 5); empty when no worker was connected.
+  double seconds_per_pixel_pass = 0;
+  std::optional<double> uncalibrated_prediction, predicted_seconds;
+  bool ran_alone = true;  // no other job ran beside it: its time can calibrate predictions
 
   JobState state = JobState::Queued;
   std::string error;

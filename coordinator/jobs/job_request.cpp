@@ -6,6 +6,7 @@
 #include "common/loaders/sdl_loader.h"
 #include "common/render/prepared_scene.h"
 #include "common/render/render.h"
+#include "common/render/time_prediction.h"
 #include "coordinator/jobs/api_error.h"
 #include "coordinator/jobs/multipart.h"
 #include "coordinator/jobs/tar_reader.h"
@@ -195,6 +196,8 @@ void check_scene(const Submission& sub, const std::optional<std::filesystem::pat
                         " is over this service's limit of " + std::to_string(limits.max_depth));
     const PreparedScene prepared(scene, out.spec.settings.bvh);
     out.effects = render_effects(prepared, out.spec.settings).names();
+    out.seconds_per_pixel_pass =
+        probe_render_cost(prepared, out.spec.settings).seconds_per_pixel_pass();
     out.warnings = scene.warnings;
     for (const auto& u : prepared.unsupported()) out.warnings.push_back(u);
   } catch (const SceneError& e) {

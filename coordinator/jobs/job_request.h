@@ -23,6 +23,7 @@ struct JobRequest {
   PlanOptions plan;
   int priority = 1;
   std::vector<std::string> effects, warnings;
+  double seconds_per_pixel_pass = 0;  // measured by a probe on the coordinator (issue 5)
 };
 
 struct JobUpload {

@@ -11,6 +11,7 @@ Job* JobStore::create(JobRequest request) {
                                    request.priority);
   job->effects = std::move(request.effects);
   job->warnings = std::move(request.warnings);
+  job->seconds_per_pixel_pass = request.seconds_per_pixel_pass;
   Job* raw = job.get();
   jobs_[id] = std::move(job);
   return raw;

@@ -60,9 +60,11 @@ void Scheduler::add_job(Job& job) {
   // Start level with the others, so a new job neither waits for nor starves the running ones.
   double least = 0;
   bool any = false;
-  for (const auto& [id, other] : runs_)
-    if (id != job.id)
+  for (auto& [id, other] : runs_)
+    if (id != job.id) {
       least = any ? std::min(least, other.virtual_time) : other.virtual_time, any = true;
+      other.job->ran_alone = job.ran_alone = false;
+    }
   run.virtual_time = least;
   fill_slots();
 }
@@ -250,8 +252,19 @@ void Scheduler::finish(JobRun& run, JobState state, const std::string& error) {
     std::erase_if(w.in_flight, [&](const auto& entry) { return entry.first == job.id; });
   }
   spdlog::info("job {} {}{}{}", job.id, to_string(state), error.empty() ? "" : ": ", error);
+  if (state == JobState::Done && job.ran_alone && job.uncalibrated_prediction)
+    calibration_.observe(*job.uncalibrated_prediction, job.elapsed_seconds(*job.finished));
   runs_.erase(job.id);  // `run` and `job` references end here
   fill_slots();
+}
+
+Prediction Scheduler::predict(double seconds_per_pixel_pass, long long pixel_passes) const {
+  Prediction p;
+  for (const auto& [id, w] : workers_) p.threads += w.hello.threads;
+  p.factor = calibration_.factor();
+  p.uncalibrated = predict_render_seconds(seconds_per_pixel_pass, pixel_passes, p.threads);
+  if (p.uncalibrated) p.seconds = calibration_.apply(*p.uncalibrated);
+  return p;
 }
 
 nlohmann::json Scheduler::workers_json() const {

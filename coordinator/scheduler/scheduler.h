@@ -11,6 +11,7 @@
 #include <deque>
 #include <map>
 #include <memory>
+#include <optional>
 #include <set>
 #include <string>
 #include <utility>
@@ -19,6 +20,7 @@
 #include <nlohmann/json.hpp>
 
 #include "common/protocol/connection.h"
+#include "common/render/time_prediction.h"
 #include "coordinator/jobs/job_store.h"
 
 namespace tessera {
@@ -35,6 +37,12 @@ struct WorkerHello {
   std::string name, address;
   int threads = 1;
   std::set<std::string> cached;  // bundle hashes the worker already holds
+};
+
+struct Prediction {
+  std::optional<double> seconds, uncalibrated;  // empty without a connected worker
+  int threads = 0;
+  double factor = 1;  // the calibration applied
 };
 
 class Scheduler {
@@ -56,6 +64,9 @@ class Scheduler {
   void tick();
 
   nlohmann::json workers_json() const;
+  // A job's time from its probe, the threads of the connected workers and what finished
+  // jobs taught (issue 5).
+  Prediction predict(double seconds_per_pixel_pass, long long pixel_passes) const;
 
  private:
   enum class UnitState { Pending, InFlight, Done };
@@ -94,6 +105,7 @@ class Scheduler {
   SchedulerOptions options_;
   std::map<std::int64_t, JobRun> runs_;
   std::map<std::int64_t, WorkerSlot> workers_;
+  PredictionCalibration calibration_;
   std::int64_t next_worker_ = 1;
 };
 

@@ -3,7 +3,7 @@
 workers and tessera-render as processes on loopback, with random free ports.
 
 usage: service_test.py --build BUILD_DIR --source SOURCE_DIR CASE
-CASE: bit_identical | bundle | worker_faults | auth | http_errors | cancel
+CASE: bit_identical | bundle | worker_faults | auth | http_errors | cancel | prediction
 """
 import argparse
 import io
@@ -353,6 +353,38 @@ def case_cancel():
         # The freed workers take the next job straight away.
         small = service.submit(open(demo_scene()).read(), {"width": 32, "height": 24})
         assert service.wait_job(small["id"], timeout=20)["state"] == "done"
+
+
+def case_prediction():
+    """A job's time is predicted at submission (and on demand), then learnt from."""
+    with Service() as service:
+        scene = open(demo_scene()).read()
+        body = json.dumps({"scene": scene, "settings": SETTINGS}).encode()
+        headers = {"Content-Type": "application/json"}
+
+        def predict():
+            status, _, reply = service.request("POST", "/api/predict", body, headers)
+            assert status == 200, (status, reply)
+            return json.loads(reply)
+
+        alone = predict()  # no worker connected: nothing to predict with
+        assert alone["predicted_seconds"] is None and alone["threads"] == 0, alone
+        assert alone["seconds_per_pixel_pass"] > 0 and alone["pixel_passes"] == 96 * 72 * 2
+        service.worker("w1", threads=2)
+        service.wait_workers(1)
+        first = predict()
+        assert first["threads"] == 2 and first["calibration"] == 1, first
+        assert first["predicted_seconds"] > 0
+        job = service.submit(scene, SETTINGS)
+        assert job["predicted_seconds"] > 0, job
+        done = service.wait_job(job["id"])
+        assert done["predicted_seconds"] == job["predicted_seconds"]
+        assert predict()["calibration"] != 1  # the finished job taught the estimator
+        bad = json.dumps({"scene": "sphere\ntranslate 1 x 0"}).encode()
+        status, _, reply = service.request("POST", "/api/predict", bad, headers)
+        assert status == 400 and json.loads(reply)["line"] == 2, (status, reply)
+        status, _, _ = service.request("GET", "/api/predict")
+        assert status == 405
 
 
 def main():

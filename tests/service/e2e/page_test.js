@@ -58,6 +58,9 @@ async function main() {
     await page.fill("#width", "640");
     await page.fill("#height", "480");
     await page.selectOption("#aa", "9");
+    // The predicted time shows beside the button before anything is submitted.
+    await page.waitForFunction(() => /^about .* on 1 worker threads$/.test(
+      document.getElementById("prediction").textContent), null, { timeout: 10000 });
     await page.click("#submit");
     await page.waitForSelector("#image[data-state=done]", { timeout: 90000 });
     const seen = (await page.textContent("#levels-seen")).split(",").filter(Boolean);
@@ -67,6 +70,12 @@ async function main() {
     if (new Set(seen).size < 3) throw new Error(`only ${seen.length} distinct levels shown`);
     if (size[0] !== 640 || size[1] !== 480) throw new Error(`final image is ${size.join("x")}`);
     if (rows < 3) throw new Error("the per-level table is missing");
+    const predicted = await page.textContent("#predicted");
+    if (!/\d/.test(predicted)) throw new Error(`no predicted time on the status: ${predicted}`);
+    // The chart of time per level has drawn bars (some non-transparent pixels).
+    const inked = await page.$eval("#level-chart", (c) =>
+      c.getContext("2d").getImageData(0, 0, c.width, c.height).data.some((v, i) => i % 4 === 3 && v > 0));
+    if (!inked) throw new Error("the chart of time per level is empty");
   } finally {
     if (context) await context.close();
     coordinator.kill("SIGTERM");

@@ -1,0 +1,57 @@
+#include "common/render/time_prediction.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <numeric>
+#include <vector>
+
+#include "common/render/render.h"
+
+namespace tessera {
+
+std::vector<PixelCoord> probe_pixel_order(int width, int height, int max_pixels) {
+  // A side x side grid of cell centres, visited with a stride near the golden ratio of the
+  // count (and coprime with it), so the first k pixels of the probe are spread over the image.
+  const int side = std::max(1, static_cast<int>(std::sqrt(static_cast<double>(max_pixels))));
+  const int count = side * side;
+  int stride = static_cast<int>(0.618034 * count) | 1;
+  while (std::gcd(stride, count) != 1) ++stride;
+  std::vector<PixelCoord> order;
+  for (int k = 0; k < count; ++k) {
+    const int cell = static_cast<int>((static_cast<long long>(k) * stride) % count);
+    order.push_back({(2 * (cell % side) + 1) * width / (2 * side),
+                     (2 * (cell / side) + 1) * height / (2 * side)});
+  }
+  return order;
+}
+
+CostProbe probe_render_cost(const PreparedScene& scene, const RenderSettings& settings,
+                            const ProbeBudget& budget) {
+  CostProbe probe;
+  RenderStats stats;
+  Rgb value;
+  const auto start = std::chrono::steady_clock::now();
+  for (const PixelCoord& pixel :
+       probe_pixel_order(settings.width, settings.height, budget.max_pixels)) {
+    render_pixels(scene, settings, {&pixel, 1}, 0, {&value, 1}, stats);
+    ++probe.pixels;
+    probe.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    if (probe.seconds > budget.max_seconds) break;
+  }
+  return probe;
+}
+
+std::optional<double> predict_render_seconds(double seconds_per_pixel_pass, long long pixel_passes,
+                                             int threads) {
+  if (threads <= 0) return std::nullopt;
+  return seconds_per_pixel_pass * static_cast<double>(pixel_passes) / threads;
+}
+
+void PredictionCalibration::observe(double uncalibrated_seconds, double actual_seconds) {
+  if (!(uncalibrated_seconds > 0) || !(actual_seconds > 0)) return;
+  const double ratio = std::clamp(actual_seconds / uncalibrated_seconds, 0.25, 4.0);
+  factor_ = std::sqrt(factor_ * ratio);
+}
+
+}  // namespace tessera

@@ -1,0 +1,64 @@
+// Predicting a render's time: the probe's pixels and the estimator's arithmetic.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <set>
+
+#include "common/render/time_prediction.h"
+#include "tests/render/scene_builder.h"
+
+namespace tessera::test {
+namespace {
+
+TEST(TimePrediction, ScalesTheProbeCostToTheJobAndItsThreads) {
+  // 2 µs a pixel pass, 640x480 at 4 passes, on 3 threads: 2e-6 * 1228800 / 3 = 0.8192 s.
+  EXPECT_DOUBLE_EQ(*predict_render_seconds(2e-6, 640LL * 480 * 4, 3), 0.8192);
+  EXPECT_FALSE(predict_render_seconds(2e-6, 1000, 0).has_value());  // no workers yet
+  const CostProbe probe{.pixels = 200, .seconds = 0.01};
+  EXPECT_DOUBLE_EQ(probe.seconds_per_pixel_pass(), 5e-5);
+  EXPECT_EQ(CostProbe{}.seconds_per_pixel_pass(), 0);
+}
+
+TEST(TimePrediction, CalibrationMovesHalfwayTowardsEachObservedRatio) {
+  PredictionCalibration c;
+  EXPECT_EQ(c.apply(2.0), 2.0);  // nothing learnt yet
+  c.observe(1.0, 4.0);           // the job took 4x the prediction: factor sqrt(4) = 2
+  EXPECT_DOUBLE_EQ(c.factor(), 2.0);
+  c.observe(1.0, 2.0);  // agrees with the factor: unchanged
+  EXPECT_DOUBLE_EQ(c.factor(), 2.0);
+  c.observe(1.0, 100.0);  // clamped to 4: sqrt(2 * 4)
+  EXPECT_DOUBLE_EQ(c.factor(), std::sqrt(8.0));
+  c.observe(0.0, 1.0);  // nothing to learn from an empty prediction
+  EXPECT_DOUBLE_EQ(c.factor(), std::sqrt(8.0));
+  // Repeated agreement converges: after many jobs at ratio 1.3 the factor is 1.3.
+  for (int i = 0; i < 60; ++i) c.observe(1.0, 1.3);
+  EXPECT_NEAR(c.factor(), 1.3, 1e-9);
+}
+
+TEST(TimePrediction, ProbePixelsAreDistinctAndEveryPrefixSpreadsOverTheImage) {
+  const std::vector<PixelCoord> order = probe_pixel_order(640, 480, 256);
+  ASSERT_EQ(order.size(), 256u);
+  std::set<std::pair<int, int>> distinct;
+  for (const PixelCoord& p : order) {
+    EXPECT_TRUE(p.x >= 0 && p.x < 640 && p.y >= 0 && p.y < 480);
+    distinct.insert({p.x, p.y});
+  }
+  EXPECT_EQ(distinct.size(), 256u);
+  // The first 16 pixels already reach all four quadrants.
+  std::set<int> quadrants;
+  for (int k = 0; k < 16; ++k) quadrants.insert((order[k].x >= 320) + 2 * (order[k].y >= 240));
+  EXPECT_EQ(quadrants.size(), 4u);
+}
+
+TEST(TimePrediction, ProbeStopsAtItsTimeBudget) {
+  Scene scene;
+  scene.camera = camera_on_z(30);
+  scene.objects.push_back(object(Sphere{}, Affine::identity(), Material{}));
+  const PreparedScene prepared(scene, BvhMode::Sah);
+  const RenderSettings s = settings(64, 48);
+  EXPECT_EQ(probe_render_cost(prepared, s, {.max_pixels = 64, .max_seconds = 10}).pixels, 64);
+  EXPECT_EQ(probe_render_cost(prepared, s, {.max_pixels = 64, .max_seconds = 0}).pixels, 1);
+}
+
+}  // namespace
+}  // namespace tessera::test
