@@ -1,6 +1,8 @@
 // tessera-coordinator: the HTTP API and page, the job store and the scheduler, and the port
 // workers connect to (docs/SERVICE.md). One io thread runs everything but rendering.
 #include <algorithm>
+#include <cstdio>
+#include <string_view>
 #include <thread>
 
 #include <spdlog/spdlog.h>
@@ -29,6 +31,11 @@ int main(int argc, char** argv) {
   using namespace tessera;
   namespace asio = boost::asio;
   CoordinatorOptions options;
+  for (int i = 1; i < argc; ++i)
+    if (std::string_view(argv[i]) == "--help" || std::string_view(argv[i]) == "-h") {
+      std::puts(kCoordinatorUsage);
+      return 0;
+    }
   try {
     options = parse_coordinator_options(argc, argv);
   } catch (const std::exception& e) {

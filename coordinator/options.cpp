@@ -7,20 +7,22 @@
 
 namespace tessera {
 
-namespace {
+namespace {}  // namespace
 
-constexpr const char* kUsage =
+const char* const kCoordinatorUsage =
     "usage: tessera-coordinator --http-port P --worker-port Q [--secret S | --insecure]\n"
     "       [--local-workers N] [--local-threads T] [--scenes-dir DIR] [--web-dir DIR]\n"
     "       [--bind ADDR] [--worker-binary PATH] [--max-job-seconds S] [--max-body-bytes N]\n"
     "       [--heartbeat-ms MS] [--silence-ms MS]";
+
+namespace {
 
 long parse_number(const std::string& flag, const std::string& text, long lo, long hi) {
   char* end = nullptr;
   const long v = std::strtol(text.c_str(), &end, 10);
   if (text.empty() || *end != '\0' || v < lo || v > hi)
     throw std::invalid_argument(flag + " takes a number in [" + std::to_string(lo) + ", " +
-                                std::to_string(hi) + "]\n" + kUsage);
+                                std::to_string(hi) + "]\n" + kCoordinatorUsage);
   return v;
 }
 
@@ -33,7 +35,7 @@ CoordinatorOptions parse_coordinator_options(int argc, char** argv) {
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     auto value = [&]() -> std::string {
-      if (i + 1 >= argc) throw std::invalid_argument(arg + " needs a value\n" + kUsage);
+      if (i + 1 >= argc) throw std::invalid_argument(arg + " needs a value\n" + kCoordinatorUsage);
       return argv[++i];
     };
     if (arg == "--http-port")
@@ -66,11 +68,11 @@ CoordinatorOptions parse_coordinator_options(int argc, char** argv) {
     else if (arg == "--silence-ms")
       o.timing.silence = std::chrono::milliseconds(parse_number(arg, value(), 50, 600000));
     else
-      throw std::invalid_argument("unknown argument " + arg + "\n" + kUsage);
+      throw std::invalid_argument("unknown argument " + arg + "\n" + kCoordinatorUsage);
   }
   if (o.insecure && !o.secret.empty())
     throw std::invalid_argument(std::string("--secret and --insecure exclude each other\n") +
-                                kUsage);
+                                kCoordinatorUsage);
   if (o.timing.silence <= o.timing.heartbeat)
     throw std::invalid_argument("--silence-ms must exceed --heartbeat-ms");
   if (o.worker_binary.empty()) o.worker_binary = default_worker_binary();

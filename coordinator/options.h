@@ -29,6 +29,8 @@ struct CoordinatorOptions {
   ConnectionTiming timing;
 };
 
+extern const char* const kCoordinatorUsage;
+
 // Throws std::invalid_argument with a usage message.
 CoordinatorOptions parse_coordinator_options(int argc, char** argv);
 

@@ -9,15 +9,19 @@
 
 namespace tessera {
 
-namespace {
-constexpr const char* kUsage =
+namespace {}  // namespace
+
+const char* const kWorkerUsage =
     "usage: tessera-worker --coordinator HOST:PORT [--secret S] [--threads N] [--name NAME]";
+
+namespace {
 
 int parse_threads(const std::string& s) {
   char* end = nullptr;
   const long n = std::strtol(s.c_str(), &end, 10);
   if (s.empty() || *end != '\0' || n < 1 || n > 1024)
-    throw std::invalid_argument("--threads takes a number in [1, 1024]\n" + std::string(kUsage));
+    throw std::invalid_argument("--threads takes a number in [1, 1024]\n" +
+                                std::string(kWorkerUsage));
   return static_cast<int>(n);
 }
 }  // namespace
@@ -30,7 +34,7 @@ WorkerConfig parse_worker_options(int argc, char** argv) {
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
     auto value = [&]() -> std::string {
-      if (i + 1 >= argc) throw std::invalid_argument(arg + " needs a value\n" + kUsage);
+      if (i + 1 >= argc) throw std::invalid_argument(arg + " needs a value\n" + kWorkerUsage);
       return argv[++i];
     };
     if (arg == "--coordinator")
@@ -42,11 +46,12 @@ WorkerConfig parse_worker_options(int argc, char** argv) {
     else if (arg == "--name")
       config.name = value();
     else
-      throw std::invalid_argument("unknown argument " + arg + "\n" + kUsage);
+      throw std::invalid_argument("unknown argument " + arg + "\n" + kWorkerUsage);
   }
   const auto colon = coordinator.rfind(':');
   if (colon == std::string::npos || colon == 0 || colon + 1 == coordinator.size())
-    throw std::invalid_argument(std::string("--coordinator HOST:PORT is required\n") + kUsage);
+    throw std::invalid_argument(std::string("--coordinator HOST:PORT is required\n") +
+                                kWorkerUsage);
   config.host = coordinator.substr(0, colon);
   config.port = coordinator.substr(colon + 1);
   if (config.name.empty()) {

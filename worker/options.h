@@ -6,6 +6,8 @@
 
 namespace tessera {
 
+extern const char* const kWorkerUsage;
+
 // Throws std::invalid_argument with a usage message.
 WorkerConfig parse_worker_options(int argc, char** argv);
 
