@@ -9,8 +9,6 @@
 
 namespace tessera {
 
-namespace {}  // namespace
-
 const char* const kWorkerUsage =
     "usage: tessera-worker --coordinator HOST:PORT [--secret S] [--threads N] [--name NAME]";
 
