@@ -61,6 +61,7 @@ struct LocalIntersect {
   bool operator()(const TaperedCylinder& c) const {
     return intersect_tapered_cylinder(c, ray, t_max, hit);
   }
+  bool operator()(const Torus& t) const { return intersect_torus(t, ray, t_max, hit); }
   bool operator()(const MeshShape& m) const {
     if (instance.mesh == nullptr) return false;
     return intersect_mesh(*instance.mesh, m.interpolate_normals, ray, t_max, hit, counters);

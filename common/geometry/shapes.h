@@ -8,6 +8,8 @@
 // point.
 #pragma once
 
+#include <vector>
+
 #include "common/accel/mesh_accel.h"
 #include "common/geometry/local_hit.h"
 #include "common/math/ray.h"
@@ -19,9 +21,15 @@ bool intersect_sphere(const Ray& ray, double t_max, LocalHit& hit);
 bool intersect_cube(const Ray& ray, double t_max, LocalHit& hit);
 bool intersect_tapered_cylinder(const TaperedCylinder& shape, const Ray& ray, double t_max,
                                 LocalHit& hit);
+bool intersect_torus(const Torus& shape, const Ray& ray, double t_max, LocalHit& hit);
 // Meshes go through their own BVH (common/accel/mesh_accel.h).
 bool intersect_mesh(const MeshAccel& mesh, bool interpolate_normals, const Ray& ray, double t_max,
                     LocalHit& hit, IntersectionCounters& counters);
+
+// Every crossing of the surface with t in (0, t_max), ascending by t, for CSG. A ray touching
+// the surface (a tangent, or the horn torus' pinch) crosses it twice at the same t, so the
+// parity of a crossing's index still tells inside from outside.
+std::vector<LocalHit> torus_crossings(const Torus& shape, const Ray& ray, double t_max);
 
 // Bounds of a generic shape in its object space.
 Bounds3 object_bounds(const ShapeGeometry& shape, const MeshAccel* mesh);

@@ -59,6 +59,12 @@ void tapered_cylinder(FileParser& p) {
   p.add_object(TaperedCylinder{top_radius, p.flag("<distort-texture>")});
 }
 
+void torus(FileParser& p) {
+  const double tube_radius = p.number("<tube-radius>", Range::Positive);
+  const double torus_radius = p.number("<torus-radius>", Range::Positive);
+  p.add_object(Torus{tube_radius, torus_radius});
+}
+
 void mesh(FileParser& p) {
   const Token name = p.word("a file name for <filename> of 'mesh'");
   const bool interpolate = p.flag("<interpolate-normals>");
@@ -370,7 +376,7 @@ void use(FileParser& p) { p.use(); }
 void include(FileParser& p) { p.include(p.word("a file name after 'include'")); }
 
 // ---------------------------------------------------------------------------------------------
-// Keywords of later issues: CSG, torus, algebraic surfaces, polyhedra, teapot, motion blur.
+// Keywords of later issues: CSG, algebraic surfaces, polyhedra, teapot, motion blur.
 
 void not_supported_yet(FileParser& p) {
   p.fail(p.keyword(), "'" + std::string(p.keyword_name()) + "' is not supported yet");
@@ -400,7 +406,7 @@ constexpr Keyword kKeywords[] = {
     {"taperedCylinder", tapered_cylinder},
     {"mesh", mesh},
     {"teapot", not_supported_yet},
-    {"torus", not_supported_yet},
+    {"torus", torus},
     {"buckyball", not_supported_yet},
     {"diamond", not_supported_yet},
     {"dodecahedron", not_supported_yet},

@@ -36,6 +36,28 @@ TEST(SdlShapes, ShapeParameterErrors) {
                        "expected a number for <distort-texture> of 'cylinder', found 'yes'"));
 }
 
+TEST(SdlShapes, TorusTakesTubeThenTorusRadius) {
+  const Scene scene = load_text("torus 0.25 1\nTorus 1 1 torus 2 0.5\ntranslate 0 0 4 torus 1 3");
+  ASSERT_EQ(scene.objects.size(), 4u);
+  EXPECT_EQ(scene.objects[0].geometry, ShapeGeometry(Torus{0.25, 1}));  // ring
+  EXPECT_EQ(scene.objects[1].geometry, ShapeGeometry(Torus{1, 1}));     // horn
+  EXPECT_EQ(scene.objects[2].geometry, ShapeGeometry(Torus{2, 0.5}));   // spindle
+  EXPECT_EQ(scene.objects[2].where.line, 2);
+  EXPECT_EQ(scene.objects[2].where.column, 11);
+  EXPECT_TRUE(near(scene.objects[3].transform.apply_point({0, 0, 0}), {0, 0, 4}));
+}
+
+TEST(SdlShapes, TorusParameterErrors) {
+  EXPECT_TRUE(fails_at("torus 0 1", 1, 7, "<tube-radius> of 'torus' must be positive, found '0'"));
+  EXPECT_TRUE(
+      fails_at("torus 1 -2", 1, 9, "<torus-radius> of 'torus' must be positive, found '-2'"));
+  EXPECT_TRUE(
+      fails_at("torus 1\n  x", 2, 3, "expected a number for <torus-radius> of 'torus', found 'x'"));
+  EXPECT_TRUE(fails_at("torus 1", 1, 8,
+                       "unexpected end of file, expected a number for <torus-radius> of "
+                       "'torus'"));
+}
+
 TEST(SdlShapes, MeshLoadsAnObjFileResolvedRelativeToTheScene) {
   const Scene scene =
       load_text("mesh models/tri.obj 1\nmesh models/tri.obj 0", {{"models/tri.obj", kTriangleObj}});
@@ -114,7 +136,6 @@ TEST(SdlShapes, KeywordsOfLaterIssuesAreNotSupportedYet) {
   for (const std::string keyword : {"union",
                                     "intersection",
                                     "difference",
-                                    "torus",
                                     "oneSheetHyperboloid",
                                     "twoSheetHyperboloid",
                                     "ellipticCylinder",
@@ -144,7 +165,7 @@ TEST(SdlShapes, KeywordsOfLaterIssuesAreNotSupportedYet) {
         << keyword;
   }
   // Matched case-insensitively, and named in the canonical spelling.
-  EXPECT_TRUE(fails_at("TORUS 1 2", 1, 1, "'torus' is not supported yet"));
+  EXPECT_TRUE(fails_at("TEAPOT", 1, 1, "'teapot' is not supported yet"));
 }
 
 }  // namespace
