@@ -22,6 +22,7 @@ Bounds3 object_bounds(const ShapeGeometry& shape, const MeshAccel* mesh) {
       const double e = t.torus_radius + t.tube_radius;
       return {{-e, -e, -t.tube_radius}, {e, e, t.tube_radius}};
     }
+    Bounds3 operator()(const AlgebraicSurface&) const { return {}; }
   };
   return std::visit(Visitor{mesh}, shape);
 }

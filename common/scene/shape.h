@@ -2,11 +2,15 @@
 //   sphere: unit sphere at the origin;  cube: [-1, 1]^3;
 //   tapered cylinder: z in [0, 1], radius 1 at z = 0 and `top_radius` at z = 1 (cone: 0,
 //   cylinder: 1);  mesh: triangles of Scene::meshes[mesh];
-//   torus: around the z axis, lying in the XY-plane (§3.3.5).
+//   torus: around the z axis, lying in the XY-plane (§3.3.5);
+//   algebraic surface: the zero set of a fixed polynomial (common/geometry/algebraic_surfaces.h)
+//   clipped to a box that the CT only translates (§3.3.6).
 #pragma once
 
 #include <cstddef>
 #include <variant>
+
+#include "common/math/vec3.h"
 
 namespace tessera {
 
@@ -35,6 +39,31 @@ struct Torus {
   friend bool operator==(const Torus&, const Torus&) = default;
 };
 
-using ShapeGeometry = std::variant<Sphere, Cube, TaperedCylinder, MeshShape, Torus>;
+// The algebraic surfaces of §3.3.6, in the order the manual lists them.
+enum class AlgebraicKind {
+  OneSheetHyperboloid,
+  TwoSheetHyperboloid,
+  EllipticCylinder,
+  EllipticCone,
+  EllipticParaboloid,
+  HyperbolicParaboloid,
+  PinchedSurfaceWithHoles,
+  PinchedSurfaceWithLobe,
+  FourLobes,
+  SteinersRomanSurface,
+  ToothCube,
+};
+
+struct AlgebraicSurface {
+  AlgebraicKind kind = AlgebraicKind::OneSheetHyperboloid;
+  // Width, height and depth of the box extent along the world x, y and z axes, centred on
+  // where the CT takes the object's origin: the CT translates the box but never scales or
+  // rotates it (§3.3.6).
+  Vec3 extent{2, 2, 2};
+  friend bool operator==(const AlgebraicSurface&, const AlgebraicSurface&) = default;
+};
+
+using ShapeGeometry =
+    std::variant<Sphere, Cube, TaperedCylinder, MeshShape, Torus, AlgebraicSurface>;
 
 }  // namespace tessera
