@@ -142,6 +142,22 @@ TEST(Algebraic, CrossingsAreSortedAndCountTouchingRootsTwice) {
   EXPECT_NEAR(hits[1].t, 6, 1e-15);
 }
 
+// The closed surfaces, inside their box: rays from outside cross them an even number of times.
+TEST(Algebraic, CrossingsOfClosedSurfacesComeInPairs) {
+  std::mt19937_64 rng(29);
+  std::uniform_real_distribution<double> unit(-1, 1);
+  for (K kind : {K::FourLobes, K::ToothCube, K::SteinersRomanSurface}) {
+    SCOPED_TRACE(static_cast<int>(kind));
+    for (int i = 0; i < 20000; ++i) {
+      const Vec3 origin = normalize_or({unit(rng), unit(rng), unit(rng)}, {1, 0, 0}) * 6;
+      const Vec3 target{unit(rng), unit(rng), unit(rng)};
+      const std::vector<LocalHit> hits =
+          algebraic_crossings(surface(kind, 8), {origin, target - origin}, 0, 10);
+      ASSERT_EQ(hits.size() % 2, 0u) << i;
+    }
+  }
+}
+
 TEST(Algebraic, FarAwayRaysKeepTheirDigits) {
   LocalHit hit;
   for (double distance : {1e2, 1e4, 1e6}) {

@@ -278,6 +278,29 @@ TEST(Torus, SpawnedRaysDoNotFindTheirOwnHit) {
   EXPECT_GT(tested, 2000);
 }
 
+// For CSG: a ray from outside crosses a closed surface an even number of times (touching roots
+// count twice), alternately entering and leaving.
+TEST(Torus, CrossingsFromOutsideComeInPairs) {
+  std::mt19937_64 rng(23);
+  int touching = 0;
+  for (const Torus& torus : {kRing, kHorn, kSpindle}) {
+    for (int i = 0; i < 20000; ++i) {
+      const Vec3 origin = testing::random_unit(rng) * 5;
+      // Aimed near the centre; every tenth ray through it exactly, for the pinch and cusps.
+      std::uniform_real_distribution<double> aim(-1.5, 1.5);
+      const Vec3 target = i % 10 == 0 ? Vec3{} : Vec3{aim(rng), aim(rng), aim(rng) / 3};
+      const std::vector<LocalHit> hits =
+          torus_crossings(torus, {origin, target - origin}, kInfinity);
+      ASSERT_EQ(hits.size() % 2, 0u) << i;
+      for (std::size_t k = 1; k < hits.size(); ++k) {
+        ASSERT_LE(hits[k - 1].t, hits[k].t);
+        touching += hits[k - 1].t == hits[k].t;
+      }
+    }
+  }
+  EXPECT_GT(touching, 0);  // the rays through the pinch
+}
+
 // Random rays, finite results whatever they hit.
 TEST(Torus, NeverNaN) {
   std::mt19937_64 rng(5);
