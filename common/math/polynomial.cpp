@@ -44,6 +44,35 @@ double bracketed_root(const Polynomial& p, const Polynomial& dp, double a, doubl
   return x;
 }
 
+// Degrees 1 and 2 in closed form (the cancellation-free q form), with the same contract as
+// real_roots: these are the derivatives of cubics and quartics, whose roots only need to split
+// the interval, and are found many times per ray.
+int low_degree_roots(const Polynomial& p, double lo, double hi,
+                     PolynomialRoot roots[kMaxPolynomialDegree]) {
+  int count = 0;
+  const auto keep = [&](double x, bool touching) {
+    if (x > lo && x < hi) roots[count++] = {x, touching};
+  };
+  if (p.degree == 1) {
+    keep(-p.c[0] / p.c[1], false);
+    return count;
+  }
+  const double a = p.c[2], b = p.c[1], c = p.c[0];
+  const double disc = b * b - 4 * a * c;
+  const double disc_error = gamma_bound(3) * (b * b + 4 * std::fabs(a * c));
+  if (disc < -disc_error) return 0;
+  if (std::fabs(disc) <= disc_error) {
+    keep(-b / (2 * a), true);
+    return count;
+  }
+  const double q = -(b + std::copysign(std::sqrt(disc), b)) / 2;
+  double x0 = q / a, x1 = c / q;
+  if (x0 > x1) std::swap(x0, x1);
+  keep(x0, false);
+  keep(x1, false);
+  return count;
+}
+
 }  // namespace
 
 Polynomial operator+(const Polynomial& a, const Polynomial& b) {
@@ -93,6 +122,7 @@ int real_roots(const Polynomial& p_in, double lo, double hi,
   Polynomial p = p_in;
   p.degree = effective_degree(p_in);
   if (p.degree == 0 || !(lo < hi)) return 0;
+  if (p.degree <= 2) return low_degree_roots(p, lo, hi, roots);
   const Polynomial dp = derivative(p);
 
   // The split points: lo, the derivative's roots (p's extrema and inflections), hi.
