@@ -48,6 +48,38 @@ void BM_Cone(benchmark::State& state) {
     return intersect_tapered_cylinder(cone, r, kInfinity, h);
   });
 }
+// A ring torus (R = 1, r = 0.4), from the rays above: about a third hit.
+void BM_Torus(benchmark::State& state) {
+  const Torus torus{0.4, 1};
+  run_kernel(state,
+             [&](const Ray& r, LocalHit& h) { return intersect_torus(torus, r, kInfinity, h); });
+}
+// Rays within 1e-6 of tangent to the top of the tube: near-double roots, the solver's worst
+// case (their critical points must be told from roots).
+void BM_TorusGrazing(benchmark::State& state) {
+  const Torus torus{0.4, 1};
+  std::mt19937_64 rng(9);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::vector<Ray> rays;
+  for (int i = 0; i < 4096; ++i) {
+    const Vec3 o{-4, u(rng) * 0.5, 0.4 + u(rng) * 1e-6};
+    rays.push_back(Ray{o, normalize_or({1, u(rng) * 0.1, 0}, {1, 0, 0}), 0});
+  }
+  std::size_t i = 0, hits = 0;
+  for (auto _ : state) {
+    LocalHit hit;
+    hits += intersect_torus(torus, rays[i++ & 4095], kInfinity, hit) ? 1 : 0;
+    benchmark::DoNotOptimize(hit);
+  }
+  state.counters["hit_rate"] = static_cast<double>(hits) / static_cast<double>(state.iterations());
+  state.SetItemsProcessed(state.iterations());
+}
+// The tooth cube, a quartic algebraic surface; t up to 10 holds its extent for these rays.
+void BM_ToothCube(benchmark::State& state) {
+  const AlgebraicSurface tooth{AlgebraicKind::ToothCube, {3, 3, 3}};
+  run_kernel(state,
+             [&](const Ray& r, LocalHit& h) { return intersect_algebraic(tooth, r, 0, 10, h); });
+}
 void BM_TransformedSphereInstance(benchmark::State& state) {
   const Affine t = Affine::translation({0.1, 0.2, 0.3}) * Affine::rotation(30, {1, 1, 0}).value() *
                    Affine::scaling({1.2, 0.8, 1});
@@ -106,6 +138,9 @@ void BM_MeshBvhBuild(benchmark::State& state) {
 BENCHMARK(BM_Sphere);
 BENCHMARK(BM_Cube);
 BENCHMARK(BM_Cone);
+BENCHMARK(BM_Torus);
+BENCHMARK(BM_TorusGrazing);
+BENCHMARK(BM_ToothCube);
 BENCHMARK(BM_TransformedSphereInstance);
 BENCHMARK(BM_MeshBvh)->Arg(16)->Arg(64)->Arg(224);
 BENCHMARK(BM_MeshBvhBuild)->Arg(224)->Unit(benchmark::kMillisecond);

@@ -51,7 +51,8 @@ Vec3 round_trip_error(const Instance& instance, const Vec3& magnitude) {
 
 struct LocalIntersect {
   const Instance& instance;
-  const Ray& ray;
+  const Ray& world_ray;
+  const Ray& ray;  // in object space
   double t_max;
   LocalHit& hit;
   IntersectionCounters& counters;
@@ -60,6 +61,12 @@ struct LocalIntersect {
   bool operator()(const Cube&) const { return intersect_cube(ray, t_max, hit); }
   bool operator()(const TaperedCylinder& c) const {
     return intersect_tapered_cylinder(c, ray, t_max, hit);
+  }
+  bool operator()(const Torus& t) const { return intersect_torus(t, ray, t_max, hit); }
+  bool operator()(const AlgebraicSurface& a) const {
+    double t_min = 0, t_limit = t_max;
+    if (!algebraic_extent_span(a, instance.to_world, world_ray, t_min, t_limit)) return false;
+    return intersect_algebraic(a, ray, t_min, t_limit, hit);
   }
   bool operator()(const MeshShape& m) const {
     if (instance.mesh == nullptr) return false;
@@ -79,6 +86,10 @@ std::optional<Instance> make_instance(const ShapeGeometry& geometry, const Affin
   instance.to_world = to_world;
   instance.to_object = *to_object;
   instance.mesh = mesh;
+  if (const auto* algebraic = std::get_if<AlgebraicSurface>(&geometry)) {
+    instance.world_bounds = algebraic_extent(*algebraic, to_world);
+    return instance;
+  }
   // The transformed corners, padded by their rounding so the box certainly holds the shape.
   const Bounds3 local = object_bounds(geometry, mesh);
   if (!local.empty()) {
@@ -101,7 +112,8 @@ bool intersect_instance(const Instance& instance, const Ray& world_ray, double t
   const Ray ray{instance.to_object.apply_point(world_ray.origin),
                 instance.to_object.apply_vector(world_ray.direction), world_ray.time};
   LocalHit local;
-  if (!std::visit(LocalIntersect{instance, ray, t_max, local, counters}, instance.geometry))
+  if (!std::visit(LocalIntersect{instance, world_ray, ray, t_max, local, counters},
+                  instance.geometry))
     return false;
 
   hit.t = local.t;

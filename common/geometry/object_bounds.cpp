@@ -18,6 +18,11 @@ Bounds3 object_bounds(const ShapeGeometry& shape, const MeshAccel* mesh) {
       return {{-r, -r, 0}, {r, r, 1}};
     }
     Bounds3 operator()(const MeshShape&) const { return mesh ? mesh->bounds : Bounds3{}; }
+    Bounds3 operator()(const Torus& t) const {
+      const double e = t.torus_radius + t.tube_radius;
+      return {{-e, -e, -t.tube_radius}, {e, e, t.tube_radius}};
+    }
+    Bounds3 operator()(const AlgebraicSurface&) const { return {}; }
   };
   return std::visit(Visitor{mesh}, shape);
 }

@@ -8,6 +8,8 @@
 // point.
 #pragma once
 
+#include <vector>
+
 #include "common/accel/mesh_accel.h"
 #include "common/geometry/local_hit.h"
 #include "common/math/ray.h"
@@ -19,11 +21,30 @@ bool intersect_sphere(const Ray& ray, double t_max, LocalHit& hit);
 bool intersect_cube(const Ray& ray, double t_max, LocalHit& hit);
 bool intersect_tapered_cylinder(const TaperedCylinder& shape, const Ray& ray, double t_max,
                                 LocalHit& hit);
+bool intersect_torus(const Torus& shape, const Ray& ray, double t_max, LocalHit& hit);
 // Meshes go through their own BVH (common/accel/mesh_accel.h).
 bool intersect_mesh(const MeshAccel& mesh, bool interpolate_normals, const Ray& ray, double t_max,
                     LocalHit& hit, IntersectionCounters& counters);
 
-// Bounds of a generic shape in its object space.
+// Every crossing of the surface with t in (0, t_max), ascending by t, for CSG. A ray touching
+// the surface (a tangent, or the horn torus' pinch) crosses it twice at the same t, so the
+// parity of a crossing's index still tells inside from outside.
+std::vector<LocalHit> torus_crossings(const Torus& shape, const Ray& ray, double t_max);
+
+// Algebraic surfaces are clipped to their box extent, a box in world space: the instance
+// narrows [t_min, t_max] to the world ray's span through it (algebraic_extent_span; t means the
+// same in both spaces) and passes the span with the object-space ray. Hits and crossings have
+// t in (max(t_min, 0), t_max), which must be finite.
+bool algebraic_extent_span(const AlgebraicSurface& shape, const Affine& to_world,
+                           const Ray& world_ray, double& t_min, double& t_max);
+Bounds3 algebraic_extent(const AlgebraicSurface& shape, const Affine& to_world);
+bool intersect_algebraic(const AlgebraicSurface& shape, const Ray& ray, double t_min, double t_max,
+                         LocalHit& hit);
+std::vector<LocalHit> algebraic_crossings(const AlgebraicSurface& shape, const Ray& ray,
+                                          double t_min, double t_max);
+
+// Bounds of a generic shape in its object space; empty for an algebraic surface, whose extent
+// is a world-space box (algebraic_extent).
 Bounds3 object_bounds(const ShapeGeometry& shape, const MeshAccel* mesh);
 
 }  // namespace tessera

@@ -59,6 +59,21 @@ void tapered_cylinder(FileParser& p) {
   p.add_object(TaperedCylinder{top_radius, p.flag("<distort-texture>")});
 }
 
+void torus(FileParser& p) {
+  const double tube_radius = p.number("<tube-radius>", Range::Positive);
+  const double torus_radius = p.number("<torus-radius>", Range::Positive);
+  p.add_object(Torus{tube_radius, torus_radius});
+}
+
+// Algebraic surfaces (§3.3.6): the box extent's width, height and depth.
+template <AlgebraicKind kind>
+void algebraic_surface(FileParser& p) {
+  const double width = p.number("<box-extent-width>", Range::Positive);
+  const double height = p.number("<box-extent-height>", Range::Positive);
+  const double depth = p.number("<box-extent-depth>", Range::Positive);
+  p.add_object(AlgebraicSurface{kind, {width, height, depth}});
+}
+
 void mesh(FileParser& p) {
   const Token name = p.word("a file name for <filename> of 'mesh'");
   const bool interpolate = p.flag("<interpolate-normals>");
@@ -370,7 +385,7 @@ void use(FileParser& p) { p.use(); }
 void include(FileParser& p) { p.include(p.word("a file name after 'include'")); }
 
 // ---------------------------------------------------------------------------------------------
-// Keywords of later issues: CSG, torus, algebraic surfaces, polyhedra, teapot, motion blur.
+// Keywords of later issues: CSG, polyhedra, teapot, motion blur.
 
 void not_supported_yet(FileParser& p) {
   p.fail(p.keyword(), "'" + std::string(p.keyword_name()) + "' is not supported yet");
@@ -400,7 +415,7 @@ constexpr Keyword kKeywords[] = {
     {"taperedCylinder", tapered_cylinder},
     {"mesh", mesh},
     {"teapot", not_supported_yet},
-    {"torus", not_supported_yet},
+    {"torus", torus},
     {"buckyball", not_supported_yet},
     {"diamond", not_supported_yet},
     {"dodecahedron", not_supported_yet},
@@ -408,17 +423,17 @@ constexpr Keyword kKeywords[] = {
     {"octahedron", not_supported_yet},
     {"pyramid", not_supported_yet},
     {"tetrahedron", not_supported_yet},
-    {"oneSheetHyperboloid", not_supported_yet},
-    {"twoSheetHyperboloid", not_supported_yet},
-    {"ellipticCylinder", not_supported_yet},
-    {"ellipticCone", not_supported_yet},
-    {"ellipticParaboloid", not_supported_yet},
-    {"hyperbolicParaboloid", not_supported_yet},
-    {"pinchedSurfaceWithHoles", not_supported_yet},
-    {"pinchedSurfaceWithLobe", not_supported_yet},
-    {"fourLobes", not_supported_yet},
-    {"steinersRomanSurface", not_supported_yet},
-    {"toothCube", not_supported_yet},
+    {"oneSheetHyperboloid", algebraic_surface<AlgebraicKind::OneSheetHyperboloid>},
+    {"twoSheetHyperboloid", algebraic_surface<AlgebraicKind::TwoSheetHyperboloid>},
+    {"ellipticCylinder", algebraic_surface<AlgebraicKind::EllipticCylinder>},
+    {"ellipticCone", algebraic_surface<AlgebraicKind::EllipticCone>},
+    {"ellipticParaboloid", algebraic_surface<AlgebraicKind::EllipticParaboloid>},
+    {"hyperbolicParaboloid", algebraic_surface<AlgebraicKind::HyperbolicParaboloid>},
+    {"pinchedSurfaceWithHoles", algebraic_surface<AlgebraicKind::PinchedSurfaceWithHoles>},
+    {"pinchedSurfaceWithLobe", algebraic_surface<AlgebraicKind::PinchedSurfaceWithLobe>},
+    {"fourLobes", algebraic_surface<AlgebraicKind::FourLobes>},
+    {"steinersRomanSurface", algebraic_surface<AlgebraicKind::SteinersRomanSurface>},
+    {"toothCube", algebraic_surface<AlgebraicKind::ToothCube>},
     // Material properties
     {"defaultMaterials", default_materials},
     {"surfaceRoughness", surface_roughness},

@@ -1,11 +1,16 @@
 // The generic shapes of SDL §3.3 in their own object space (DESIGN.md §2):
 //   sphere: unit sphere at the origin;  cube: [-1, 1]^3;
 //   tapered cylinder: z in [0, 1], radius 1 at z = 0 and `top_radius` at z = 1 (cone: 0,
-//   cylinder: 1);  mesh: triangles of Scene::meshes[mesh].
+//   cylinder: 1);  mesh: triangles of Scene::meshes[mesh];
+//   torus: around the z axis, lying in the XY-plane (§3.3.5);
+//   algebraic surface: the zero set of a fixed polynomial (common/geometry/algebraic_surfaces.h)
+//   clipped to a box that the CT only translates (§3.3.6).
 #pragma once
 
 #include <cstddef>
 #include <variant>
+
+#include "common/math/vec3.h"
 
 namespace tessera {
 
@@ -26,6 +31,39 @@ struct MeshShape {
   friend bool operator==(const MeshShape&, const MeshShape&) = default;
 };
 
-using ShapeGeometry = std::variant<Sphere, Cube, TaperedCylinder, MeshShape>;
+// (x^2 + y^2 + z^2 + R^2 - r^2)^2 = 4 R^2 (x^2 + y^2), R = torus_radius, r = tube_radius: a
+// ring torus when r < R, a horn torus when r = R, a self-intersecting spindle torus when r > R.
+struct Torus {
+  double tube_radius = 0.5;
+  double torus_radius = 1;
+  friend bool operator==(const Torus&, const Torus&) = default;
+};
+
+// The algebraic surfaces of §3.3.6, in the order the manual lists them.
+enum class AlgebraicKind {
+  OneSheetHyperboloid,
+  TwoSheetHyperboloid,
+  EllipticCylinder,
+  EllipticCone,
+  EllipticParaboloid,
+  HyperbolicParaboloid,
+  PinchedSurfaceWithHoles,
+  PinchedSurfaceWithLobe,
+  FourLobes,
+  SteinersRomanSurface,
+  ToothCube,
+};
+
+struct AlgebraicSurface {
+  AlgebraicKind kind = AlgebraicKind::OneSheetHyperboloid;
+  // Width, height and depth of the box extent along the world x, y and z axes, centred on
+  // where the CT takes the object's origin: the CT translates the box but never scales or
+  // rotates it (§3.3.6).
+  Vec3 extent{2, 2, 2};
+  friend bool operator==(const AlgebraicSurface&, const AlgebraicSurface&) = default;
+};
+
+using ShapeGeometry =
+    std::variant<Sphere, Cube, TaperedCylinder, MeshShape, Torus, AlgebraicSurface>;
 
 }  // namespace tessera

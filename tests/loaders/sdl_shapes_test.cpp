@@ -2,6 +2,7 @@
 #include <gtest/gtest.h>
 
 #include <string>
+#include <utility>
 
 #include "tests/loaders/loader_test_util.h"
 
@@ -34,6 +35,67 @@ TEST(SdlShapes, ShapeParameterErrors) {
                        "<small-radius> of 'taperedCylinder' must be non-negative, found '-0.5'"));
   EXPECT_TRUE(fails_at("cylinder yes", 1, 10,
                        "expected a number for <distort-texture> of 'cylinder', found 'yes'"));
+}
+
+TEST(SdlShapes, TorusTakesTubeThenTorusRadius) {
+  const Scene scene = load_text("torus 0.25 1\nTorus 1 1 torus 2 0.5\ntranslate 0 0 4 torus 1 3");
+  ASSERT_EQ(scene.objects.size(), 4u);
+  EXPECT_EQ(scene.objects[0].geometry, ShapeGeometry(Torus{0.25, 1}));  // ring
+  EXPECT_EQ(scene.objects[1].geometry, ShapeGeometry(Torus{1, 1}));     // horn
+  EXPECT_EQ(scene.objects[2].geometry, ShapeGeometry(Torus{2, 0.5}));   // spindle
+  EXPECT_EQ(scene.objects[2].where.line, 2);
+  EXPECT_EQ(scene.objects[2].where.column, 11);
+  EXPECT_TRUE(near(scene.objects[3].transform.apply_point({0, 0, 0}), {0, 0, 4}));
+}
+
+TEST(SdlShapes, TorusParameterErrors) {
+  EXPECT_TRUE(fails_at("torus 0 1", 1, 7, "<tube-radius> of 'torus' must be positive, found '0'"));
+  EXPECT_TRUE(
+      fails_at("torus 1 -2", 1, 9, "<torus-radius> of 'torus' must be positive, found '-2'"));
+  EXPECT_TRUE(
+      fails_at("torus 1\n  x", 2, 3, "expected a number for <torus-radius> of 'torus', found 'x'"));
+  EXPECT_TRUE(fails_at("torus 1", 1, 8,
+                       "unexpected end of file, expected a number for <torus-radius> of "
+                       "'torus'"));
+}
+
+TEST(SdlShapes, AlgebraicSurfacesTakeTheirBoxExtent) {
+  const std::pair<const char*, AlgebraicKind> kinds[] = {
+      {"oneSheetHyperboloid", AlgebraicKind::OneSheetHyperboloid},
+      {"twoSheetHyperboloid", AlgebraicKind::TwoSheetHyperboloid},
+      {"ellipticCylinder", AlgebraicKind::EllipticCylinder},
+      {"ellipticCone", AlgebraicKind::EllipticCone},
+      {"ellipticParaboloid", AlgebraicKind::EllipticParaboloid},
+      {"hyperbolicParaboloid", AlgebraicKind::HyperbolicParaboloid},
+      {"pinchedSurfaceWithHoles", AlgebraicKind::PinchedSurfaceWithHoles},
+      {"pinchedSurfaceWithLobe", AlgebraicKind::PinchedSurfaceWithLobe},
+      {"fourLobes", AlgebraicKind::FourLobes},
+      {"steinersRomanSurface", AlgebraicKind::SteinersRomanSurface},
+      {"toothCube", AlgebraicKind::ToothCube}};
+  for (const auto& [keyword, kind] : kinds) {
+    SCOPED_TRACE(keyword);
+    const Scene scene = load_text(std::string("translate 1 2 3\n  ") + keyword + " 4 5 6");
+    ASSERT_EQ(scene.objects.size(), 1u);
+    EXPECT_EQ(scene.objects[0].geometry, ShapeGeometry(AlgebraicSurface{kind, {4, 5, 6}}));
+    EXPECT_EQ(scene.objects[0].where.line, 2);
+    EXPECT_EQ(scene.objects[0].where.column, 3);
+    EXPECT_TRUE(near(scene.objects[0].transform.apply_point({0, 0, 0}), {1, 2, 3}));
+  }
+  // Case-insensitive, like every keyword.
+  EXPECT_EQ(load_text("TOOTHCUBE 1 1 1").objects[0].geometry,
+            ShapeGeometry(AlgebraicSurface{AlgebraicKind::ToothCube, {1, 1, 1}}));
+}
+
+TEST(SdlShapes, AlgebraicSurfaceParameterErrors) {
+  EXPECT_TRUE(fails_at("ellipticCone 0 1 1", 1, 14,
+                       "<box-extent-width> of 'ellipticCone' must be positive, found '0'"));
+  EXPECT_TRUE(fails_at("fourLobes 1 -1 1", 1, 13,
+                       "<box-extent-height> of 'fourLobes' must be positive, found '-1'"));
+  EXPECT_TRUE(fails_at("sphere\ntoothCube 1 1 z", 2, 15,
+                       "expected a number for <box-extent-depth> of 'toothCube', found 'z'"));
+  EXPECT_TRUE(fails_at("steinersRomanSurface 1 1", 1, 25,
+                       "unexpected end of file, expected a number for <box-extent-depth> of "
+                       "'steinersRomanSurface'"));
 }
 
 TEST(SdlShapes, MeshLoadsAnObjFileResolvedRelativeToTheScene) {
@@ -111,40 +173,16 @@ TEST(SdlShapes, MeshWithASingularCtIsAnError) {
 }
 
 TEST(SdlShapes, KeywordsOfLaterIssuesAreNotSupportedYet) {
-  for (const std::string keyword : {"union",
-                                    "intersection",
-                                    "difference",
-                                    "torus",
-                                    "oneSheetHyperboloid",
-                                    "twoSheetHyperboloid",
-                                    "ellipticCylinder",
-                                    "ellipticCone",
-                                    "ellipticParaboloid",
-                                    "hyperbolicParaboloid",
-                                    "pinchedSurfaceWithHoles",
-                                    "pinchedSurfaceWithLobe",
-                                    "fourLobes",
-                                    "steinersRomanSurface",
-                                    "toothCube",
-                                    "buckyball",
-                                    "diamond",
-                                    "dodecahedron",
-                                    "icosahedron",
-                                    "octahedron",
-                                    "pyramid",
-                                    "tetrahedron",
-                                    "teapot",
-                                    "mbClear",
-                                    "mbRotate",
-                                    "mbTranslate",
-                                    "mbScale",
-                                    "mbEnable"}) {
+  for (const std::string keyword :
+       {"union", "intersection", "difference", "buckyball", "diamond", "dodecahedron",
+        "icosahedron", "octahedron", "pyramid", "tetrahedron", "teapot", "mbClear", "mbRotate",
+        "mbTranslate", "mbScale", "mbEnable"}) {
     EXPECT_TRUE(fails_at("sphere\n   " + keyword + " 1 2 3", 2, 4,
                          "'" + keyword + "' is not supported yet"))
         << keyword;
   }
   // Matched case-insensitively, and named in the canonical spelling.
-  EXPECT_TRUE(fails_at("TORUS 1 2", 1, 1, "'torus' is not supported yet"));
+  EXPECT_TRUE(fails_at("TEAPOT", 1, 1, "'teapot' is not supported yet"));
 }
 
 }  // namespace

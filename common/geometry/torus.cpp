@@ -1,0 +1,166 @@
+// Ray / torus intersection (shapes.h).
+//
+// The torus (x^2 + y^2 + z^2 + R^2 - r^2)^2 - 4 R^2 (x^2 + y^2) = 0 along a ray is a quartic in
+// the ray parameter. Solving it naively loses every digit for a ray from far away: the
+// coefficients then hold |o|^4 terms that cancel down to the torus' size. So:
+//  - the quartic is formed in a frame moved to the point of the ray's line nearest the torus'
+//    centre, with a unit direction, where every term is of the torus' size; the constant term
+//    (the torus function at that point) is taken in its factored form
+//    ((rho - R)^2 + z^2 - r^2) ((rho + R)^2 + z^2 - r^2), which does not cancel near the tube;
+//  - its roots are isolated and polished by bracketing (common/math/polynomial.h) on the
+//    ray's span through the bounding box, so grazing rays get a touching root rather than
+//    nothing or garbage;
+//  - each hit is re-projected onto the nearest generating circle of its meridian plane (the
+//    circle around +R, or around -R for the inner "lemon" of a spindle torus), whose normal is
+//    the torus' gradient direction; points on the axis (the horn torus' pinch, the spindle's
+//    cusps), where the gradient vanishes, keep the root's point and get a finite normal;
+//  - a hit closer to the ray's origin than a few times its error bound is not reported, so a
+//    ray leaving the surface from offset_ray_origin() cannot find it again at t ~ 0.
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "common/geometry/shapes.h"
+#include "common/math/float_error.h"
+#include "common/math/polynomial.h"
+
+namespace tessera {
+
+namespace {
+
+struct TorusRoots {
+  struct Entry {
+    LocalHit hit;
+    bool touching = false;
+  };
+  Entry entries[kMaxPolynomialDegree];
+  int count = 0;
+};
+
+// Entry and exit of the ray through the box [-e, e]^2 x [-h, h]; false when it misses.
+bool box_span(const Vec3& o, const Vec3& d, double e, double h, double& t_enter, double& t_exit) {
+  const double half[3] = {e, e, h};
+  t_enter = -kInfinity, t_exit = kInfinity;
+  for (int a = 0; a < 3; ++a) {
+    if (d[a] == 0) {
+      if (!(std::fabs(o[a]) <= half[a])) return false;
+      continue;
+    }
+    double t_near = (-half[a] - o[a]) / d[a], t_far = (half[a] - o[a]) / d[a];
+    if (d[a] < 0) std::swap(t_near, t_far);
+    t_enter = std::max(t_enter, t_near);
+    t_exit = std::min(t_exit, t_far);
+  }
+  return t_enter <= t_exit;
+}
+
+// The hit at point p (computed as o' + s u): re-projected onto the surface, with its error
+// bound and the gradient's direction as normal.
+LocalHit surface_hit(double big_r, double r, const Vec3& p, const Vec3& u) {
+  LocalHit hit;
+  hit.part = 0;
+  const double rho = std::hypot(p.x, p.y);
+  const double d_outer = std::hypot(rho - big_r, p.z);  // to the circle around +R
+  const double d_inner = std::hypot(rho + big_r, p.z);  // to the circle around -R
+  const bool inner = std::fabs(d_inner - r) < std::fabs(d_outer - r);
+  const double d = inner ? d_inner : d_outer;
+  if (rho > 0 && d > 0 && std::isfinite(rho)) {
+    const double cx = p.x / rho, cy = p.y / rho;
+    // Meridian-plane offset from the circle's centre, scaled to the tube radius.
+    const double a = ((inner ? rho + big_r : rho - big_r) / d) * r;
+    const double b = (p.z / d) * r;
+    const double rho_on = (inner ? -big_r : big_r) + a;
+    hit.point = {rho_on * cx, rho_on * cy, b};
+    // A few roundings of quantities of size R + r.
+    const double e = gamma_bound(12) * (big_r + r);
+    hit.point_error = {e, e, e};
+    // The gradient of the torus function is f(-) grad f(+) on the outer circle, where
+    // f(-) > 0, and f(+) grad f(-) on the inner one, where f(+) < 0: away from the +R centre,
+    // towards the -R centre.
+    const double sign = inner ? -1.0 : 1.0;
+    hit.normal = {sign * a * cx, sign * a * cy, sign * b};
+  } else {
+    // On the axis: the horn torus' pinch or a spindle torus' cusp, where the gradient vanishes
+    // and the root is a multiple one, resolved only to about the square root of the rounding.
+    hit.point = p;
+    const double e = 4 * std::sqrt(kMachineEpsilon) * (big_r + r);
+    hit.point_error = {e, e, e};
+    hit.normal = p.z != 0 ? Vec3{0, 0, p.z > 0 ? 1.0 : -1.0} : -u;
+  }
+  hit.shading_normal = hit.normal;
+  return hit;
+}
+
+// Every root of the ray's quartic with t in (0, t_max), ascending, as hits.
+TorusRoots torus_roots(const Torus& torus, const Ray& ray, double t_max) {
+  TorusRoots out;
+  const double big_r = torus.torus_radius, r = torus.tube_radius;
+  const Vec3& o = ray.origin;
+  const Vec3& d = ray.direction;
+  const double dd = dot(d, d);
+  if (!is_finite(o) || !is_finite(d) || !(dd > 0) || !std::isfinite(dd) || !(t_max > 0)) return out;
+
+  // The span through the box, padded so that it certainly holds the rounded surface.
+  double t_enter = 0, t_exit = 0;
+  const double pad = 1 + 1e-9;
+  if (!box_span(o, d, (big_r + r) * pad, r * pad, t_enter, t_exit)) return out;
+  const double t_lo = std::max(t_enter, 0.0), t_hi = std::min(t_exit, t_max);
+  if (!(t_lo < t_hi)) return out;
+
+  // The frame: origin at the line's point nearest the centre, unit direction; s = (t - t0) |d|.
+  const double len = std::sqrt(dd);
+  const Vec3 u = d / len;
+  const double t0 = -dot(o, d) / dd;
+  const Vec3 f = o + d * t0;
+
+  // F(f + s u) = (A s^2 + B s + C)^2 - 4 R^2 (P s^2 + 2 Q s + S).
+  const double big_r2 = big_r * big_r;
+  const double A = dot(u, u), B = 2 * dot(f, u), C = dot(f, f) + big_r2 - r * r;
+  const double P = u.x * u.x + u.y * u.y, Q = f.x * u.x + f.y * u.y;
+  const double rho = std::hypot(f.x, f.y);
+  Polynomial quartic;
+  quartic.degree = 4;
+  quartic.c[4] = A * A;
+  quartic.c[3] = 2 * A * B;
+  quartic.c[2] = B * B + 2 * A * C - 4 * big_r2 * P;
+  quartic.c[1] = 2 * B * C - 8 * big_r2 * Q;
+  quartic.c[0] = ((rho - big_r) * (rho - big_r) + f.z * f.z - r * r) *
+                 ((rho + big_r) * (rho + big_r) + f.z * f.z - r * r);
+
+  PolynomialRoot roots[kMaxPolynomialDegree];
+  const int n = real_roots(quartic, (t_lo - t0) * len, (t_hi - t0) * len, roots);
+  for (int i = 0; i < n; ++i) {
+    const double s = roots[i].x;
+    const double t = t0 + s / len;
+    if (!(t > 0 && t < t_max)) continue;
+    LocalHit hit = surface_hit(big_r, r, f + u * s, u);
+    // Within a few error bounds of the origin: the surface the ray is leaving.
+    if (!(t * len > 4 * length(hit.point_error))) continue;
+    hit.t = t;
+    out.entries[out.count++] = {hit, roots[i].touching};
+  }
+  return out;
+}
+
+}  // namespace
+
+bool intersect_torus(const Torus& torus, const Ray& ray, double t_max, LocalHit& hit) {
+  const TorusRoots roots = torus_roots(torus, ray, t_max);
+  if (roots.count == 0) return false;
+  hit = roots.entries[0].hit;
+  return true;
+}
+
+std::vector<LocalHit> torus_crossings(const Torus& torus, const Ray& ray, double t_max) {
+  const TorusRoots roots = torus_roots(torus, ray, t_max);
+  std::vector<LocalHit> crossings;
+  for (int i = 0; i < roots.count; ++i) {
+    crossings.push_back(roots.entries[i].hit);
+    // A touching root enters and leaves at once: twice, so that counting crossings still
+    // tells inside from outside.
+    if (roots.entries[i].touching) crossings.push_back(roots.entries[i].hit);
+  }
+  return crossings;
+}
+
+}  // namespace tessera

@@ -1,0 +1,157 @@
+// Polynomial arithmetic and root isolation (polynomial.h).
+#include "common/math/polynomial.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "common/math/float_error.h"
+
+namespace tessera {
+
+namespace {
+
+// The degree without leading zero coefficients, so that derivatives and root counts are right.
+int effective_degree(const Polynomial& p) {
+  int n = p.degree;
+  while (n > 0 && p.c[n] == 0) --n;
+  return n;
+}
+
+int sign(double v) { return (v > 0) - (v < 0); }
+
+// The root in (a, b), where p is monotone and p(a), p(b) have opposite signs: Newton steps
+// that stay inside the bracket, bisection otherwise. The bracket shrinks every step, so it ends
+// within an ulp or two of the root, or at a point where p rounds to zero.
+double bracketed_root(const Polynomial& p, const Polynomial& dp, double a, double b, double fa) {
+  double x = a + (b - a) / 2;
+  for (int iteration = 0; iteration < 200; ++iteration) {
+    const double fx = evaluate(p, x);
+    if (fx == 0) return x;
+    if (sign(fx) == sign(fa)) {
+      a = x;
+      fa = fx;
+    } else {
+      b = x;
+    }
+    const double dfx = evaluate(dp, x);
+    double next = dfx != 0 ? x - fx / dfx : a + (b - a) / 2;
+    if (!(next > a && next < b)) next = a + (b - a) / 2;
+    // Converged: the step is below the rounding of x, or the bracket holds no double between.
+    if (std::fabs(next - x) <= 2 * kMachineEpsilon * std::fabs(x) || !(next > a && next < b))
+      return next > a && next < b ? next : x;
+    x = next;
+  }
+  return x;
+}
+
+// Degrees 1 and 2 in closed form (the cancellation-free q form), with the same contract as
+// real_roots: these are the derivatives of cubics and quartics, whose roots only need to split
+// the interval, and are found many times per ray.
+int low_degree_roots(const Polynomial& p, double lo, double hi,
+                     PolynomialRoot roots[kMaxPolynomialDegree]) {
+  int count = 0;
+  const auto keep = [&](double x, bool touching) {
+    if (x > lo && x < hi) roots[count++] = {x, touching};
+  };
+  if (p.degree == 1) {
+    keep(-p.c[0] / p.c[1], false);
+    return count;
+  }
+  const double a = p.c[2], b = p.c[1], c = p.c[0];
+  const double disc = b * b - 4 * a * c;
+  const double disc_error = gamma_bound(3) * (b * b + 4 * std::fabs(a * c));
+  if (disc < -disc_error) return 0;
+  if (std::fabs(disc) <= disc_error) {
+    keep(-b / (2 * a), true);
+    return count;
+  }
+  const double q = -(b + std::copysign(std::sqrt(disc), b)) / 2;
+  double x0 = q / a, x1 = c / q;
+  if (x0 > x1) std::swap(x0, x1);
+  keep(x0, false);
+  keep(x1, false);
+  return count;
+}
+
+}  // namespace
+
+Polynomial operator+(const Polynomial& a, const Polynomial& b) {
+  Polynomial r;
+  r.degree = std::max(a.degree, b.degree);
+  for (int i = 0; i <= r.degree; ++i) r.c[i] = a.c[i] + b.c[i];
+  return r;
+}
+
+Polynomial operator*(double s, const Polynomial& p) {
+  Polynomial r = p;
+  for (int i = 0; i <= r.degree; ++i) r.c[i] *= s;
+  return r;
+}
+
+Polynomial operator*(const Polynomial& a, const Polynomial& b) {
+  Polynomial r;
+  r.degree = std::min(a.degree + b.degree, kMaxPolynomialDegree);
+  for (int i = 0; i <= a.degree; ++i)
+    for (int j = 0; j <= b.degree && i + j <= kMaxPolynomialDegree; ++j)
+      r.c[i + j] += a.c[i] * b.c[j];
+  return r;
+}
+
+Polynomial derivative(const Polynomial& p) {
+  Polynomial r;
+  r.degree = std::max(p.degree - 1, 0);
+  for (int i = 1; i <= p.degree; ++i) r.c[i - 1] = i * p.c[i];
+  return r;
+}
+
+double evaluate(const Polynomial& p, double x) {
+  double v = p.c[p.degree];
+  for (int i = p.degree - 1; i >= 0; --i) v = v * x + p.c[i];
+  return v;
+}
+
+double evaluation_error(const Polynomial& p, double x) {
+  const double ax = std::fabs(x);
+  double v = std::fabs(p.c[p.degree]);
+  for (int i = p.degree - 1; i >= 0; --i) v = v * ax + std::fabs(p.c[i]);
+  return gamma_bound(2 * p.degree + 1) * v;
+}
+
+int real_roots(const Polynomial& p_in, double lo, double hi,
+               PolynomialRoot roots[kMaxPolynomialDegree]) {
+  Polynomial p = p_in;
+  p.degree = effective_degree(p_in);
+  if (p.degree == 0 || !(lo < hi)) return 0;
+  if (p.degree <= 2) return low_degree_roots(p, lo, hi, roots);
+  const Polynomial dp = derivative(p);
+
+  // The split points: lo, the derivative's roots (p's extrema and inflections), hi.
+  double xs[kMaxPolynomialDegree + 1];
+  double values[kMaxPolynomialDegree + 1];
+  PolynomialRoot critical[kMaxPolynomialDegree];
+  const int n_critical = p.degree >= 2 ? real_roots(dp, lo, hi, critical) : 0;
+  const int n_points = n_critical + 2;
+  xs[0] = lo;
+  for (int i = 0; i < n_critical; ++i) xs[i + 1] = critical[i].x;
+  xs[n_points - 1] = hi;
+  for (int i = 0; i < n_points; ++i) {
+    values[i] = evaluate(p, xs[i]);
+    // An interior split point whose value is lost in rounding is a root: p touches zero there
+    // (or crosses it at an inflection), and its neighbours must not report it a second time.
+    if (i > 0 && i < n_points - 1 && std::fabs(values[i]) <= evaluation_error(p, xs[i]))
+      values[i] = 0;
+  }
+
+  int count = 0;
+  for (int i = 0; i < n_points; ++i) {
+    if (i > 0 && i < n_points - 1 && values[i] == 0) {
+      roots[count++] = {xs[i], sign(values[i - 1]) * sign(values[i + 1]) > 0};
+    }
+    if (i + 1 < n_points && sign(values[i]) * sign(values[i + 1]) < 0) {
+      roots[count++] = {bracketed_root(p, dp, xs[i], xs[i + 1], values[i]), false};
+    }
+  }
+  return count;
+}
+
+}  // namespace tessera

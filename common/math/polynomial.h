@@ -1,0 +1,44 @@
+// Univariate polynomials of degree up to 4 and their real roots, for ray/surface intersection
+// (torus, algebraic surfaces).
+//
+// Roots are isolated without closed forms or Sturm sequences: the roots of the derivative
+// (found the same way, recursively) split the interval into pieces on which the polynomial is
+// monotone, so each piece holds at most one root, found by safeguarded Newton iteration inside
+// its sign-change bracket. Closed-form quartics lose most of their digits near multiple roots;
+// bracketing keeps every root that the polynomial's rounding allows to be resolved, and
+// reports an extremum whose value is within that rounding as one touching (double) root, as a
+// ray grazing a surface needs.
+#pragma once
+
+namespace tessera {
+
+inline constexpr int kMaxPolynomialDegree = 4;
+
+// c[0] + c[1] x + ... + c[degree] x^degree, lowest degree first.
+struct Polynomial {
+  double c[kMaxPolynomialDegree + 1] = {};
+  int degree = 0;
+};
+
+Polynomial operator+(const Polynomial& a, const Polynomial& b);
+Polynomial operator*(double s, const Polynomial& p);
+// The product; its degree must not exceed kMaxPolynomialDegree.
+Polynomial operator*(const Polynomial& a, const Polynomial& b);
+Polynomial derivative(const Polynomial& p);
+
+double evaluate(const Polynomial& p, double x);
+// A bound on the rounding error of evaluate(p, x) (Horner's rule: gamma(2n) sum |c_i| |x|^i).
+double evaluation_error(const Polynomial& p, double x);
+
+struct PolynomialRoot {
+  double x = 0;
+  bool touching = false;  // the polynomial does not change sign there (even multiplicity)
+};
+
+// The real roots of p in the open interval (lo, hi), ascending; returns how many (at most
+// p.degree). lo and hi must be finite. A polynomial that is zero everywhere has no isolated
+// roots, and none are reported.
+int real_roots(const Polynomial& p, double lo, double hi,
+               PolynomialRoot roots[kMaxPolynomialDegree]);
+
+}  // namespace tessera

@@ -1,0 +1,321 @@
+// Ray / torus intersection (shapes.h) against roots constructed analytically, in long double
+// where the construction itself could round.
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <random>
+
+#include "common/geometry/instance.h"
+#include "common/geometry/shapes.h"
+#include "common/math/float_error.h"
+#include "tests/geometry/test_meshes.h"
+
+namespace tessera {
+namespace {
+
+constexpr Torus kRing{0.25, 1};
+constexpr Torus kHorn{1, 1};
+constexpr Torus kSpindle{1, 0.5};
+
+// The torus function, in long double: zero on the surface.
+long double torus_function(const Torus& t, const Vec3& p) {
+  const long double x = p.x, y = p.y, z = p.z, big_r = t.torus_radius, r = t.tube_radius;
+  const long double k = x * x + y * y + z * z + big_r * big_r - r * r;
+  return k * k - 4 * big_r * big_r * (x * x + y * y);
+}
+
+// Distance from p to the surface, to first order.
+double surface_distance(const Torus& t, const Vec3& p) {
+  const long double x = p.x, y = p.y, z = p.z, big_r = t.torus_radius, r = t.tube_radius;
+  const long double k = x * x + y * y + z * z + big_r * big_r - r * r;
+  const long double gx = 4 * k * x - 8 * big_r * big_r * x, gy = 4 * k * y - 8 * big_r * big_r * y,
+                    gz = 4 * k * z;
+  return static_cast<double>(std::fabs(torus_function(t, p)) /
+                             std::sqrt(gx * gx + gy * gy + gz * gz));
+}
+
+std::vector<double> crossing_ts(const Torus& t, const Ray& ray) {
+  std::vector<double> ts;
+  for (const LocalHit& h : torus_crossings(t, ray, kInfinity)) ts.push_back(h.t);
+  return ts;
+}
+
+TEST(Torus, AxisAlignedRayThroughTheTubes) {
+  LocalHit hit;
+  ASSERT_TRUE(intersect_torus(kRing, {{-5, 0, 0}, {1, 0, 0}}, kInfinity, hit));
+  EXPECT_EQ(hit.t, 3.75);
+  EXPECT_EQ(hit.point, (Vec3{-1.25, 0, 0}));
+  EXPECT_NEAR(hit.normal.x / length(hit.normal), -1, 1e-15);
+  EXPECT_EQ(hit.shading_normal, hit.normal);
+  const std::vector<double> ts = crossing_ts(kRing, {{-5, 0, 0}, {1, 0, 0}});
+  ASSERT_EQ(ts.size(), 4u);
+  const double expected[] = {3.75, 4.25, 5.75, 6.25};
+  for (int i = 0; i < 4; ++i) EXPECT_NEAR(ts[i], expected[i], 1e-15) << i;
+  // t is in units of the direction.
+  ASSERT_TRUE(intersect_torus(kRing, {{-5, 0, 0}, {4, 0, 0}}, kInfinity, hit));
+  EXPECT_NEAR(hit.t, 3.75 / 4, 1e-16);
+}
+
+TEST(Torus, MissesRespectsTMaxAndFindsTheExitFromInside) {
+  LocalHit hit;
+  EXPECT_FALSE(intersect_torus(kRing, {{-5, 0, 0.26}, {1, 0, 0}}, kInfinity, hit));
+  EXPECT_FALSE(intersect_torus(kRing, {{5, 0, 0}, {1, 0, 0}}, kInfinity, hit));  // behind
+  EXPECT_FALSE(intersect_torus(kRing, {{-5, 0, 0}, {1, 0, 0}}, 3.75, hit));
+  EXPECT_FALSE(intersect_torus(kRing, {{-5, 0, 0}, {0, 0, 0}}, kInfinity, hit));
+  EXPECT_FALSE(intersect_torus(kRing, {{-5, NAN, 0}, {1, 0, 0}}, kInfinity, hit));
+  // Inside the tube, the exit: the normal still points out of the tube.
+  ASSERT_TRUE(intersect_torus(kRing, {{1, 0, 0}, {0, 0, 1}}, kInfinity, hit));
+  EXPECT_EQ(hit.t, 0.25);
+  EXPECT_EQ(hit.point, (Vec3{1, 0, 0.25}));
+  EXPECT_GT(hit.normal.z, 0);
+}
+
+TEST(Torus, RaysAlongTheAxis) {
+  LocalHit hit;
+  // Through the hole of a ring torus: nothing.
+  EXPECT_FALSE(intersect_torus(kRing, {{0, 0, -5}, {0, 0, 1}}, kInfinity, hit));
+  // Parallel to the axis through the tube's centre circle: z = -r, then z = +r.
+  ASSERT_TRUE(intersect_torus(kRing, {{0, 1, -5}, {0, 0, 1}}, kInfinity, hit));
+  EXPECT_EQ(hit.t, 4.75);
+  EXPECT_EQ(hit.point, (Vec3{0, 1, -0.25}));
+  EXPECT_EQ(crossing_ts(kRing, {{0, 1, -5}, {0, 0, 1}}), (std::vector<double>{4.75, 5.25}));
+  // The seen-along-the-axis silhouette is the annulus of radii R - r and R + r, of area
+  // 4 pi R r: sampled on a grid of parallel rays.
+  const int n = 400;
+  const double half = 1.3;
+  int hits = 0;
+  for (int i = 0; i < n; ++i)
+    for (int j = 0; j < n; ++j) {
+      const double x = -half + (i + 0.5) * (2 * half / n), y = -half + (j + 0.5) * (2 * half / n);
+      hits += intersect_torus(kRing, {{x, y, 10}, {0, 0, -1}}, kInfinity, hit);
+    }
+  const double area = hits * (2 * half / n) * (2 * half / n);
+  EXPECT_NEAR(area, 4 * M_PI * 1 * 0.25, 0.01 * 4 * M_PI * 0.25);
+}
+
+// Rays tangent to the outer equator (x = R + r - delta, z = 0, along y): the two roots are
+// y = +-sqrt((R + r)^2 - x^2), a near-double root when delta is small.
+TEST(Torus, GrazingTheOuterEquator) {
+  LocalHit hit;
+  for (double delta : {1e-3, 1e-6, 1e-9, 1e-12}) {
+    SCOPED_TRACE(delta);
+    const double x = 1.25 - delta;
+    const long double lx = x;
+    const double half_chord = static_cast<double>(std::sqrt(1.5625L - lx * lx));
+    const Ray ray{{x, -10, 0}, {0, 1, 0}};
+    ASSERT_TRUE(intersect_torus(kRing, ray, kInfinity, hit));
+    // The attainable accuracy of a pair 2w apart is about eps * |F| / (w |F''|).
+    const double tolerance = 1e-15 / half_chord + 1e-14;
+    EXPECT_NEAR(hit.t, 10 - half_chord, std::max(tolerance, 2e-8));
+    EXPECT_LT(surface_distance(kRing, hit.point), 1e-15);
+    const std::vector<double> ts = crossing_ts(kRing, ray);
+    ASSERT_EQ(ts.size(), 2u);  // two crossings, or one touching root counted twice
+    EXPECT_NEAR(ts[1], 10 + half_chord, std::max(tolerance, 2e-8));
+  }
+  // Exactly tangent: one touching hit.
+  ASSERT_TRUE(intersect_torus(kRing, {{1.25, -10, 0}, {0, 1, 0}}, kInfinity, hit));
+  EXPECT_NEAR(hit.t, 10, 1e-7);
+  EXPECT_NEAR(hit.point.x, 1.25, 1e-15);
+  EXPECT_GT(hit.normal.x, 0);
+  EXPECT_FALSE(intersect_torus(kRing, {{1.25 + 1e-12, -10, 0}, {0, 1, 0}}, kInfinity, hit));
+}
+
+// Rays grazing the top of the tube (z = r - delta, along x): near-double roots at
+// x = +-R +- sqrt(r^2 - z^2), compared with the construction in long double.
+TEST(Torus, GrazingTheTopOfTheTube) {
+  for (double delta : {1e-4, 1e-8, 1e-12}) {
+    SCOPED_TRACE(delta);
+    const double z = 0.25 - delta;
+    const long double lz = z;
+    const long double w = std::sqrt(0.0625L - lz * lz);
+    const double expected[4] = {static_cast<double>(-1 - w), static_cast<double>(-1 + w),
+                                static_cast<double>(1 - w), static_cast<double>(1 + w)};
+    const std::vector<LocalHit> hits = torus_crossings(kRing, {{-5, 0, z}, {1, 0, 0}}, kInfinity);
+    ASSERT_EQ(hits.size(), 4u);
+    for (int i = 0; i < 4; ++i) {
+      EXPECT_NEAR(hits[i].t - 5, expected[i], std::max(4e-16 / static_cast<double>(w), 1e-7)) << i;
+      EXPECT_LT(surface_distance(kRing, hits[i].point), 1e-15) << i;
+      EXPECT_TRUE(is_finite(hits[i].normal));
+    }
+  }
+}
+
+// From 10^4 units away the digits survive: the quartic is formed near the torus.
+TEST(Torus, RaysFromFarAway) {
+  LocalHit hit;
+  for (double distance : {1e2, 1e4, 1e6}) {
+    SCOPED_TRACE(distance);
+    // Along x at y = 0.1: the first root is x = -sqrt((R + r)^2 - 0.01).
+    ASSERT_TRUE(intersect_torus(kRing, {{-distance, 0.1, 0}, {1, 0, 0}}, kInfinity, hit));
+    const double x = static_cast<double>(-std::sqrt(1.5625L - 0.01L));
+    EXPECT_NEAR(hit.point.x, x, 1e-15);
+    EXPECT_NEAR(hit.t, distance + x, distance * 4e-16);
+    EXPECT_LT(surface_distance(kRing, hit.point), 1e-15);
+    // Obliquely, through the known point (1, 0, 0.25) on top of the tube.
+    const Vec3 target{1, 0, 0.25};
+    const Vec3 dir = normalize_or(Vec3{0.3, -0.2, -1}, {});
+    const Ray ray{target - dir * distance, dir};
+    ASSERT_TRUE(intersect_torus(kRing, ray, kInfinity, hit));
+    EXPECT_LT(surface_distance(kRing, hit.point), 1e-15);
+    EXPECT_NEAR(hit.point.z, 0.25, 1e-6);  // the tube's top, reached at a shallow angle
+    EXPECT_NEAR(hit.t, distance, distance * 1e-15 + 1e-6);
+  }
+}
+
+// The horn torus (r = R) pinches at the origin: along x, F = x^2 (x^2 - 4 R^2), a double root
+// at 0 between simple ones at +-2R.
+TEST(Torus, HornTorusPinchPoint) {
+  LocalHit hit;
+  for (double degrees : {90.0, 60.0, 20.0}) {
+    SCOPED_TRACE(degrees);
+    const double a = degrees * M_PI / 180;
+    const Vec3 dir{std::sin(a), 0, std::cos(a)};
+    const Ray ray{dir * -5, dir};
+    // Along this meridian, F = s^2 (s^2 - 4 R^2 sin^2 a).
+    const double w = 2 * std::sin(a);
+    const std::vector<double> ts = crossing_ts(kHorn, ray);
+    ASSERT_EQ(ts.size(), 4u);
+    EXPECT_NEAR(ts[0], 5 - w, 1e-14);
+    EXPECT_NEAR(ts[1], 5, 1e-7);  // the pinch: touching, counted twice
+    EXPECT_NEAR(ts[2], 5, 1e-7);
+    EXPECT_NEAR(ts[3], 5 + w, 1e-14);
+    ASSERT_TRUE(intersect_torus(kHorn, ray, kInfinity, hit));
+    EXPECT_NEAR(hit.t, 5 - w, 1e-14);
+    // From inside the tube, aimed at the pinch: the pinch itself, with finite values.
+    const Ray inside{dir * -0.5, dir};
+    ASSERT_TRUE(intersect_torus(kHorn, inside, kInfinity, hit));
+    EXPECT_NEAR(hit.t, 0.5, 1e-7);
+    EXPECT_TRUE(is_finite(hit.point) && is_finite(hit.normal) && is_finite(hit.point_error));
+    EXPECT_GT(length(hit.normal), 0);
+  }
+  // Along the axis, F = z^4: a quadruple root at the pinch.
+  ASSERT_TRUE(intersect_torus(kHorn, {{0, 0, -5}, {0, 0, 1}}, kInfinity, hit));
+  EXPECT_EQ(hit.t, 5);
+  EXPECT_EQ(hit.point, Vec3{});
+  EXPECT_EQ(hit.normal, (Vec3{0, 0, -1}));  // facing the ray: the gradient vanishes
+  EXPECT_GT(max_component(hit.point_error), 0);
+}
+
+// The spindle torus (r > R): along x, roots at +-R +- r; the inner "lemon" is part of the
+// surface. Along the axis, the cusps at z = +-sqrt(r^2 - R^2).
+TEST(Torus, SpindleTorus) {
+  LocalHit hit;
+  const std::vector<LocalHit> hits = torus_crossings(kSpindle, {{-5, 0, 0}, {1, 0, 0}}, kInfinity);
+  ASSERT_EQ(hits.size(), 4u);
+  const double expected[] = {-1.5, -0.5, 0.5, 1.5};
+  for (int i = 0; i < 4; ++i) {
+    EXPECT_NEAR(hits[i].point.x, expected[i], 1e-15) << i;
+    EXPECT_LT(surface_distance(kSpindle, hits[i].point), 1e-15);
+  }
+  // The gradient's direction: out of the apple, into the lemon (the solid is between them).
+  EXPECT_LT(hits[0].normal.x, 0);
+  EXPECT_GT(hits[1].normal.x, 0);
+  EXPECT_LT(hits[2].normal.x, 0);
+  EXPECT_GT(hits[3].normal.x, 0);
+  const double cusp = std::sqrt(0.75);
+  ASSERT_TRUE(intersect_torus(kSpindle, {{0, 0, 5}, {0, 0, -1}}, kInfinity, hit));
+  EXPECT_NEAR(hit.t, 5 - cusp, 1e-7);
+  EXPECT_EQ(hit.normal, (Vec3{0, 0, 1}));
+  // Off the axis, through the apple only above the lemon's tip.
+  ASSERT_TRUE(intersect_torus(kSpindle, {{0.05, 0, 5}, {0, 0, -1}}, kInfinity, hit));
+  EXPECT_LT(surface_distance(kSpindle, hit.point), 1e-15);
+  EXPECT_GT(hit.normal.z, 0);
+}
+
+TEST(Torus, TransformedInstance) {
+  // Stood up in the XZ-plane, scaled by 2 and moved 10^4 away.
+  const Affine to_world = Affine::translation({1e4, -3, 2}) * *Affine::rotation(90, {1, 0, 0}) *
+                          Affine::scaling({2, 2, 2});
+  const std::optional<Instance> inst = make_instance(kRing, to_world, nullptr);
+  ASSERT_TRUE(inst);
+  EXPECT_NEAR(inst->world_bounds.hi.x, 1e4 + 2.5, 1e-9);
+  EXPECT_NEAR(inst->world_bounds.hi.y, -3 + 0.5, 1e-9);
+  WorldHit hit;
+  IntersectionCounters counters;
+  // Along -y onto the tube at world (1e4 + 2, -3, 2): first hit at y = -3 + 0.5.
+  ASSERT_TRUE(intersect_instance(*inst, {{1e4 + 2, 10, 2}, {0, -1, 0}}, kInfinity, hit, counters));
+  EXPECT_NEAR(hit.t, 12.5, 1e-11);
+  EXPECT_NEAR(hit.point.y, -2.5, 1e-11);
+  EXPECT_NEAR(hit.normal.y, 1, 1e-12);
+  EXPECT_EQ(counters.shape_tests, 1u);
+}
+
+// A ray leaving a hit from offset_ray_origin() never finds the same point again: outward rays
+// and inward ones alike, on all three kinds of torus under random transforms.
+TEST(Torus, SpawnedRaysDoNotFindTheirOwnHit) {
+  std::mt19937_64 rng(31);
+  std::uniform_real_distribution<double> unit(0, 1);
+  int tested = 0;
+  for (const Torus& torus : {kRing, kHorn, kSpindle, Torus{0.01, 1}}) {
+    for (int i = 0; i < 60; ++i) {
+      const Affine to_world = testing::random_transform(rng);
+      const std::optional<Instance> inst = make_instance(torus, to_world, nullptr);
+      ASSERT_TRUE(inst);
+      const double size = length(inst->world_bounds.diagonal());
+      IntersectionCounters counters;
+      for (int r = 0; r < 20; ++r) {
+        const Bounds3 local = object_bounds(torus, nullptr);
+        const Vec3 aim{unit(rng), unit(rng), unit(rng)};
+        const Vec3 target = to_world.apply_point(local.lo + mul(local.diagonal(), aim));
+        const Vec3 origin = target + testing::random_unit(rng) * (size * (1 + 4 * unit(rng)));
+        WorldHit hit;
+        if (!intersect_instance(*inst, {origin, target - origin}, kInfinity, hit, counters))
+          continue;
+        ASSERT_TRUE(is_finite(hit.point) && is_finite(hit.normal));
+        for (int s = 0; s < 4; ++s) {
+          const Vec3 w = testing::random_unit(rng);
+          if (dot(w, hit.normal) == 0) continue;
+          const Vec3 o = offset_ray_origin(hit.point, hit.point_error, hit.normal, w);
+          WorldHit again;
+          ++tested;
+          if (!intersect_instance(*inst, {o, w}, kInfinity, again, counters)) continue;
+          EXPECT_GT(length(again.point - hit.point), 16 * length(hit.point_error))
+              << "torus " << torus.tube_radius << " " << torus.torus_radius << " transform " << i;
+        }
+      }
+    }
+  }
+  EXPECT_GT(tested, 2000);
+}
+
+// For CSG: a ray from outside crosses a closed surface an even number of times (touching roots
+// count twice), alternately entering and leaving.
+TEST(Torus, CrossingsFromOutsideComeInPairs) {
+  std::mt19937_64 rng(23);
+  int touching = 0;
+  for (const Torus& torus : {kRing, kHorn, kSpindle}) {
+    for (int i = 0; i < 20000; ++i) {
+      const Vec3 origin = testing::random_unit(rng) * 5;
+      // Aimed near the centre; every tenth ray through it exactly, for the pinch and cusps.
+      std::uniform_real_distribution<double> aim(-1.5, 1.5);
+      const Vec3 target = i % 10 == 0 ? Vec3{} : Vec3{aim(rng), aim(rng), aim(rng) / 3};
+      const std::vector<LocalHit> hits =
+          torus_crossings(torus, {origin, target - origin}, kInfinity);
+      ASSERT_EQ(hits.size() % 2, 0u) << i;
+      for (std::size_t k = 1; k < hits.size(); ++k) {
+        ASSERT_LE(hits[k - 1].t, hits[k].t);
+        touching += hits[k - 1].t == hits[k].t;
+      }
+    }
+  }
+  EXPECT_GT(touching, 0);  // the rays through the pinch
+}
+
+// Random rays, finite results whatever they hit.
+TEST(Torus, NeverNaN) {
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> unit(-3, 3);
+  for (const Torus& torus : {kRing, kHorn, kSpindle}) {
+    for (int i = 0; i < 20000; ++i) {
+      const Ray ray{{unit(rng), unit(rng), unit(rng)}, {unit(rng), unit(rng), unit(rng)}};
+      for (const LocalHit& h : torus_crossings(torus, ray, kInfinity)) {
+        ASSERT_TRUE(std::isfinite(h.t) && is_finite(h.point) && is_finite(h.normal) &&
+                    is_finite(h.point_error));
+        ASSERT_GT(length(h.normal), 0);
+      }
+    }
+  }
+}
+
+}  // namespace
+}  // namespace tessera

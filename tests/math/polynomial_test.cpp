@@ -1,0 +1,164 @@
+// Root isolation (common/math/polynomial.h) against roots constructed exactly.
+#include "common/math/polynomial.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <cmath>
+#include <initializer_list>
+#include <random>
+
+namespace tessera {
+namespace {
+
+// The monic polynomial with the given roots.
+Polynomial from_roots(std::initializer_list<double> roots) {
+  Polynomial p;
+  p.c[0] = 1;
+  for (double r : roots) {
+    Polynomial factor;
+    factor.degree = 1;
+    factor.c[0] = -r;
+    factor.c[1] = 1;
+    p = p * factor;
+  }
+  return p;
+}
+
+TEST(Polynomial, Arithmetic) {
+  const Polynomial p = from_roots({1, 2});  // x^2 - 3x + 2
+  EXPECT_EQ(p.degree, 2);
+  EXPECT_EQ(p.c[0], 2);
+  EXPECT_EQ(p.c[1], -3);
+  EXPECT_EQ(p.c[2], 1);
+  EXPECT_EQ(evaluate(p, 3), 2);
+  const Polynomial dp = derivative(p);
+  EXPECT_EQ(dp.degree, 1);
+  EXPECT_EQ(dp.c[0], -3);
+  EXPECT_EQ(dp.c[1], 2);
+  const Polynomial sum = p + 2 * dp;
+  EXPECT_EQ(sum.c[0], -4);
+  EXPECT_EQ(sum.c[1], 1);
+  EXPECT_GT(evaluation_error(p, 3), 0);
+  EXPECT_LT(evaluation_error(p, 3), 1e-13);
+}
+
+TEST(Polynomial, SimpleRootsOfEachDegree) {
+  PolynomialRoot roots[kMaxPolynomialDegree];
+  ASSERT_EQ(real_roots(from_roots({0.5}), -10, 10, roots), 1);
+  EXPECT_EQ(roots[0].x, 0.5);
+  ASSERT_EQ(real_roots(from_roots({-3, 0.25}), -10, 10, roots), 2);
+  EXPECT_EQ(roots[0].x, -3);
+  EXPECT_EQ(roots[1].x, 0.25);
+  ASSERT_EQ(real_roots(from_roots({-1, 2, 7}), -10, 10, roots), 3);
+  EXPECT_DOUBLE_EQ(roots[2].x, 7);
+  ASSERT_EQ(real_roots(from_roots({-1.5, -0.5, 0.5, 1.5}), -10, 10, roots), 4);
+  for (int i = 0; i < 4; ++i) {
+    EXPECT_NEAR(roots[i].x, -1.5 + i, 1e-15);
+    EXPECT_FALSE(roots[i].touching);
+  }
+}
+
+TEST(Polynomial, OnlyRootsInsideTheOpenInterval) {
+  PolynomialRoot roots[kMaxPolynomialDegree];
+  const Polynomial p = from_roots({-1.5, -0.5, 0.5, 1.5});
+  ASSERT_EQ(real_roots(p, 0, 10, roots), 2);
+  EXPECT_NEAR(roots[0].x, 0.5, 1e-15);
+  EXPECT_EQ(real_roots(p, 0.5, 1.5, roots), 0);  // both ends excluded
+  EXPECT_EQ(real_roots(p, 2, 1, roots), 0);      // empty interval
+}
+
+TEST(Polynomial, NoRealRoots) {
+  PolynomialRoot roots[kMaxPolynomialDegree];
+  Polynomial p;  // x^4 + x^2 + 1
+  p.degree = 4;
+  p.c[4] = 1;
+  p.c[2] = 1;
+  p.c[0] = 1;
+  EXPECT_EQ(real_roots(p, -100, 100, roots), 0);
+  EXPECT_EQ(real_roots(Polynomial{}, -1, 1, roots), 0);  // zero everywhere: none isolated
+}
+
+TEST(Polynomial, LeadingZerosLowerTheDegree) {
+  PolynomialRoot roots[kMaxPolynomialDegree];
+  Polynomial p = from_roots({2, 3});
+  p.degree = 4;  // c[3] = c[4] = 0
+  ASSERT_EQ(real_roots(p, -10, 10, roots), 2);
+  EXPECT_DOUBLE_EQ(roots[0].x, 2);
+  EXPECT_DOUBLE_EQ(roots[1].x, 3);
+}
+
+TEST(Polynomial, DoubleRootsAreOneTouchingRoot) {
+  PolynomialRoot roots[kMaxPolynomialDegree];
+  ASSERT_EQ(real_roots(from_roots({1, 1}), -10, 10, roots), 1);
+  EXPECT_EQ(roots[0].x, 1);
+  EXPECT_TRUE(roots[0].touching);
+  ASSERT_EQ(real_roots(from_roots({-2, 0.3, 0.3, 4}), -10, 10, roots), 3);
+  EXPECT_NEAR(roots[1].x, 0.3, 1e-8);
+  EXPECT_TRUE(roots[1].touching);
+  EXPECT_FALSE(roots[0].touching);
+  // A quadruple root: x^4.
+  ASSERT_EQ(real_roots(from_roots({0, 0, 0, 0}), -1, 1, roots), 1);
+  EXPECT_EQ(roots[0].x, 0);
+  EXPECT_TRUE(roots[0].touching);
+  // A triple root crosses zero: not touching.
+  ASSERT_EQ(real_roots(from_roots({0.5, 0.5, 0.5}), -1, 1, roots), 1);
+  EXPECT_NEAR(roots[0].x, 0.5, 1e-5);
+  EXPECT_FALSE(roots[0].touching);
+}
+
+// Close pairs x = c +- w: resolved to their conditioning, about eps / w, down to the point
+// where the pair merges into one touching root.
+TEST(Polynomial, NearDoubleRoots) {
+  PolynomialRoot roots[kMaxPolynomialDegree];
+  for (double w : {1e-2, 1e-4, 1e-6}) {
+    SCOPED_TRACE(w);
+    const Polynomial p = from_roots({0.7 - w, 0.7 + w, -3, 5});
+    ASSERT_EQ(real_roots(p, -10, 10, roots), 4);
+    EXPECT_NEAR(roots[1].x, 0.7 - w, 1e-15 / w);
+    EXPECT_NEAR(roots[2].x, 0.7 + w, 1e-15 / w);
+  }
+  const Polynomial p = from_roots({0.7 - 1e-12, 0.7 + 1e-12, -3, 5});
+  const int n = real_roots(p, -10, 10, roots);
+  ASSERT_TRUE(n == 3 || n == 4);
+  EXPECT_NEAR(roots[1].x, 0.7, 1e-7);
+}
+
+// The root of p near x, by Newton's method in long double on p's own (rounded) coefficients.
+long double reference_root(const Polynomial& p, long double x) {
+  for (int i = 0; i < 50; ++i) {
+    long double v = p.c[p.degree], dv = 0;
+    for (int k = p.degree - 1; k >= 0; --k) {
+      dv = dv * x + v;
+      v = v * x + p.c[k];
+    }
+    x -= v / dv;
+  }
+  return x;
+}
+
+// Random separated roots: every one found, as accurately as p's rounding allows (its
+// evaluation error over its slope).
+TEST(Polynomial, RandomQuartics) {
+  std::mt19937_64 rng(7);
+  std::uniform_real_distribution<double> unit(-10, 10);
+  PolynomialRoot roots[kMaxPolynomialDegree];
+  for (int i = 0; i < 2000; ++i) {
+    double r[4] = {unit(rng), unit(rng), unit(rng), unit(rng)};
+    std::sort(r, r + 4);
+    if (r[1] - r[0] < 1e-3 || r[2] - r[1] < 1e-3 || r[3] - r[2] < 1e-3) continue;
+    const double scale = std::pow(10, unit(rng) / 2);
+    const Polynomial p = scale * from_roots({r[0], r[1], r[2], r[3]});
+    ASSERT_EQ(real_roots(p, -11, 11, roots), 4) << i;
+    for (int k = 0; k < 4; ++k) {
+      const double reference = static_cast<double>(reference_root(p, r[k]));
+      const double slope = std::fabs(evaluate(derivative(p), reference));
+      const double tolerance = 2 * evaluation_error(p, reference) / slope + 1e-15 * 16;
+      EXPECT_NEAR(roots[k].x, reference, tolerance) << i;
+      EXPECT_NEAR(roots[k].x, r[k], 1e-8) << i;
+    }
+  }
+}
+
+}  // namespace
+}  // namespace tessera
