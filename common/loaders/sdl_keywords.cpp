@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "common/loaders/lexical.h"
+#include "common/loaders/polyhedra.h"
 #include "common/loaders/sdl_parser.h"
 
 namespace tessera::sdl {
@@ -63,6 +64,12 @@ void mesh(FileParser& p) {
   const Token name = p.word("a file name for <filename> of 'mesh'");
   const bool interpolate = p.flag("<interpolate-normals>");
   p.add_object(MeshShape{p.mesh(name), interpolate});
+}
+
+// Polyhedra (§3.3.1): flat-shaded meshes of convex polygons.
+template <Polyhedron kind>
+void polyhedron(FileParser& p) {
+  p.add_object(MeshShape{p.built_in_mesh([] { return polyhedron_mesh(kind); }), false});
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -370,7 +377,7 @@ void use(FileParser& p) { p.use(); }
 void include(FileParser& p) { p.include(p.word("a file name after 'include'")); }
 
 // ---------------------------------------------------------------------------------------------
-// Keywords of later issues: CSG, torus, algebraic surfaces, polyhedra, teapot, motion blur.
+// Keywords of later issues: CSG, torus, algebraic surfaces, teapot, motion blur.
 
 void not_supported_yet(FileParser& p) {
   p.fail(p.keyword(), "'" + std::string(p.keyword_name()) + "' is not supported yet");
@@ -401,13 +408,13 @@ constexpr Keyword kKeywords[] = {
     {"mesh", mesh},
     {"teapot", not_supported_yet},
     {"torus", not_supported_yet},
-    {"buckyball", not_supported_yet},
-    {"diamond", not_supported_yet},
-    {"dodecahedron", not_supported_yet},
-    {"icosahedron", not_supported_yet},
-    {"octahedron", not_supported_yet},
-    {"pyramid", not_supported_yet},
-    {"tetrahedron", not_supported_yet},
+    {"buckyball", polyhedron<Polyhedron::Buckyball>},
+    {"diamond", polyhedron<Polyhedron::Diamond>},
+    {"dodecahedron", polyhedron<Polyhedron::Dodecahedron>},
+    {"icosahedron", polyhedron<Polyhedron::Icosahedron>},
+    {"octahedron", polyhedron<Polyhedron::Octahedron>},
+    {"pyramid", polyhedron<Polyhedron::Pyramid>},
+    {"tetrahedron", polyhedron<Polyhedron::Tetrahedron>},
     {"oneSheetHyperboloid", not_supported_yet},
     {"twoSheetHyperboloid", not_supported_yet},
     {"ellipticCylinder", not_supported_yet},
