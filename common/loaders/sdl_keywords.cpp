@@ -9,6 +9,7 @@
 #include "common/loaders/lexical.h"
 #include "common/loaders/polyhedra.h"
 #include "common/loaders/sdl_parser.h"
+#include "common/loaders/teapot.h"
 
 namespace tessera::sdl {
 namespace {
@@ -71,6 +72,9 @@ template <Polyhedron kind>
 void polyhedron(FileParser& p) {
   p.add_object(MeshShape{p.built_in_mesh([] { return polyhedron_mesh(kind); }), false});
 }
+
+// The Utah teapot (§3.3.3): a mesh shipped with the program, Phong-shaded.
+void teapot(FileParser& p) { p.add_object(MeshShape{p.built_in_mesh(teapot_mesh), true}); }
 
 // ---------------------------------------------------------------------------------------------
 // Material properties (§3.2.5): they set the current material of every following shape.
@@ -377,7 +381,7 @@ void use(FileParser& p) { p.use(); }
 void include(FileParser& p) { p.include(p.word("a file name after 'include'")); }
 
 // ---------------------------------------------------------------------------------------------
-// Keywords of later issues: CSG, torus, algebraic surfaces, teapot, motion blur.
+// Keywords of later issues: CSG, torus, algebraic surfaces, motion blur.
 
 void not_supported_yet(FileParser& p) {
   p.fail(p.keyword(), "'" + std::string(p.keyword_name()) + "' is not supported yet");
@@ -406,7 +410,7 @@ constexpr Keyword kKeywords[] = {
     {"cylinder", cylinder},
     {"taperedCylinder", tapered_cylinder},
     {"mesh", mesh},
-    {"teapot", not_supported_yet},
+    {"teapot", teapot},
     {"torus", not_supported_yet},
     {"buckyball", polyhedron<Polyhedron::Buckyball>},
     {"diamond", polyhedron<Polyhedron::Diamond>},

@@ -176,7 +176,6 @@ TEST(SdlShapes, KeywordsOfLaterIssuesAreNotSupportedYet) {
                                     "fourLobes",
                                     "steinersRomanSurface",
                                     "toothCube",
-                                    "teapot",
                                     "mbClear",
                                     "mbRotate",
                                     "mbTranslate",
