@@ -7,7 +7,9 @@
 #include <vector>
 
 #include "common/loaders/lexical.h"
+#include "common/loaders/polyhedra.h"
 #include "common/loaders/sdl_parser.h"
+#include "common/loaders/teapot.h"
 
 namespace tessera::sdl {
 namespace {
@@ -79,6 +81,15 @@ void mesh(FileParser& p) {
   const bool interpolate = p.flag("<interpolate-normals>");
   p.add_object(MeshShape{p.mesh(name), interpolate});
 }
+
+// Polyhedra (§3.3.1): flat-shaded meshes of convex polygons.
+template <Polyhedron kind>
+void polyhedron(FileParser& p) {
+  p.add_object(MeshShape{p.built_in_mesh([] { return polyhedron_mesh(kind); }), false});
+}
+
+// The Utah teapot (§3.3.3): a mesh shipped with the program, Phong-shaded.
+void teapot(FileParser& p) { p.add_object(MeshShape{p.built_in_mesh(teapot_mesh), true}); }
 
 // ---------------------------------------------------------------------------------------------
 // Material properties (§3.2.5): they set the current material of every following shape.
@@ -385,7 +396,7 @@ void use(FileParser& p) { p.use(); }
 void include(FileParser& p) { p.include(p.word("a file name after 'include'")); }
 
 // ---------------------------------------------------------------------------------------------
-// Keywords of later issues: CSG, polyhedra, teapot, motion blur.
+// Keywords of later issues: CSG, motion blur.
 
 void not_supported_yet(FileParser& p) {
   p.fail(p.keyword(), "'" + std::string(p.keyword_name()) + "' is not supported yet");
@@ -414,15 +425,15 @@ constexpr Keyword kKeywords[] = {
     {"cylinder", cylinder},
     {"taperedCylinder", tapered_cylinder},
     {"mesh", mesh},
-    {"teapot", not_supported_yet},
+    {"teapot", teapot},
     {"torus", torus},
-    {"buckyball", not_supported_yet},
-    {"diamond", not_supported_yet},
-    {"dodecahedron", not_supported_yet},
-    {"icosahedron", not_supported_yet},
-    {"octahedron", not_supported_yet},
-    {"pyramid", not_supported_yet},
-    {"tetrahedron", not_supported_yet},
+    {"buckyball", polyhedron<Polyhedron::Buckyball>},
+    {"diamond", polyhedron<Polyhedron::Diamond>},
+    {"dodecahedron", polyhedron<Polyhedron::Dodecahedron>},
+    {"icosahedron", polyhedron<Polyhedron::Icosahedron>},
+    {"octahedron", polyhedron<Polyhedron::Octahedron>},
+    {"pyramid", polyhedron<Polyhedron::Pyramid>},
+    {"tetrahedron", polyhedron<Polyhedron::Tetrahedron>},
     {"oneSheetHyperboloid", algebraic_surface<AlgebraicKind::OneSheetHyperboloid>},
     {"twoSheetHyperboloid", algebraic_surface<AlgebraicKind::TwoSheetHyperboloid>},
     {"ellipticCylinder", algebraic_surface<AlgebraicKind::EllipticCylinder>},

@@ -8,6 +8,7 @@
 #include <unordered_set>
 #include <utility>
 
+#include "common/loaders/hill_mesh_loader.h"
 #include "common/loaders/lexical.h"
 #include "common/loaders/obj_loader.h"
 #include "common/loaders/scene_source.h"
@@ -26,6 +27,8 @@ struct Macro {
   std::vector<Token> tokens;
   Token where;  // the name in the def
 };
+
+using MeshLoader = Mesh (*)(std::string_view text, const std::string& file);
 
 // ---------------------------------------------------------------------------------------------
 // LoadContext: what one load shares across its files
@@ -96,14 +99,22 @@ class LoadContext {
     leave_nesting();
   }
 
-  std::size_t mesh(const std::string& path, const Token& name) {
+  std::size_t mesh(const std::string& path, const Token& name, MeshLoader loader) {
     const auto known = mesh_ids_.find(path);
     if (known != mesh_ids_.end()) return known->second;
     const std::string bytes = read(path, location(name), "mesh file");
-    Mesh mesh = load_obj(bytes, path);
+    Mesh mesh = loader(bytes, path);
     if (mesh.triangles.empty()) fail(name, "mesh " + in_quotes(path) + " has no triangles");
     scene_.meshes.push_back(std::move(mesh));
     mesh_ids_.emplace(path, scene_.meshes.size() - 1);
+    return scene_.meshes.size() - 1;
+  }
+
+  std::size_t built_in_mesh(const std::string& name, Mesh (*make)()) {
+    const auto known = built_in_mesh_ids_.find(name);
+    if (known != built_in_mesh_ids_.end()) return known->second;
+    scene_.meshes.push_back(make());
+    built_in_mesh_ids_.emplace(name, scene_.meshes.size() - 1);
     return scene_.meshes.size() - 1;
   }
 
@@ -140,9 +151,10 @@ class LoadContext {
   Scene scene_;
   std::vector<std::unique_ptr<SourceFile>> files_;  // indexed by Token::file
   std::unordered_map<std::string, std::uint32_t> file_ids_;
-  std::unordered_map<std::string, std::size_t> mesh_ids_;  // into Scene::meshes
-  std::unordered_map<std::string, Macro> macros_;          // by lower-case name
-  std::vector<std::string> include_chain_;                 // files being parsed, outermost first
+  std::unordered_map<std::string, std::size_t> mesh_ids_;           // into Scene::meshes, by path
+  std::unordered_map<std::string, std::size_t> built_in_mesh_ids_;  // by keyword
+  std::unordered_map<std::string, Macro> macros_;                   // by lower-case name
+  std::vector<std::string> include_chain_;  // files being parsed, outermost first
   std::unordered_set<std::string> warning_set_;
   int nesting_ = 0;
   std::uint64_t tokens_ = 0;
@@ -369,16 +381,21 @@ std::size_t FileParser::mesh(const Token& name) {
       dot == std::string::npos || (slash != std::string::npos && dot < slash)
           ? std::string()
           : to_lower(std::string_view(path).substr(dot + 1));
-  if (extension == "3vn" || extension == "3dv" || extension == "3dm") {
-    std::string upper = extension;
-    std::transform(upper.begin(), upper.end(), upper.begin(),
-                   [](char c) { return c >= 'a' && c <= 'z' ? static_cast<char>(c - 32) : c; });
-    fail(name, "mesh format " + upper + " is not supported yet");
+  // The format goes by the extension, as the manual names the formats.
+  MeshLoader loader = nullptr;
+  if (extension == "obj") loader = load_obj;
+  if (extension == "3vn") loader = load_3vn;
+  if (extension == "3dv") loader = load_3dv;
+  if (extension == "3dm") loader = load_3dm;
+  if (loader == nullptr) {
+    fail(name, "mesh " + in_quotes(name.text) +
+                   " has an unsupported format (supported: .3vn, .3dv, .3dm, .obj)");
   }
-  if (extension != "obj") {
-    fail(name, "mesh " + in_quotes(name.text) + " has an unsupported format (supported: .obj)");
-  }
-  return context_.mesh(path, name);
+  return context_.mesh(path, name, loader);
+}
+
+std::size_t FileParser::built_in_mesh(Mesh (*make)()) {
+  return context_.built_in_mesh(std::string(keyword_name_), make);
 }
 
 void FileParser::include(const Token& name) { context_.include(resolve(name), name, keyword_); }

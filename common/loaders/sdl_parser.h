@@ -86,6 +86,9 @@ class FileParser {
   void add_light(const Light& light);
   // The index in Scene::meshes of the mesh file `name` (loaded once per resolved path).
   std::size_t mesh(const Token& name);
+  // The index in Scene::meshes of the mesh `make` builds for the current keyword (a polyhedron,
+  // the teapot): made once per scene and shared by every instance.
+  std::size_t built_in_mesh(Mesh (*make)());
   // `name` resolved relative to the file it is written in; an error when it leaves the root.
   std::string resolve(const Token& name);
   void include(const Token& name);

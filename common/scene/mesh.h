@@ -1,4 +1,5 @@
-// Triangle meshes as loaded from OBJ (and, later, 3VN/3DV/3DM) files.
+// Triangle meshes as loaded from OBJ, 3VN, 3DV and 3DM files or built by the loader
+// (polyhedra, teapot).
 #pragma once
 
 #include <array>

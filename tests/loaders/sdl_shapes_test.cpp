@@ -136,14 +136,31 @@ TEST(SdlShapes, MeshUsesTheCtAndMaterial) {
   EXPECT_TRUE(near(scene.objects[0].transform.apply_point({0, 0, 0}), {0, 0, 4}));
 }
 
+TEST(SdlShapes, MeshFormatGoesByTheExtensionInAnyCase) {
+  const std::string square3vn = "4 1 1\n0 0 0 1 0 0 1 1 0 0 1 0\n0 0 1\n4 0 1 2 3 0 0 0 0\n";
+  const std::string square3dv = "3 1\n0 0 0 0 0 1\n1 0 0 0 0 1\n0 1 0 0 0 1\n3 0 1 2\n";
+  const std::string square3dm = "3 1\n0 0 0\n1 0 0\n0 1 0\n3 0 1 2\n";
+  const Scene scene = load_text(
+      "mesh a.3VN 1 mesh b.3Dv 0 mesh c.3dm 1 mesh d.Obj 0",
+      {{"a.3VN", square3vn}, {"b.3Dv", square3dv}, {"c.3dm", square3dm}, {"d.Obj", kTriangleObj}});
+  ASSERT_EQ(scene.meshes.size(), 4u);
+  EXPECT_EQ(scene.meshes[0].triangles.size(), 2u);
+  EXPECT_EQ(scene.meshes[0].normals.size(), 1u);
+  EXPECT_EQ(scene.meshes[1].normals.size(), 3u);
+  EXPECT_EQ(scene.meshes[2].normals.size(), 3u);  // computed
+  // Only OBJ is unitized: the 3DM triangle keeps its coordinates.
+  EXPECT_EQ(scene.meshes[2].positions[1], (Vec3{1, 0, 0}));
+  EXPECT_EQ(scene.meshes[3].positions[1], (Vec3{1, -1, 0}));
+  EXPECT_EQ(scene.objects[0].geometry, ShapeGeometry(MeshShape{0, true}));
+  EXPECT_EQ(scene.objects[1].geometry, ShapeGeometry(MeshShape{1, false}));
+}
+
 TEST(SdlShapes, MeshFormatErrors) {
-  EXPECT_TRUE(fails_at("mesh car.3vn 0", 1, 6, "mesh format 3VN is not supported yet"));
-  EXPECT_TRUE(fails_at("mesh car.3Dv 0", 1, 6, "mesh format 3DV is not supported yet"));
-  EXPECT_TRUE(fails_at("mesh car.3DM 0", 1, 6, "mesh format 3DM is not supported yet"));
-  EXPECT_TRUE(fails_at("mesh car.ply 0", 1, 6,
-                       "mesh 'car.ply' has an unsupported format (supported: .obj)"));
+  const std::string supported = "(supported: .3vn, .3dv, .3dm, .obj)";
+  EXPECT_TRUE(
+      fails_at("mesh car.ply 0", 1, 6, "mesh 'car.ply' has an unsupported format " + supported));
   EXPECT_TRUE(fails_at("mesh dir.obj/car 0", 1, 6,
-                       "mesh 'dir.obj/car' has an unsupported format (supported: .obj)"));
+                       "mesh 'dir.obj/car' has an unsupported format " + supported));
 }
 
 TEST(SdlShapes, MeshFileErrors) {
@@ -166,23 +183,54 @@ TEST(SdlShapes, ObjErrorsAreLocatedInTheObjFile) {
                          {{"m/bad.obj", "v 0 0 0\nf 1 7 1\n"}}));
 }
 
+TEST(SdlShapes, HillMeshErrorsAreLocatedInTheMeshFile) {
+  EXPECT_TRUE(fails_with("mesh m/bad.3dm 0", "m/bad.3dm", 3, 3,
+                         "vertex index 3 is out of range (3 defined, indices start at 0)",
+                         {{"m/bad.3dm", "3 1\n0 0 0 1 0 0 0 1 0\n3 3 1 2\n"}}));
+}
+
 TEST(SdlShapes, MeshWithASingularCtIsAnError) {
   EXPECT_TRUE(fails_at("scale 0 1 1 mesh tri.obj 0", 1, 13,
                        "'mesh' has a singular transform (zero scale?)",
                        {{"tri.obj", kTriangleObj}}));
 }
 
+TEST(SdlShapes, PolyhedraAreFlatShadedMeshesSharedByTheirInstances) {
+  const Scene scene = load_text(
+      "buckyball diamond dodecahedron icosahedron octahedron pyramid tetrahedron\n"
+      "translate 1 2 3 Octahedron");
+  ASSERT_EQ(scene.objects.size(), 8u);
+  ASSERT_EQ(scene.meshes.size(), 7u);  // one per polyhedron, not per instance
+  const char* names[] = {"buckyball",  "diamond", "dodecahedron", "icosahedron",
+                         "octahedron", "pyramid", "tetrahedron"};
+  for (std::size_t i = 0; i < 7; ++i) {
+    EXPECT_EQ(scene.objects[i].geometry, ShapeGeometry(MeshShape{i, false}));
+    EXPECT_EQ(scene.meshes[i].source, names[i]);
+  }
+  EXPECT_EQ(scene.objects[7].geometry, ShapeGeometry(MeshShape{4, false}));
+  EXPECT_TRUE(near(scene.objects[7].transform.apply_point({0, 0, 0}), {1, 2, 3}));
+  EXPECT_EQ(scene.objects[7].where.line, 2);
+  EXPECT_EQ(scene.objects[7].where.column, 17);
+}
+
+TEST(SdlShapes, PolyhedraShareMeshesWithNoMeshFile) {
+  // A mesh file named like a polyhedron is a different mesh.
+  const Scene scene =
+      load_text("mesh octahedron.obj 0 octahedron", {{"octahedron.obj", kTriangleObj}});
+  ASSERT_EQ(scene.meshes.size(), 2u);
+  EXPECT_EQ(scene.meshes[0].triangles.size(), 1u);
+  EXPECT_EQ(scene.meshes[1].triangles.size(), 8u);
+}
+
 TEST(SdlShapes, KeywordsOfLaterIssuesAreNotSupportedYet) {
-  for (const std::string keyword :
-       {"union", "intersection", "difference", "buckyball", "diamond", "dodecahedron",
-        "icosahedron", "octahedron", "pyramid", "tetrahedron", "teapot", "mbClear", "mbRotate",
-        "mbTranslate", "mbScale", "mbEnable"}) {
+  for (const std::string keyword : {"union", "intersection", "difference", "mbClear", "mbRotate",
+                                    "mbTranslate", "mbScale", "mbEnable"}) {
     EXPECT_TRUE(fails_at("sphere\n   " + keyword + " 1 2 3", 2, 4,
                          "'" + keyword + "' is not supported yet"))
         << keyword;
   }
   // Matched case-insensitively, and named in the canonical spelling.
-  EXPECT_TRUE(fails_at("TEAPOT", 1, 1, "'teapot' is not supported yet"));
+  EXPECT_TRUE(fails_at("MBCLEAR", 1, 1, "'mbClear' is not supported yet"));
 }
 
 }  // namespace

@@ -3,6 +3,7 @@
 
 #include <cmath>
 
+#include "common/loaders/polyhedra.h"
 #include "tests/render/scene_builder.h"
 
 namespace tessera::test {
@@ -41,6 +42,22 @@ TEST(Image, CubeSilhouetteIsASquareOfKnownSide) {
   const double side_px = 0.25 / std::tan(M_PI / 12) * size;
   const int covered = count_pixels_not(render(scene, settings(size, size)), 0.0);
   EXPECT_NEAR(covered, side_px * side_px, 2 * side_px + 4);
+}
+
+TEST(Image, OctahedronSeenAlongAnAxisIsASquareOfKnownArea) {
+  Material m = black_material();
+  m.emissive = {1, 1, 1};
+  Scene scene;
+  scene.camera = camera_on_z(30);
+  scene.meshes.push_back(polyhedron_mesh(Polyhedron::Octahedron));
+  scene.objects.push_back(object(MeshShape{0, false}, Affine::identity(), m));
+  const int size = 200;
+  // The outline is the equator, the square of vertices (+-1, 0, 0) and (0, +-1, 0) at distance
+  // 5: half-diagonals of 1/5 on the image plane at distance 1, an area of 2 (1/5)^2.
+  const double half_diagonal_px = 0.2 / std::tan(M_PI / 12) * size / 2;
+  const double expected = 2 * half_diagonal_px * half_diagonal_px;
+  const int covered = count_pixels_not(render(scene, settings(size, size)), 0.0);
+  EXPECT_NEAR(covered, expected, 0.01 * expected);
 }
 
 TEST(Image, MissesShowTheBackgroundButReflectedMissesAreBlack) {
