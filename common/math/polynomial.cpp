@@ -45,8 +45,9 @@ double bracketed_root(const Polynomial& p, const Polynomial& dp, double a, doubl
 }
 
 // Degrees 1 and 2 in closed form (the cancellation-free q form), with the same contract as
-// real_roots: these are the derivatives of cubics and quartics, whose roots only need to split
-// the interval, and are found many times per ray.
+// real_roots: accurate to a few ulps for separate roots, and cheap, which matters for the
+// derivatives of cubics and quartics, solved several times per ray. A discriminant within its
+// rounding of zero is one touching root.
 int low_degree_roots(const Polynomial& p, double lo, double hi,
                      PolynomialRoot roots[kMaxPolynomialDegree]) {
   int count = 0;

@@ -1,10 +1,11 @@
 // Univariate polynomials of degree up to 4 and their real roots, for ray/surface intersection
 // (torus, algebraic surfaces).
 //
-// Roots are isolated without closed forms or Sturm sequences: the roots of the derivative
-// (found the same way, recursively) split the interval into pieces on which the polynomial is
-// monotone, so each piece holds at most one root, found by safeguarded Newton iteration inside
-// its sign-change bracket. Closed-form quartics lose most of their digits near multiple roots;
+// Cubics and quartics are solved without closed forms or Sturm sequences: the roots of the
+// derivative (found the same way, recursively, down to a quadratic solved directly) split the
+// interval into pieces on which the polynomial is monotone, so each piece holds at most one
+// root, found by safeguarded Newton iteration inside its sign-change bracket. Closed-form
+// cubics and quartics lose most of their digits near multiple roots;
 // bracketing keeps every root that the polynomial's rounding allows to be resolved, and
 // reports an extremum whose value is within that rounding as one touching (double) root, as a
 // ray grazing a surface needs.

@@ -80,6 +80,9 @@ TEST(SdlShapes, AlgebraicSurfacesTakeTheirBoxExtent) {
     EXPECT_EQ(scene.objects[0].where.line, 2);
     EXPECT_EQ(scene.objects[0].where.column, 3);
     EXPECT_TRUE(near(scene.objects[0].transform.apply_point({0, 0, 0}), {1, 2, 3}));
+    const std::string name = keyword;
+    EXPECT_TRUE(fails_at(name + " 1 0 1", 1, static_cast<int>(name.size()) + 4,
+                         "<box-extent-height> of '" + name + "' must be positive, found '0'"));
   }
   // Case-insensitive, like every keyword.
   EXPECT_EQ(load_text("TOOTHCUBE 1 1 1").objects[0].geometry,
