@@ -16,12 +16,16 @@ import hmac
 import json
 import os
 import secrets
-import socket
 import struct
 import subprocess
 import sys
+import tempfile
 import time
 import urllib.request
+
+sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tests",
+                                "service"))
+import service_test  # noqa: E402  (start_coordinator)
 
 SECRET = "capacity-secret"
 HELLO, CHALLENGE, AUTH, WELCOME, REJECT, HEARTBEAT, JOB, UNIT, RESULT = range(1, 10)
@@ -93,25 +97,12 @@ def cpu_seconds(pid):
 
 
 async def main(args):
-    ports = []
-    for _ in range(2):
-        with socket.socket() as s:
-            s.bind(("127.0.0.1", 0))
-            ports.append(s.getsockname()[1])
-    http_port, worker_port = ports
-    coordinator = subprocess.Popen(
-        [os.path.join(args.build, "coordinator", "tessera-coordinator"), "--bind", "127.0.0.1",
-         "--http-port", str(http_port), "--worker-port", str(worker_port), "--secret", SECRET],
-        stdout=subprocess.DEVNULL, stderr=subprocess.DEVNULL)
+    with tempfile.TemporaryDirectory() as tmp:
+        coordinator, http_port, worker_port = service_test.start_coordinator(
+            args.build, ["--secret", SECRET], subprocess.DEVNULL, os.path.join(tmp, "ports.json"))
     try:
-        workers_url = "http://127.0.0.1:%d/api/workers" % http_port
         get = lambda url: json.load(urllib.request.urlopen(url))
-        for _ in range(200):  # until the coordinator listens
-            try:
-                get(workers_url)
-                break
-            except OSError:
-                await asyncio.sleep(0.05)
+        workers_url = "http://127.0.0.1:%d/api/workers" % http_port
         counter = [0]
         tasks = [asyncio.create_task(worker(worker_port, i, args.threads, counter))
                  for i in range(args.workers)]

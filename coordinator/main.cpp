@@ -2,11 +2,15 @@
 // workers connect to (docs/SERVICE.md). One io thread runs everything but rendering.
 #include <algorithm>
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
+#include <stdexcept>
 #include <string_view>
 #include <thread>
 
 #include <spdlog/spdlog.h>
 #include <boost/asio/signal_set.hpp>
+#include <nlohmann/json.hpp>
 
 #include "common/protocol/handshake.h"
 #include "coordinator/http/api.h"
@@ -23,6 +27,18 @@ void tick_every(boost::asio::steady_timer& timer, tessera::Scheduler& scheduler)
     scheduler.tick();
     tick_every(timer, scheduler);
   });
+}
+
+// Written to a temporary name and renamed, so a reader never sees half a file.
+void write_port_file(const std::filesystem::path& path, unsigned short http_port,
+                     unsigned short worker_port) {
+  const std::filesystem::path partial = path.string() + ".partial";
+  {
+    std::ofstream out(partial);
+    out << nlohmann::json{{"http_port", http_port}, {"worker_port", worker_port}}.dump() << "\n";
+    if (!out) throw std::runtime_error("cannot write " + partial.string());
+  }
+  std::filesystem::rename(partial, path);
 }
 
 }  // namespace
@@ -59,6 +75,7 @@ int main(int argc, char** argv) {
                     [&api](const HttpRequest& r) { return api.handle(r); });
     spdlog::info("page and API at http://{}:{}/ ; workers connect to port {}", options.bind,
                  http.port(), workers.port());
+    if (options.port_file) write_port_file(*options.port_file, http.port(), workers.port());
     const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
     const int threads = options.local_threads > 0
                             ? options.local_threads

@@ -13,7 +13,7 @@ const char* const kCoordinatorUsage =
     "usage: tessera-coordinator --http-port P --worker-port Q [--secret S | --insecure]\n"
     "       [--local-workers N] [--local-threads T] [--scenes-dir DIR] [--web-dir DIR]\n"
     "       [--bind ADDR] [--worker-binary PATH] [--max-job-seconds S] [--max-body-bytes N]\n"
-    "       [--heartbeat-ms MS] [--silence-ms MS]";
+    "       [--heartbeat-ms MS] [--silence-ms MS] [--port-file PATH]";
 
 namespace {
 
@@ -56,6 +56,8 @@ CoordinatorOptions parse_coordinator_options(int argc, char** argv) {
       o.web_dir = value();
     else if (arg == "--bind")
       o.bind = value();
+    else if (arg == "--port-file")
+      o.port_file = value();
     else if (arg == "--worker-binary")
       o.worker_binary = value();
     else if (arg == "--max-job-seconds")

@@ -25,6 +25,9 @@ struct CoordinatorOptions {
   std::optional<std::filesystem::path> scenes_dir;
   std::filesystem::path web_dir;
   std::filesystem::path worker_binary;
+  // Written once both ports listen: {"http_port": P, "worker_port": Q}. With ports 0 (the
+  // system picks free ones) it is how tests and scripts learn them without racing for ports.
+  std::optional<std::filesystem::path> port_file;
   ServiceLimits limits;
   ConnectionTiming timing;
 };

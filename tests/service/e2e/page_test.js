@@ -8,20 +8,21 @@
 const { chromium } = require("playwright-core");
 const { spawn } = require("child_process");
 const fs = require("fs");
-const net = require("net");
 const os = require("os");
 const path = require("path");
 
 const [buildDir, sourceDir] = process.argv.slice(2);
 
-function freePort() {
-  return new Promise((resolve) => {
-    const server = net.createServer();
-    server.listen(0, "127.0.0.1", () => {
-      const { port } = server.address();
-      server.close(() => resolve(port));
-    });
-  });
+// The coordinator listens on ports the system picks and writes them to --port-file once both
+// listen, so the test never races another program for a port.
+async function readPortFile(file, coordinator, ms) {
+  const deadline = Date.now() + ms;
+  while (!fs.existsSync(file)) {
+    if (coordinator.exitCode !== null) throw new Error(`the coordinator exited (${coordinator.exitCode})`);
+    if (Date.now() > deadline) throw new Error("the coordinator did not write its ports");
+    await new Promise((r) => setTimeout(r, 20));
+  }
+  return JSON.parse(fs.readFileSync(file, "utf8"));
 }
 
 async function waitForHttp(url, ms) {
@@ -36,14 +37,14 @@ async function waitForHttp(url, ms) {
 }
 
 async function main() {
-  const httpPort = await freePort();
-  const workerPort = await freePort();
-  const coordinator = spawn(path.join(buildDir, "coordinator", "tessera-coordinator"),
-    ["--bind", "127.0.0.1", "--http-port", String(httpPort), "--worker-port", String(workerPort),
-     "--insecure", "--local-workers", "1", "--local-threads", "1"], { stdio: "inherit" });
   const profile = fs.mkdtempSync(path.join(os.tmpdir(), "tessera-chromium-"));
+  const portFile = path.join(profile, "ports.json");
+  const coordinator = spawn(path.join(buildDir, "coordinator", "tessera-coordinator"),
+    ["--bind", "127.0.0.1", "--http-port", "0", "--worker-port", "0", "--port-file", portFile,
+     "--insecure", "--local-workers", "1", "--local-threads", "1"], { stdio: "inherit" });
   let context;
   try {
+    const { http_port: httpPort } = await readPortFile(portFile, coordinator, 10000);
     const base = `http://127.0.0.1:${httpPort}`;
     await waitForHttp(`${base}/api/workers`, 10000);
     context = await chromium.launchPersistentContext(profile, {
