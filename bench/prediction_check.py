@@ -45,6 +45,7 @@ def main():
                 {"Content-Type": "application/json"})
             assert status == 201, reply
             job = service.wait_job(service_test.json.loads(reply)["id"])
+            assert job["state"] == "done", job
             predicted, actual = job["predicted_seconds"], job["elapsed_seconds"]
             error = (predicted - actual) / actual
             worst[round_] = max(worst[round_], abs(error))

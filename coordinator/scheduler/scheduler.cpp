@@ -34,12 +34,25 @@ std::int64_t Scheduler::add_worker(WorkerHello hello, std::shared_ptr<FrameConne
 void Scheduler::remove_worker(std::int64_t id) {
   auto it = workers_.find(id);
   if (it == workers_.end()) return;
+  const int requeued = take_back_units(it->second, [](std::int64_t) { return true; });
+  spdlog::info("worker {} \"{}\" left; {} units re-queued", id, it->second.hello.name, requeued);
+  workers_.erase(it);
+  fill_slots();
+}
+
+int Scheduler::take_back_units(WorkerSlot& w, const std::function<bool(std::int64_t)>& of_job) {
   int requeued = 0;
-  for (const auto& [job, unit] : it->second.in_flight) {
+  for (auto entry = w.in_flight.begin(); entry != w.in_flight.end();) {
+    const auto [job, unit] = *entry;
+    if (!of_job(job)) {
+      ++entry;
+      continue;
+    }
+    entry = w.in_flight.erase(entry);
     auto run = runs_.find(job);
     if (run == runs_.end()) continue;
     UnitRun& u = run->second.units[unit];
-    std::erase(u.holders, id);
+    std::erase(u.holders, w.id);
     if (u.state == UnitState::InFlight && u.holders.empty()) {
       u.state = UnitState::Pending;
       run->second.in_flight.erase(unit);
@@ -47,9 +60,7 @@ void Scheduler::remove_worker(std::int64_t id) {
       ++requeued;
     }
   }
-  spdlog::info("worker {} \"{}\" left; {} units re-queued", id, it->second.hello.name, requeued);
-  workers_.erase(it);
-  fill_slots();
+  return requeued;
 }
 
 void Scheduler::add_job(Job& job) {
@@ -234,6 +245,17 @@ void Scheduler::on_job_failed(std::int64_t worker, const Frame& frame) {
   const auto job_id = frame.header.at("job").get<std::int64_t>();
   auto it = runs_.find(job_id);
   if (it == runs_.end()) return;
+  if (frame.header.value("missing_bundle", false)) {
+    // The worker evicted the bundle since it last announced it: it dropped the job and the
+    // units sent with it. Take them back and open the job again, this time with the bundle.
+    WorkerSlot& w = workers_.at(worker);
+    w.bundles.erase(it->second.job->hash);
+    w.open_jobs.erase(job_id);
+    const int requeued = take_back_units(w, [&](std::int64_t job) { return job == job_id; });
+    spdlog::info("worker {} no longer holds the bundle of job {}; {} units re-queued", worker,
+                 job_id, requeued);
+    return fill_slots();
+  }
   finish(it->second, JobState::Failed,
          "worker " + workers_.at(worker).hello.name + ": " +
              frame.header.value("error", std::string()));

@@ -9,6 +9,7 @@
 #include <chrono>
 #include <cstdint>
 #include <deque>
+#include <functional>
 #include <map>
 #include <memory>
 #include <optional>
@@ -99,6 +100,9 @@ class Scheduler {
   bool dispatchable(const JobRun& run) const;
   bool speculate(WorkerSlot& worker);
   void send_unit(WorkerSlot& worker, JobRun& run, int unit);
+  // Puts the worker's units in flight of the jobs `of_job` selects back at the front of their
+  // queues (unless another worker holds them too); returns how many.
+  int take_back_units(WorkerSlot& worker, const std::function<bool(std::int64_t)>& of_job);
   void finish(JobRun& run, JobState state, const std::string& error = {});
 
   JobStore& jobs_;

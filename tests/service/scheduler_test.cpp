@@ -19,6 +19,7 @@ struct FakeWorker {
   std::int64_t id = 0;
   tcp::socket peer;
   FrameDecoder decoder;
+  std::vector<Frame> jobs;   // job frames received, in order
   std::vector<Frame> units;  // unit frames received, in order
 };
 
@@ -43,14 +44,14 @@ class SchedulerTest : public ::testing::Test {
     return *job;
   }
 
-  FakeWorker& add_worker(int threads) {
+  FakeWorker& add_worker(int threads, std::set<std::string> cached = {}) {
     tcp::socket client(io_);
     client.connect(acceptor_.local_endpoint());
     auto connection =
         std::make_shared<FrameConnection>(acceptor_.accept(), FrameLimits{}, ConnectionTiming{});
     connection->start([](Frame) {}, [](const std::string&) {});
     auto& w = workers_.emplace_back(std::make_unique<FakeWorker>(std::move(client)));
-    w->id = scheduler_.add_worker({"w", "test", threads, {}}, connection);
+    w->id = scheduler_.add_worker({"w", "test", threads, std::move(cached)}, connection);
     scheduler_.fill_slots();
     return *w;
   }
@@ -65,7 +66,10 @@ class SchedulerTest : public ::testing::Test {
       for (std::size_t n; (n = w->peer.read_some(asio::buffer(buf), ec)) > 0 && !ec;)
         w->decoder.feed(std::string_view(buf, n));
       while (auto f = w->decoder.next())
-        if (f->type == MessageType::Unit) w->units.push_back(std::move(*f));
+        if (f->type == MessageType::Unit)
+          w->units.push_back(std::move(*f));
+        else if (f->type == MessageType::Job)
+          w->jobs.push_back(std::move(*f));
     }
   }
 
@@ -108,6 +112,45 @@ TEST_F(SchedulerTest, ALostWorkersUnitsGoToOthers) {
     drain();
   }
   for (const auto& f : a.units) EXPECT_TRUE(got.count(f.header["unit"].get<int>()));
+}
+
+std::set<int> unit_indices(const std::vector<Frame>& units, std::size_t from, std::size_t to) {
+  std::set<int> indices;
+  for (std::size_t i = from; i < to; ++i) indices.insert(units[i].header["unit"].get<int>());
+  return indices;
+}
+
+TEST_F(SchedulerTest, AWorkerThatEvictedTheBundleGetsItAgainWithItsUnits) {
+  Job& job = add_job(64, 64, 1);
+  FakeWorker& w = add_worker(2, {job.hash});  // announced in hello, evicted since
+  drain();
+  ASSERT_EQ(w.jobs.size(), 1u);
+  EXPECT_FALSE(w.jobs[0].header.contains("bundle"));
+  ASSERT_EQ(w.units.size(), 3u);
+  scheduler_.on_job_failed(
+      w.id,
+      Frame{MessageType::JobFailed,
+            {{"job", job.id}, {"missing_bundle", true}, {"error", "bundle is not cached here"}},
+            {}});
+  drain();
+  EXPECT_EQ(job.state, JobState::Running);
+  ASSERT_EQ(w.jobs.size(), 2u);
+  EXPECT_TRUE(w.jobs[1].header.contains("bundle"));
+  ASSERT_EQ(w.units.size(), 6u);  // the same units again, after the bundle
+  EXPECT_EQ(unit_indices(w.units, 0, 3), unit_indices(w.units, 3, 6));
+}
+
+TEST_F(SchedulerTest, AJobFailedOnAWorkerFailsThatJobOnly) {
+  Job& bad = add_job(64, 64, 1, 2);
+  Job& good = add_job(64, 64, 1);
+  FakeWorker& w = add_worker(1);
+  drain();
+  scheduler_.on_job_failed(
+      w.id,
+      Frame{MessageType::JobFailed, {{"job", bad.id}, {"error", "scene.sdl:1:1: broken"}}, {}});
+  EXPECT_EQ(bad.state, JobState::Failed);
+  EXPECT_NE(bad.error.find("broken"), std::string::npos);
+  EXPECT_NE(good.state, JobState::Failed);
 }
 
 TEST_F(SchedulerTest, StragglersAreDuplicatedAndTheLateResultDropped) {

@@ -138,7 +138,9 @@ void WorkerSession::on_job(const Frame& frame) {
   }
   if (!loop_.open_job(job, spec, hash, std::move(bundle)))
     connection_->send(Frame{MessageType::JobFailed,
-                            {{"job", job}, {"error", "bundle " + hash + " is not cached here"}},
+                            {{"job", job},
+                             {"missing_bundle", true},
+                             {"error", "bundle " + hash + " is not cached here"}},
                             {}});
 }
 
