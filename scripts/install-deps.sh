@@ -11,6 +11,8 @@ packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   # tools used by tests and benchmarks; chromium and node drive the web page's test
   openimageio-tools python3 curl chromium
+  # network namespaces for the multi-host test (ip, tc)
+  iproute2
 )
 # Node from another source (NodeSource's nodejs bundles npm) conflicts with Debian's npm, so
 # these two are asked for only when their commands are missing.

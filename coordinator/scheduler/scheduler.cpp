@@ -10,9 +10,6 @@ namespace tessera {
 
 namespace {
 
-// Units beyond the worker's threads, so that the next unit is already there when one ends.
-int capacity(int threads) { return threads + std::max(1, threads / 2); }
-
 double seconds_since(Clock::time_point t, Clock::time_point now) {
   return std::chrono::duration<double>(now - t).count();
 }
@@ -25,6 +22,7 @@ std::int64_t Scheduler::add_worker(WorkerHello hello, std::shared_ptr<FrameConne
   w.id = id;
   w.bundles = hello.cached;
   w.hello = std::move(hello);
+  w.pipeline = WorkerPipeline(w.hello.threads);
   w.connection = std::move(connection);
   spdlog::info("worker {} \"{}\" joined from {} with {} threads", id, w.hello.name, w.hello.address,
                w.hello.threads);
@@ -43,7 +41,7 @@ void Scheduler::remove_worker(std::int64_t id) {
 int Scheduler::take_back_units(WorkerSlot& w, const std::function<bool(std::int64_t)>& of_job) {
   int requeued = 0;
   for (auto entry = w.in_flight.begin(); entry != w.in_flight.end();) {
-    const auto [job, unit] = *entry;
+    const auto [job, unit] = entry->first;
     if (!of_job(job)) {
       ++entry;
       continue;
@@ -113,8 +111,8 @@ bool Scheduler::dispatchable(const JobRun& run) const {
 
 void Scheduler::fill_slots() {
   for (auto& [id, w] : workers_)
-    while (w.connection->open() &&
-           static_cast<int>(w.in_flight.size()) < capacity(w.hello.threads) && dispatch_one(w)) {
+    while (w.connection->open() && static_cast<int>(w.in_flight.size()) < w.pipeline.slots() &&
+           dispatch_one(w)) {
     }
 }
 
@@ -184,7 +182,7 @@ void Scheduler::send_unit(WorkerSlot& w, JobRun& run, int unit) {
   r.holders.push_back(w.id);
   r.state = UnitState::InFlight;
   run.in_flight.insert(unit);
-  w.in_flight.insert({job.id, unit});
+  w.in_flight.emplace(std::pair{job.id, unit}, now);
   StageTiming& timing = job.stage_timing[wu.stage];
   if (!timing.first_dispatch) timing.first_dispatch = now;
   if (!job.started) job.started = now;
@@ -207,14 +205,16 @@ void Scheduler::on_result(std::int64_t worker, const Frame& frame) {
   Job& job = *run.job;
   if (unit < 0 || unit >= static_cast<int>(run.units.size()))
     throw ProtocolError("result for unknown unit " + std::to_string(unit));
-  if (!w.in_flight.count({job_id, unit})) {
+  const auto sent = w.in_flight.find({job_id, unit});
+  if (sent == w.in_flight.end()) {
     ++w.dropped_results;  // rendered for an earlier connection of this worker: stale
     return;
   }
   const WorkUnit& wu = job.plan.units[unit];
   const std::vector<float> values =
       unpack_floats(frame.payload, static_cast<std::size_t>(wu.cost) * 3);
-  w.in_flight.erase({job_id, unit});
+  w.pipeline.observe(seconds_since(sent->second, Clock::now()), stats.seconds);
+  w.in_flight.erase(sent);
   UnitRun& r = run.units[unit];
   std::erase(r.holders, worker);
   if (r.state == UnitState::Done) {
@@ -271,7 +271,7 @@ void Scheduler::finish(JobRun& run, JobState state, const std::string& error) {
   for (auto& [id, w] : workers_) {
     if (!w.open_jobs.erase(job.id)) continue;
     w.connection->send(Frame{MessageType::Cancel, {{"job", job.id}}, {}});
-    std::erase_if(w.in_flight, [&](const auto& entry) { return entry.first == job.id; });
+    std::erase_if(w.in_flight, [&](const auto& entry) { return entry.first.first == job.id; });
   }
   spdlog::info("job {} {}{}{}", job.id, to_string(state), error.empty() ? "" : ": ", error);
   if (state == JobState::Done && job.ran_alone && job.uncalibrated_prediction)
@@ -299,6 +299,8 @@ nlohmann::json Scheduler::workers_json() const {
                    {"address", w.hello.address},
                    {"threads", w.hello.threads},
                    {"in_flight", w.in_flight.size()},
+                   {"slots", w.pipeline.slots()},
+                   {"round_trip_ms", w.pipeline.round_trip_seconds() * 1e3},
                    {"units_done", w.units_done},
                    {"dropped_results", w.dropped_results},
                    {"pixels_done", w.pixels_done},

@@ -23,6 +23,7 @@
 #include "common/protocol/connection.h"
 #include "common/render/time_prediction.h"
 #include "coordinator/jobs/job_store.h"
+#include "coordinator/scheduler/worker_pipeline.h"
 
 namespace tessera {
 
@@ -89,7 +90,8 @@ class Scheduler {
     std::shared_ptr<FrameConnection> connection;
     std::set<std::string> bundles;
     std::set<std::int64_t> open_jobs;
-    std::set<std::pair<std::int64_t, int>> in_flight;
+    std::map<std::pair<std::int64_t, int>, Clock::time_point> in_flight;  // (job, unit): sent
+    WorkerPipeline pipeline{1};
     long long units_done = 0, pixels_done = 0;
     long long dropped_results = 0;  // late duplicates and results of earlier connections
     double busy_seconds = 0;

@@ -30,11 +30,12 @@ def binary(*parts):
     return os.path.join(ARGS.build, *parts)
 
 
-def start_coordinator(build, argv, log, port_file, timeout=10):
+def start_coordinator(build, argv, log, port_file, timeout=10, prefix=(), bind="127.0.0.1"):
     """Starts tessera-coordinator on ports the system picks; returns (process, http_port,
-    worker_port) once both listen, or kills it and raises with its log."""
+    worker_port) once both listen, or kills it and raises. `prefix` runs it under another
+    command (tests/multihost: `ip netns exec NS`)."""
     proc = subprocess.Popen(
-        [os.path.join(build, "coordinator", "tessera-coordinator"), "--bind", "127.0.0.1",
+        [*prefix, os.path.join(build, "coordinator", "tessera-coordinator"), "--bind", bind,
          "--http-port", "0", "--worker-port", "0", "--port-file", port_file, *argv],
         stdout=log, stderr=subprocess.STDOUT)
     deadline = time.time() + timeout
@@ -51,9 +52,12 @@ def start_coordinator(build, argv, log, port_file, timeout=10):
 
 
 class Service:
-    """A coordinator and its workers; everything it started is killed on exit."""
+    """A coordinator and its workers; everything it started is killed on exit. By default all
+    on loopback; tests/multihost runs the coordinator in a network namespace (`prefix`),
+    listening on every address, and reaches its API at `host`."""
 
-    def __init__(self, *extra, secret=SECRET):
+    def __init__(self, *extra, secret=SECRET, prefix=(), host="127.0.0.1"):
+        self.host = host
         self.procs = []
         self.tmp = tempfile.TemporaryDirectory()
         auth = ["--secret", secret] if secret else ["--insecure"]
@@ -61,7 +65,8 @@ class Service:
         with open(log_path, "w") as log:
             try:
                 self.coordinator, self.http_port, self.worker_port = start_coordinator(
-                    ARGS.build, [*auth, *extra], log, os.path.join(self.tmp.name, "ports.json"))
+                    ARGS.build, [*auth, *extra], log, os.path.join(self.tmp.name, "ports.json"),
+                    prefix=prefix, bind="127.0.0.1" if host == "127.0.0.1" else "0.0.0.0")
             except RuntimeError:
                 print(open(log_path).read()[-3000:])
                 self.tmp.cleanup()
@@ -74,9 +79,10 @@ class Service:
         self.procs.append(proc)
         return proc
 
-    def worker(self, name, secret=SECRET, threads=1):
-        argv = [binary("worker", "tessera-worker"), "--coordinator",
-                "127.0.0.1:%d" % self.worker_port, "--threads", str(threads), "--name", name]
+    def worker(self, name, secret=SECRET, threads=1, prefix=(), address="127.0.0.1", port=None):
+        argv = [*prefix, binary("worker", "tessera-worker"), "--coordinator",
+                "%s:%d" % (address, port or self.worker_port), "--threads", str(threads),
+                "--name", name]
         if secret:
             argv += ["--secret", secret]
         return self.spawn(argv, name)
@@ -89,7 +95,7 @@ class Service:
             time.sleep(0.05)
 
     def request(self, method, path, body=None, headers=None):
-        req = urllib.request.Request("http://127.0.0.1:%d%s" % (self.http_port, path),
+        req = urllib.request.Request("http://%s:%d%s" % (self.host, self.http_port, path),
                                      data=body, method=method, headers=headers or {})
         try:
             with urllib.request.urlopen(req, timeout=30) as r:

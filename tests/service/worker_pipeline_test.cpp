@@ -1,0 +1,53 @@
+// The units a worker holds: its threads plus a prefetch on loopback, and enough more to cover
+// the round trip when the network is slow (synthetic timings).
+#include "coordinator/scheduler/worker_pipeline.h"
+
+#include <gtest/gtest.h>
+
+namespace tessera {
+namespace {
+
+TEST(WorkerPipeline, BeforeAnyResultThreadsPlusPrefetch) {
+  EXPECT_EQ(WorkerPipeline(1).slots(), 2);
+  EXPECT_EQ(WorkerPipeline(4).slots(), 6);
+  EXPECT_EQ(WorkerPipeline(4).round_trip_seconds(), 0);
+}
+
+TEST(WorkerPipeline, CoversTheRoundTripWithUnitsInTransit) {
+  WorkerPipeline p(2);
+  p.observe(0.030, 0.010);  // 20 ms in transit, 10 ms a unit: two more units per thread
+  EXPECT_DOUBLE_EQ(p.round_trip_seconds(), 0.020);
+  EXPECT_DOUBLE_EQ(p.unit_seconds(), 0.010);
+  EXPECT_EQ(p.slots(), 2 * 3 + 1);
+}
+
+TEST(WorkerPipeline, TheRoundTripIsTheSmallestTransitSeen) {
+  WorkerPipeline p(1);
+  p.observe(0.050, 0.010);  // waited 20 ms in the worker's queue
+  p.observe(0.030, 0.010);
+  p.observe(0.090, 0.010);
+  EXPECT_DOUBLE_EQ(p.round_trip_seconds(), 0.020);
+  EXPECT_EQ(p.slots(), 3 + 1);
+}
+
+TEST(WorkerPipeline, UnitTimeIsAMovingAverage) {
+  WorkerPipeline p(1);
+  p.observe(0.010, 0.010);
+  p.observe(0.090, 0.090);
+  EXPECT_DOUBLE_EQ(p.unit_seconds(), 0.010 + 0.125 * 0.080);
+}
+
+TEST(WorkerPipeline, AFastLinkAddsAtMostOneUnitAThread) {
+  WorkerPipeline p(4);
+  p.observe(0.0102, 0.0100);  // 0.2 ms round trip
+  EXPECT_EQ(p.slots(), 5 + 2);
+}
+
+TEST(WorkerPipeline, SlowLinksAreBoundedPerThread) {
+  WorkerPipeline p(2);
+  p.observe(1.001, 0.001);  // a second's round trip for a millisecond's unit
+  EXPECT_EQ(p.slots(), 2 * 8 + 1);
+}
+
+}  // namespace
+}  // namespace tessera
