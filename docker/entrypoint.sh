@@ -1,0 +1,22 @@
+#!/bin/bash
+# Maps the containers' environment to the programs' flags; flags given to `podman run` after
+# the image name are appended and win.
+#   coordinator: TESSERA_HTTP_PORT, TESSERA_WORKER_PORT, TESSERA_SECRET (read by the program)
+#   worker:      TESSERA_COORDINATOR (host:port, required), TESSERA_THREADS, TESSERA_NAME,
+#                TESSERA_SECRET
+set -euo pipefail
+role=$1
+shift
+case "$role" in
+  coordinator)
+    exec tessera-coordinator --http-port "$TESSERA_HTTP_PORT" --worker-port "$TESSERA_WORKER_PORT" \
+      --web-dir /usr/share/tessera/web --scenes-dir /usr/share/tessera/scenes "$@" ;;
+  worker)
+    args=(--coordinator "${TESSERA_COORDINATOR:?set TESSERA_COORDINATOR to HOST:PORT of the coordinator}")
+    [ -n "${TESSERA_THREADS:-}" ] && args+=(--threads "$TESSERA_THREADS")
+    [ -n "${TESSERA_NAME:-}" ] && args+=(--name "$TESSERA_NAME")
+    exec tessera-worker "${args[@]}" "$@" ;;
+  *)
+    echo "entrypoint.sh: unknown role '$role'" >&2
+    exit 2 ;;
+esac

@@ -1,0 +1,13 @@
+#!/bin/bash
+# Container health: the coordinator answers GET /api/workers with 200; a worker holds an
+# established TCP connection (state 01 in /proc/net/tcp*) to its coordinator.
+set -euo pipefail
+case "$1" in
+  coordinator)
+    exec 3<>"/dev/tcp/127.0.0.1/${TESSERA_HTTP_PORT:-8080}"
+    printf 'GET /api/workers HTTP/1.1\r\nHost: localhost\r\nConnection: close\r\n\r\n' >&3
+    head -n 1 <&3 | grep -q ' 200 ' ;;
+  worker)
+    port=$(printf '%04X' "${TESSERA_COORDINATOR##*:}")
+    cat /proc/net/tcp /proc/net/tcp6 2>/dev/null | awk -v p=":$port" '$3 ~ p"$" && $4 == "01" {found=1} END {exit !found}' ;;
+esac
