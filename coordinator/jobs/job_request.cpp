@@ -198,6 +198,7 @@ void check_scene(const Submission& sub, const std::optional<std::filesystem::pat
     out.effects = render_effects(prepared, out.spec.settings).names();
     out.seconds_per_pixel_pass =
         probe_render_cost(prepared, out.spec.settings).seconds_per_pixel_pass();
+    out.plan.unit_pixels = unit_pixels_for_cost(out.seconds_per_pixel_pass);
     out.warnings = scene.warnings;
     for (const auto& u : prepared.unsupported()) out.warnings.push_back(u);
   } catch (const SceneError& e) {

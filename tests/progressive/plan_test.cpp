@@ -161,5 +161,12 @@ TEST(PlanNames, ParseAndPrint) {
   EXPECT_THROW(make_plan({.width = 0, .height = 4}), std::invalid_argument);
 }
 
+TEST(UnitPixelsForCost, AUnitRendersInAbout20Milliseconds) {
+  EXPECT_EQ(unit_pixels_for_cost(10e-6), 2000);  // 10 µs a pixel: 2000 pixels
+  EXPECT_EQ(unit_pixels_for_cost(1e-3), 256);    // expensive pixels: no fewer than 256
+  EXPECT_EQ(unit_pixels_for_cost(1e-9), 16384);  // cheap pixels: no more than 16384
+  EXPECT_EQ(unit_pixels_for_cost(0), 1024);      // unknown cost
+}
+
 }  // namespace
 }  // namespace tessera
