@@ -39,6 +39,10 @@ BENCHMARK_CAPTURE(render_scene, mesh_bvh, "features/mesh.sdl", BvhMode::Sah, 1)
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(render_scene, mesh_no_bvh, "features/mesh.sdl", BvhMode::None, 1)
     ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(render_scene, textures, "features/textures.sdl", BvhMode::Sah, 1)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(render_scene, image_texture, "features/image_texture.sdl", BvhMode::Sah, 1)
+    ->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace tessera

@@ -5,6 +5,7 @@
 
 #include <cstddef>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "common/scene/rgb.h"
@@ -37,5 +38,8 @@ struct Image {
 void write_image(const Image& image, const std::string& path);
 // Reads any format OpenImageIO reads into RGB float (alpha dropped, gray expanded).
 Image read_image(const std::string& path);
+// Decodes a file held in memory (`name` for its format and messages), with at most
+// `max_pixels` pixels, the same way. Throws std::runtime_error naming `name` on failure.
+Image decode_image(std::string_view bytes, const std::string& name, std::size_t max_pixels);
 
 }  // namespace tessera

@@ -1,3 +1,4 @@
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
 #include <algorithm>
@@ -33,20 +34,43 @@ void write_image(const Image& image, const std::string& path) {
     throw std::runtime_error("cannot write " + path + ": " + out->geterror());
 }
 
+namespace {
+
+// The first three channels as RGB; one or two channels (gray, gray and alpha) as gray.
+Image read_opened(OIIO::ImageInput& in, const std::string& name, std::size_t max_pixels) {
+  const OIIO::ImageSpec& spec = in.spec();
+  const std::size_t count = static_cast<std::size_t>(spec.width) * spec.height;
+  if (spec.width <= 0 || spec.height <= 0 || spec.nchannels <= 0)
+    throw std::runtime_error("cannot read " + name + ": it holds no pixels");
+  if (count > max_pixels)
+    throw std::runtime_error("cannot read " + name + ": " + std::to_string(spec.width) + "x" +
+                             std::to_string(spec.height) + " pixels is more than " +
+                             std::to_string(max_pixels));
+  const int channels = spec.nchannels;
+  std::vector<float> pixels(count * channels);
+  if (!in.read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, pixels.data()))
+    throw std::runtime_error("cannot read " + name + ": " + in.geterror());
+  Image image(spec.width, spec.height);
+  for (std::size_t p = 0; p < count; ++p)
+    for (int c = 0; c < 3; ++c)
+      image.rgb[3 * p + c] = pixels[p * channels + static_cast<std::size_t>(channels < 3 ? 0 : c)];
+  return image;
+}
+
+}  // namespace
+
 Image read_image(const std::string& path) {
   auto in = OIIO::ImageInput::open(path);
   if (!in) throw std::runtime_error("cannot read " + path + ": " + OIIO::geterror());
-  const OIIO::ImageSpec& spec = in->spec();
-  const int channels = spec.nchannels;
-  std::vector<float> pixels(static_cast<std::size_t>(spec.width) * spec.height * channels);
-  if (!in->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, pixels.data()))
-    throw std::runtime_error("cannot read " + path + ": " + in->geterror());
-  Image image(spec.width, spec.height);
-  for (std::size_t p = 0; p < static_cast<std::size_t>(spec.width) * spec.height; ++p)
-    for (int c = 0; c < 3; ++c)
-      image.rgb[3 * p + c] =
-          pixels[p * channels + static_cast<std::size_t>(std::min(c, channels - 1))];
-  return image;
+  return read_opened(*in, path, static_cast<std::size_t>(-1));
+}
+
+Image decode_image(std::string_view bytes, const std::string& name, std::size_t max_pixels) {
+  OIIO::Filesystem::IOMemReader memory(bytes.data(), bytes.size());
+  // The name's extension picks the format first; OpenImageIO then tries the others.
+  auto in = OIIO::ImageInput::open(name, nullptr, &memory);
+  if (!in) throw std::runtime_error("cannot read " + name + ": " + OIIO::geterror());
+  return read_opened(*in, name, max_pixels);
 }
 
 }  // namespace tessera

@@ -209,6 +209,7 @@ void image_texture(FileParser& p) {
   const bool decal = !p.flag("<method>");
   const double tile_s = p.number("<tile-s>", Range::Positive);
   const double tile_t = p.number("<tile-t>", Range::Positive);
+  p.image(path, name);  // read now, so that the file travels in the scene's bundle
   FlatTexture& texture = p.material().flat_texture;
   texture.kind = FlatTexture::Kind::Image;
   texture.image_file = path;

@@ -110,6 +110,12 @@ class LoadContext {
     return scene_.meshes.size() - 1;
   }
 
+  void image(const std::string& path, const Token& name) {
+    if (!image_paths_.insert(path).second) return;
+    std::string bytes = read(path, location(name), "image file");
+    scene_.images.push_back({path, std::move(bytes), location(name)});
+  }
+
   std::size_t built_in_mesh(const std::string& name, Mesh (*make)()) {
     const auto known = built_in_mesh_ids_.find(name);
     if (known != built_in_mesh_ids_.end()) return known->second;
@@ -153,6 +159,7 @@ class LoadContext {
   std::unordered_map<std::string, std::uint32_t> file_ids_;
   std::unordered_map<std::string, std::size_t> mesh_ids_;           // into Scene::meshes, by path
   std::unordered_map<std::string, std::size_t> built_in_mesh_ids_;  // by keyword
+  std::unordered_set<std::string> image_paths_;                     // in Scene::images
   std::unordered_map<std::string, Macro> macros_;                   // by lower-case name
   std::vector<std::string> include_chain_;  // files being parsed, outermost first
   std::unordered_set<std::string> warning_set_;
@@ -393,6 +400,8 @@ std::size_t FileParser::mesh(const Token& name) {
   }
   return context_.mesh(path, name, loader);
 }
+
+void FileParser::image(const std::string& path, const Token& name) { context_.image(path, name); }
 
 std::size_t FileParser::built_in_mesh(Mesh (*make)()) {
   return context_.built_in_mesh(std::string(keyword_name_), make);

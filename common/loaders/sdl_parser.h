@@ -89,6 +89,9 @@ class FileParser {
   // The index in Scene::meshes of the mesh `make` builds for the current keyword (a polyhedron,
   // the teapot): made once per scene and shared by every instance.
   std::size_t built_in_mesh(Mesh (*make)());
+  // Reads the image file at resolved `path` (written as `name`) into Scene::images, once per
+  // path; an error at `name` when it is missing or too large.
+  void image(const std::string& path, const Token& name);
   // `name` resolved relative to the file it is written in; an error when it leaves the root.
   std::string resolve(const Token& name);
   void include(const Token& name);

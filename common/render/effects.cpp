@@ -6,7 +6,7 @@
 namespace tessera {
 
 namespace {
-constexpr std::array<std::pair<Effect, const char*>, 10> kEffectNames{{
+constexpr std::array<std::pair<Effect, const char*>, 13> kEffectNames{{
     {Effect::HardShadows, "hard_shadows"},
     {Effect::Reflection, "reflection"},
     {Effect::Refraction, "refraction"},
@@ -17,6 +17,9 @@ constexpr std::array<std::pair<Effect, const char*>, 10> kEffectNames{{
     {Effect::SurfaceRoughness, "surface_roughness"},
     {Effect::AtmosphericAttenuation, "atmospheric_attenuation"},
     {Effect::Fog, "fog"},
+    {Effect::SolidTexture, "solid_texture"},
+    {Effect::ImageTexture, "image_texture"},
+    {Effect::ProceduralTexture, "procedural_texture"},
 }};
 }  // namespace
 

@@ -19,6 +19,9 @@ enum class Effect : std::uint32_t {
   SurfaceRoughness = 1u << 7,
   AtmosphericAttenuation = 1u << 8,
   Fog = 1u << 9,
+  SolidTexture = 1u << 10,
+  ImageTexture = 1u << 11,
+  ProceduralTexture = 1u << 12,
 };
 
 class EffectSet {

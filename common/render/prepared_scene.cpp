@@ -2,6 +2,9 @@
 
 #include <cmath>
 #include <numbers>
+#include <stdexcept>
+
+#include "common/texture/image_texture.h"
 
 namespace tessera {
 
@@ -45,6 +48,10 @@ EffectSet scene_effects(const Scene& scene) {
       effects.add(Effect::Refraction);
     if (m.surface_roughness > 0) effects.add(Effect::SurfaceRoughness);
     if (std::holds_alternative<MeshShape>(object.geometry)) effects.add(Effect::Meshes);
+    if (m.solid_texture.type != 0) effects.add(Effect::SolidTexture);
+    if (m.flat_texture.kind == FlatTexture::Kind::Image) effects.add(Effect::ImageTexture);
+    if (m.flat_texture.kind == FlatTexture::Kind::Procedural)
+      effects.add(Effect::ProceduralTexture);
   }
   return effects;
 }
@@ -66,11 +73,38 @@ std::vector<std::string> unsupported_features(const Scene& scene) {
     if (m.gloss_strength > 0 && m.reflectivity > 0) note(object.where.to_string(), "glossStrength");
     if (m.translucency_strength > 0 && m.transparency > 0)
       note(object.where.to_string(), "translucencyStrength");
-    if (m.solid_texture.type != 0) note(object.where.to_string(), "solidTexture");
-    if (m.flat_texture.kind != FlatTexture::Kind::None)
-      note(object.where.to_string(), "a flat texture");
   }
   return out;
+}
+
+bool has_texture(const EffectSet& effects) {
+  return effects.has(Effect::SolidTexture) || effects.has(Effect::ImageTexture) ||
+         effects.has(Effect::ProceduralTexture);
+}
+
+// Every image file the scene names, decoded once for all rays.
+std::vector<Image> decode_images(const Scene& scene) {
+  std::vector<Image> images;
+  images.reserve(scene.images.size());
+  for (const ImageFile& file : scene.images) {
+    try {
+      images.push_back(decode_image(file.bytes, file.path, kMaxTexturePixels));
+    } catch (const std::runtime_error& e) {
+      throw SceneError(file.where, e.what());
+    }
+  }
+  return images;
+}
+
+ObjectTexture object_texture(const SceneObject& object, const Scene& scene,
+                             const std::vector<Image>& images) {
+  const Material& m = object.material;
+  const Image* image = nullptr;
+  for (std::size_t i = 0; i < scene.images.size(); ++i)
+    if (scene.images[i].path == m.flat_texture.image_file) image = &images[i];
+  if (m.flat_texture.kind == FlatTexture::Kind::Image && image == nullptr)
+    throw SceneError(object.where, "image file '" + m.flat_texture.image_file + "' was not read");
+  return {make_solid_pattern(m.solid_texture), make_flat_texture(m.flat_texture, image)};
 }
 
 }  // namespace
@@ -94,6 +128,12 @@ PreparedScene::PreparedScene(const Scene& scene, BvhMode mode)
     if (!instance) throw SceneError(object.where, "the shape's transform is singular");
     bounds.push_back(instance->world_bounds);
     instances_.push_back(std::move(*instance));
+  }
+  if (has_texture(effects_)) {
+    images_ = decode_images(scene);
+    textures_.reserve(scene.objects.size());
+    for (const SceneObject& object : scene.objects)
+      textures_.push_back(object_texture(object, scene, images_));
   }
   bvh_ = build_bvh(bounds, mode);
 }

@@ -1,6 +1,7 @@
 // The prepared, traceable scene (STYLE.md §4): built once per render (or per job on a worker)
 // from a parsed Scene: instances with inverse transforms, mesh and scene BVHs, the camera
-// frame, and the effect set that decides which work the tracer does at all.
+// frame, the decoded texture images, and the effect set that decides which work the tracer
+// does at all.
 #pragma once
 
 #include <memory>
@@ -10,8 +11,10 @@
 #include "common/accel/bvh.h"
 #include "common/accel/mesh_accel.h"
 #include "common/geometry/instance.h"
+#include "common/image/image.h"
 #include "common/render/effects.h"
 #include "common/scene/scene.h"
+#include "common/texture/surface_texture.h"
 
 namespace tessera {
 
@@ -27,7 +30,8 @@ struct CameraFrame {
 
 class PreparedScene {
  public:
-  // Throws SceneError for what cannot be traced (degenerate camera). `scene` must outlive
+  // Throws SceneError for what cannot be traced (degenerate camera, an image texture that
+  // cannot be decoded). `scene` must outlive
   // the prepared scene (meshes are referenced, not copied).
   PreparedScene(const Scene& scene, BvhMode mode);
   PreparedScene(Scene&& temporary, BvhMode mode) = delete;  // it would dangle
@@ -39,6 +43,9 @@ class PreparedScene {
   const EffectSet& effects() const { return effects_; }
   const std::vector<Instance>& instances() const { return instances_; }
   const Bvh& bvh() const { return bvh_; }
+  // Whether any shape has a texture; only then may texture() be called.
+  bool textured() const { return !textures_.empty(); }
+  const ObjectTexture& texture(std::uint32_t index) const { return textures_[index]; }
   // What the scene asks for that this renderer does not simulate (yet), one line each.
   const std::vector<std::string>& unsupported() const { return unsupported_; }
 
@@ -48,6 +55,8 @@ class PreparedScene {
   EffectSet effects_;
   std::vector<std::unique_ptr<MeshAccel>> meshes_;
   std::vector<Instance> instances_;
+  std::vector<Image> images_;            // Scene::images decoded, in the same order
+  std::vector<ObjectTexture> textures_;  // per instance; empty when no shape has a texture
   Bvh bvh_;
   std::vector<std::string> unsupported_;
 };

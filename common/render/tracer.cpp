@@ -71,16 +71,17 @@ Vec3 Tracer::spawn_origin(const Hit& hit, const Vec3& direction, double epsilon)
                            epsilon);
 }
 
-Rgb Tracer::local_illumination(const Hit& hit, const Material& m, const Vec3& normal,
-                               const Vec3& view_dir) {
+Rgb Tracer::local_illumination(const Hit& hit, const Material& m, const SurfaceColours& colours,
+                               const Vec3& normal, const Vec3& view_dir) {
   const Scene& scene = scene_.scene();
   const SceneGlobals& g = scene.globals;
   const double opacity = 1 - m.transparency;  // eq. 4.6, 4.10, 4.11
 
-  Rgb color = m.emissive;                      // eq. 4.4
-  Rgb ambient = m.ambient * g.global_ambient;  // eq. 4.5
+  Rgb color = m.emissive;  // eq. 4.4
+  Rgb ambient = colours.ambient_term;
   if (!m.retain_ambient_color) ambient *= opacity;
   color += ambient;
+  if (!colours.lit) return color;
 
   const double diffuse_scale = m.retain_diffuse_color ? 1 : opacity;
   const double specular_scale = m.retain_specular_reflection ? 1 : opacity;
@@ -119,8 +120,8 @@ Rgb Tracer::local_illumination(const Hit& hit, const Material& m, const Vec3& no
         shadow_factor(spawn_origin(hit, l, g.shadow_feeler_epsilon), light.position);
     if (shadow <= 0) continue;
 
-    Rgb contribution = m.diffuse * light.color * (n_dot_l * diffuse_scale);  // eq. 4.8
-    if (n_dot_h > 0)                                                         // eq. 4.9
+    Rgb contribution = colours.diffuse * light.color * (n_dot_l * diffuse_scale);  // eq. 4.8
+    if (n_dot_h > 0)                                                               // eq. 4.9
       contribution +=
           m.specular * light.color * (std::pow(n_dot_h, m.specular_exponent) * specular_scale);
     color += contribution * (attenuation * shadow * cone);  // eq. 4.7
@@ -226,7 +227,13 @@ Rgb Tracer::trace(const Ray& ray_in, RayKind kind, int depth, double weight,
   if (effects.has(Effect::SurfaceRoughness) && m->surface_roughness > 0)
     normal = perturb_normal(normal, m->surface_roughness, rng);
 
-  Rgb color = local_illumination(hit, *m, normal, ray.direction);
+  SurfaceColours colours{m->ambient * g.global_ambient, m->diffuse};  // eq. 4.5
+  if (scene_.textured()) {
+    const ObjectTexture& texture = scene_.texture(hit.instance);
+    if (!texture.empty())
+      colours = textured_colours(texture, scene_.instances()[hit.instance], hit.world, colours);
+  }
+  Rgb color = local_illumination(hit, *m, colours, normal, ray.direction);
   if (depth < g.max_recursion_depth) {
     if (effects.has(Effect::Reflection) && weight * m->reflectivity > g.min_reflectivity)
       color += reflection(ray, hit, *m, normal, depth, weight, media, rng);

@@ -30,8 +30,9 @@ class Tracer {
   // Eq. 4.24: the product of the transparencies of everything between `origin` and `target`.
   double shadow_factor(const Vec3& origin, const Vec3& target);
   // Eq. 4.4-4.12 and 4.24 at a hit: emissive, ambient, and every light's diffuse and specular.
-  Rgb local_illumination(const Hit& hit, const Material& m, const Vec3& normal,
-                         const Vec3& view_dir);
+  // `colours` are the material's after texturing (§4.3).
+  Rgb local_illumination(const Hit& hit, const Material& m, const SurfaceColours& colours,
+                         const Vec3& normal, const Vec3& view_dir);
   Rgb reflection(const Ray& ray, const Hit& hit, const Material& m, const Vec3& normal, int depth,
                  double weight, const MediumStack& media, SampleStream& rng);
   Rgb transmission(const Ray& ray, const Hit& hit, const Material& m, const Vec3& normal, int depth,

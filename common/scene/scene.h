@@ -76,12 +76,21 @@ struct SceneObject {
   SourceLocation where;  // the shape keyword, for messages
 };
 
+// The bytes of an image file a scene names (imageTexture), read once per path by the loader so
+// that it travels in the scene's bundle; the renderer decodes it (render/prepared_scene.h).
+struct ImageFile {
+  std::string path;      // resolved, root-relative
+  std::string bytes;     // the file as stored: any format OpenImageIO reads
+  SourceLocation where;  // the first imageTexture that names it, for messages
+};
+
 struct Scene {
   Camera camera;
   SceneGlobals globals;
   std::vector<Light> lights;
   std::vector<SceneObject> objects;
   std::vector<Mesh> meshes;
+  std::vector<ImageFile> images;
   // Things the loader accepted but that change nothing, or that this renderer does not
   // simulate yet, each with its location. Shown to users, never dropped silently.
   std::vector<std::string> warnings;

@@ -64,8 +64,8 @@ TEST(SdlMaterial, TheMaterialCarriesToLaterShapesUntilChanged) {
 }
 
 TEST(SdlMaterial, DefaultMaterialsAlsoClearsTextures) {
-  const Scene scene =
-      load_text("solidTexture 9 0.5 imageTexture a.bmp 1 1 1 defaultMaterials sphere");
+  const Scene scene = load_text(
+      "solidTexture 9 0.5 imageTexture a.bmp 1 1 1 defaultMaterials sphere", {{"a.bmp", "image"}});
   EXPECT_EQ(scene.objects[0].material, Material{});
 }
 
@@ -149,7 +149,10 @@ TEST(SdlTextures, ImageTextureStoresTheResolvedPath) {
       "imageTexture textures/wood.bmp 0 2 3 sphere\n"
       "imageTexture ./textures/../marble.bmp 1 1 0.5 sphere\n"
       "include sub/part.sdl",
-      {{"sub/part.sdl", "imageTexture tex.bmp 1 1 1 cube"}});
+      {{"sub/part.sdl", "imageTexture tex.bmp 1 1 1 cube"},
+       {"textures/wood.bmp", "wood"},
+       {"marble.bmp", "marble"},
+       {"sub/tex.bmp", "tex"}});
   ASSERT_EQ(scene.objects.size(), 3u);
   const FlatTexture& wood = scene.objects[0].material.flat_texture;
   EXPECT_EQ(wood.kind, FlatTexture::Kind::Image);
@@ -164,7 +167,26 @@ TEST(SdlTextures, ImageTextureStoresTheResolvedPath) {
   EXPECT_EQ(scene.objects[2].material.flat_texture.image_file, "sub/tex.bmp");
 }
 
+// The loader reads each image file once, so that it travels in the scene's bundle; the
+// renderer decodes it.
+TEST(SdlTextures, ImageFilesAreReadOncePerPath) {
+  const Scene scene = load_text(
+      "imageTexture a.bmp 0 1 1 sphere\n"
+      "imageTexture ./a.bmp 1 2 2 cube\n"
+      "imageTexture sub/b.png 1 1 1 cube",
+      {{"a.bmp", "AAA"}, {"sub/b.png", "BB"}});
+  ASSERT_EQ(scene.images.size(), 2u);
+  EXPECT_EQ(scene.images[0].path, "a.bmp");
+  EXPECT_EQ(scene.images[0].bytes, "AAA");
+  EXPECT_EQ(scene.images[0].where.line, 1);
+  EXPECT_EQ(scene.images[0].where.column, 14);
+  EXPECT_EQ(scene.images[1].path, "sub/b.png");
+  EXPECT_EQ(scene.images[1].bytes, "BB");
+}
+
 TEST(SdlTextures, ImageTextureErrors) {
+  EXPECT_TRUE(
+      fails_at("sphere\nimageTexture nope.bmp 0 1 1", 2, 14, "image file 'nope.bmp' not found"));
   EXPECT_TRUE(fails_at("imageTexture ../x.bmp 0 1 1", 1, 14,
                        "imageTexture '../x.bmp' leaves the scene's folder"));
   EXPECT_TRUE(fails_at("imageTexture x.bmp 0 0 1", 1, 22,
@@ -199,7 +221,8 @@ TEST(SdlTextures, ProceduralTextures) {
 TEST(SdlTextures, ImageAndProceduralTexturesReplaceEachOtherButKeepOffsets) {
   const Scene scene = load_text(
       "flatTextureOffset 0.25 0.5 imageTexture a.bmp 1 2 2 proceduralTexture 1 1 3 3 sphere\n"
-      "imageTexture b.bmp 0 4 4 solidTexture 9 0.5 sphere");
+      "imageTexture b.bmp 0 4 4 solidTexture 9 0.5 sphere",
+      {{"a.bmp", "a"}, {"b.bmp", "b"}});
   const Material& first = scene.objects[0].material;
   EXPECT_EQ(first.flat_texture.kind, FlatTexture::Kind::Procedural);
   EXPECT_EQ(first.flat_texture.image_file, "");

@@ -2,6 +2,7 @@
 // the merge of unit results into the frame buffer and the display.
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 
 #include "coordinator/http/api.h"
@@ -104,6 +105,30 @@ TEST(ParseJobRequest, TheBundleHoldsWhatTheSceneRead) {
   EXPECT_TRUE(r.bundle.files.count("parts/p.sdl"));
   EXPECT_THROW(parse_job_request({"{}", "text/plain", {}}, ServiceLimits{}, std::nullopt),
                ApiError);
+}
+
+// An image texture's file travels with the job like a mesh file, so a worker with no files of
+// its own renders it; the coordinator decodes it once to check it (ASCII PPM keeps the JSON
+// body text).
+TEST(ParseJobRequest, TheBundleHoldsTheImageTexture) {
+  const std::string body = R"({"scene": "imageTexture tex/c.ppm 1 1 1\nsphere\n", "files": )"
+                           R"({"tex/c.ppm": "P3\n2 1\n255\n255 0 0  0 0 255\n"}})";
+  const JobRequest r =
+      parse_job_request({body, "application/json", {}}, ServiceLimits{}, std::nullopt);
+  EXPECT_EQ(r.bundle.files.size(), 2u);
+  EXPECT_EQ(r.bundle.files.count("tex/c.ppm"), 1u);
+  EXPECT_NE(std::find(r.effects.begin(), r.effects.end(), "image_texture"), r.effects.end());
+  const std::string broken =
+      R"({"scene": "imageTexture c.ppm 1 1 1\nsphere\n", "files": {"c.ppm": "P3 junk"}})";
+  try {
+    parse_job_request({broken, "application/json", {}}, ServiceLimits{}, std::nullopt);
+    FAIL() << "expected a scene error";
+  } catch (const ApiError& e) {
+    EXPECT_EQ(e.status(), 400);
+    EXPECT_EQ(e.body()["error"], "scene_error");
+    EXPECT_EQ(e.body()["line"], 1);
+    EXPECT_EQ(e.body()["column"], 14);
+  }
 }
 
 TEST(Multipart, ReadsFieldsAndFiles) {

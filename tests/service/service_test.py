@@ -203,13 +203,18 @@ def case_bit_identical():
 
 
 def case_bundle():
-    """A tar bundle with a scene and its mesh, a scene of --scenes-dir with an include, and the
-    same scene as a multipart form render like tessera-render on the folder."""
+    """A tar bundle with a scene and its mesh, one with its image texture, a scene of
+    --scenes-dir with an include, and the same scene as a multipart form render like
+    tessera-render on the folder."""
     features = os.path.join(ARGS.source, "scenes", "features")
     buf = io.BytesIO()
     with tarfile.open(fileobj=buf, mode="w", format=tarfile.USTAR_FORMAT) as tar:
         tar.add(os.path.join(features, "mesh.sdl"), "mesh.sdl")
         tar.add(os.path.join(features, "meshes", "icosphere.obj"), "meshes/icosphere.obj")
+    image_buf = io.BytesIO()
+    with tarfile.open(fileobj=image_buf, mode="w", format=tarfile.USTAR_FORMAT) as tar:
+        tar.add(os.path.join(features, "image_texture.sdl"), "image_texture.sdl")
+        tar.add(os.path.join(features, "textures", "gradient.bmp"), "textures/gradient.bmp")
     settings = {"width": 64, "height": 48}
     with tempfile.TemporaryDirectory() as tmp, Service("--local-workers", "2",
                                                        "--local-threads", "1",
@@ -224,6 +229,20 @@ def case_bundle():
         service.exr(job["id"], os.path.join(tmp, "svc.exr"))
         render_cli(os.path.join(features, "mesh.sdl"), settings, os.path.join(tmp, "cli.exr"))
         assert_identical(os.path.join(tmp, "svc.exr"), os.path.join(tmp, "cli.exr"))
+
+        # The image texture travels in the bundle: the workers read no files of their own.
+        status, _, body = service.request(
+            "POST", "/api/jobs?main=image_texture.sdl&width=64&height=48", image_buf.getvalue(),
+            {"Content-Type": "application/x-tar"})
+        assert status == 201, (status, body)
+        job = json.loads(body)
+        final = service.wait_job(job["id"])
+        assert final["state"] == "done", final
+        assert "image_texture" in final["effects"], final["effects"]
+        service.exr(job["id"], os.path.join(tmp, "image.exr"))
+        render_cli(os.path.join(features, "image_texture.sdl"), settings,
+                   os.path.join(tmp, "image-cli.exr"))
+        assert_identical(os.path.join(tmp, "image.exr"), os.path.join(tmp, "image-cli.exr"))
 
         status, _, body = service.request(
             "POST", "/api/jobs", json.dumps({"scene_file": "macros.sdl", "settings": settings}).encode(),
