@@ -9,16 +9,14 @@ namespace {
 
 CameraFrame make_camera_frame(const Camera& camera) {
   const SourceLocation nowhere{"camera", 0, 0};
-  const Vec3 view = camera.look_at - camera.eye;
-  if (!is_finite(view) || !(length(view) > 0))
-    throw SceneError(nowhere, "eyePoint and viewPoint coincide: the view has no direction");
   CameraFrame frame;
   frame.eye = camera.eye;
-  frame.forward = view / length(view);
-  const Vec3 right = cross(frame.forward, camera.up);
-  if (!(length(right) > 1e-12 * length(camera.up)))
-    throw SceneError(nowhere, "upDirection is parallel to the view direction");
-  frame.right = right / length(right);
+  frame.forward = view_direction(camera);
+  if (frame.forward == Vec3{})
+    throw SceneError(nowhere, "eyePoint and viewPoint coincide: the view has no direction");
+  frame.right = camera_right(camera, frame.forward);
+  if (frame.right == Vec3{})
+    throw SceneError(nowhere, "upDirection is zero or parallel to the view direction");
   frame.up = cross(frame.right, frame.forward);
   if (!(camera.view_angle > 0 && camera.view_angle < 180))
     throw SceneError(nowhere, "viewAngle must lie strictly between 0 and 180 degrees");
