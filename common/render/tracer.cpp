@@ -5,6 +5,7 @@
 #include <numbers>
 
 #include "common/math/float_error.h"
+#include "common/render/optics.h"
 
 namespace tessera {
 
@@ -12,8 +13,6 @@ namespace {
 
 // A ray may cross at most this many false interfaces (media of lower priority) in a row.
 constexpr int kMaxFalseInterfaces = 64;
-
-Vec3 reflect(const Vec3& r, const Vec3& n) { return r - n * (2 * dot(n, r)); }
 
 // Eq. 4.3: the normal perturbed by surface roughness, renormalized.
 Vec3 perturb_normal(const Vec3& n, double roughness, SampleStream& rng) {
@@ -153,18 +152,13 @@ Rgb Tracer::transmission(const Ray& ray, const Hit& hit, const Material& m, cons
 
   Vec3 direction = ray.direction;  // disableRefraction: straight through
   if (!m.disable_refraction) {
-    // Snell's law by speeds of light (eq. 4.15-4.16, with 1 - (N.r)^2 under the root).
     const Vec3 n = entering ? normal : -normal;  // against the incoming ray
-    const double cos_i = std::clamp(-dot(n, ray.direction), 0.0, 1.0);
-    const double eta = c2 / c1;
-    const double k = 1 - eta * eta * (1 - cos_i * cos_i);
-    if (k < 0) {
+    if (const std::optional<Vec3> refracted = refract(ray.direction, n, c2 / c1)) {
+      direction = *refracted;
+    } else {
       // Total internal reflection: the transmitted share reflects and stays in this medium.
       direction = normalize_or(reflect(ray.direction, n), ray.direction);
       after = media;
-    } else {
-      direction =
-          normalize_or(ray.direction * eta + n * (eta * cos_i - std::sqrt(k)), ray.direction);
     }
   }
   const Ray refracted{spawn_origin(hit, direction, g.transparency_epsilon), direction, ray.time};
