@@ -71,6 +71,25 @@ std::vector<std::string> unsupported_features(const Scene& scene) {
   return out;
 }
 
+// Pairs of transparent objects whose bounds meet: where the tracer looks for coincident
+// boundaries (Tracer::cross_interface). Quadratic in the transparent objects only.
+std::vector<std::vector<std::uint32_t>> find_transparent_neighbours(
+    const Scene& scene, const EffectSet& effects, const std::vector<Bounds3>& bounds) {
+  std::vector<std::vector<std::uint32_t>> out(scene.objects.size());
+  if (!effects.has(Effect::Refraction)) return out;
+  std::vector<std::uint32_t> transparent;
+  for (std::uint32_t i = 0; i < scene.objects.size(); ++i)
+    if (scene.objects[i].material.transparency > scene.globals.min_transparency)
+      transparent.push_back(i);
+  for (std::size_t a = 0; a < transparent.size(); ++a)
+    for (std::size_t b = a + 1; b < transparent.size(); ++b)
+      if (bounds[transparent[a]].overlaps(bounds[transparent[b]])) {
+        out[transparent[a]].push_back(transparent[b]);
+        out[transparent[b]].push_back(transparent[a]);
+      }
+  return out;
+}
+
 }  // namespace
 
 PreparedScene::PreparedScene(const Scene& scene, BvhMode mode)
@@ -94,6 +113,7 @@ PreparedScene::PreparedScene(const Scene& scene, BvhMode mode)
     instances_.push_back(std::move(*instance));
   }
   bvh_ = build_bvh(bounds, mode);
+  transparent_neighbours_ = find_transparent_neighbours(scene, effects_, bounds);
 }
 
 }  // namespace tessera

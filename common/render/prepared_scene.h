@@ -39,6 +39,11 @@ class PreparedScene {
   const EffectSet& effects() const { return effects_; }
   const std::vector<Instance>& instances() const { return instances_; }
   const Bvh& bvh() const { return bvh_; }
+  // For a transparent object, the other transparent objects whose world bounds meet its own:
+  // those whose boundaries may coincide with it (empty unless the scene refracts).
+  const std::vector<std::uint32_t>& transparent_neighbours(std::uint32_t instance) const {
+    return transparent_neighbours_[instance];
+  }
   // What the scene asks for that this renderer does not simulate (yet), one line each.
   const std::vector<std::string>& unsupported() const { return unsupported_; }
 
@@ -49,6 +54,7 @@ class PreparedScene {
   std::vector<std::unique_ptr<MeshAccel>> meshes_;
   std::vector<Instance> instances_;
   Bvh bvh_;
+  std::vector<std::vector<std::uint32_t>> transparent_neighbours_;
   std::vector<std::string> unsupported_;
 };
 
