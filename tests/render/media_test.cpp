@@ -80,11 +80,14 @@ Scene lit_backdrop() {
   return scene;
 }
 
+// Pixels with a channel differing by more than 1e-5 (or not finite).
 int pixels_differing(const Image& a, const Image& b) {
   int count = 0;
-  for (std::size_t i = 0; i < a.rgb.size(); ++i) {
-    EXPECT_TRUE(std::isfinite(a.rgb[i]) && std::isfinite(b.rgb[i]));
-    count += std::fabs(double(a.rgb[i]) - b.rgb[i]) > 1e-5 ? 1 : 0;
+  for (std::size_t i = 0; i < a.rgb.size(); i += 3) {
+    bool differs = false;
+    for (std::size_t c = i; c < i + 3; ++c)
+      differs = differs || !(std::fabs(double(a.rgb[c]) - b.rgb[c]) <= 1e-5);
+    count += differs ? 1 : 0;
   }
   return count;
 }
