@@ -130,5 +130,31 @@ TEST(NestedMedia, FlushFacesOfLowerPriorityGlassAreInvisible) {
   EXPECT_EQ(pixels_differing(expected, render(flush, s)), 0);
 }
 
+// Interpenetrating glass of different priorities: in the overlap the higher priority governs
+// whichever object is listed first, so the image does not depend on the order.
+TEST(NestedMedia, InterpenetratingGlassDoesNotDependOnListingOrder) {
+  const RenderSettings s = settings(64, 48);
+  Material water = glass(0.75, 3);
+  water.diffuse = {0.02, 0.03, 0.05};
+  Material crystal = glass(0.6, 2);
+  crystal.transparency = 0.9;
+  crystal.diffuse = {0.05, 0.02, 0.02};
+  const SceneObject a = object(Sphere{}, Affine::translation({-0.4, 0, 0}), water);
+  const SceneObject b =
+      object(Cube{},
+             Affine::translation({0.5, 0.1, 0.2}) * *Affine::rotation(30, {1, 1, 0}) *
+                 Affine::scaling({0.7, 0.7, 0.7}),
+             crystal);
+  Scene ab = lit_backdrop(), ba = lit_backdrop();
+  ab.objects.push_back(a);
+  ab.objects.push_back(b);
+  ba.objects.push_back(b);
+  ba.objects.push_back(a);
+  RenderStats stats;
+  const Image first = render(ab, s, &stats);
+  EXPECT_GT(stats.refraction_rays, 1000u);
+  EXPECT_EQ(pixels_differing(first, render(ba, s)), 0);
+}
+
 }  // namespace
 }  // namespace tessera::test
