@@ -6,6 +6,8 @@ set -euo pipefail
 packages=(
   # build
   cmake ninja-build g++ clang-format
+  # fuzzing (scripts/fuzz.sh): clang and its libFuzzer runtime
+  clang libclang-rt-14-dev
   # libraries (DESIGN.md §6)
   libboost-dev nlohmann-json3-dev libopenimageio-dev libspdlog-dev
   libgtest-dev libgmock-dev libbenchmark-dev

@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
-# The test command: installs what is needed, builds, and runs every test. Two builds:
+# The test command: installs what is needed, builds, and runs every test. Three builds:
 #   build/       optimized: unit, image and integration tests
 #   build-asan/  AddressSanitizer + UndefinedBehaviorSanitizer: the unit tests
+#   build-fuzz/  clang + libFuzzer: a short fuzz run of the SDL and mesh loaders (fuzz.sh)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install-deps.sh
@@ -17,3 +18,5 @@ ctest --test-dir build --output-on-failure -j"$jobs"
 echo "== unit tests under AddressSanitizer and UndefinedBehaviorSanitizer"
 ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1 \
   ctest --test-dir build-asan --output-on-failure -j"$jobs" -L unit
+echo "== fuzzing the loaders"
+scripts/fuzz.sh 15

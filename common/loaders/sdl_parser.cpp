@@ -463,25 +463,14 @@ void FileParser::validate_camera() const {
   const Camera& camera = context_.scene().camera;
   const SourceLocation position_at =
       last_camera_position_ ? location(*last_camera_position_) : SourceLocation{file_.path, 1, 1};
-  Vec3 difference = camera.look_at - camera.eye;
-  if (!is_finite(difference)) difference = camera.look_at * 0.5 - camera.eye * 0.5;
-  const Vec3 view = unit_or_zero(difference);
+  const Vec3 view = view_direction(camera);
   if (view == Vec3{}) {
     throw SceneError(position_at, "eyePoint and viewPoint are the same point");
   }
-  const Vec3 up = unit_or_zero(camera.up);
-  if (!(length(cross(up, view)) > 1e-9)) {
+  if (camera_right(camera, view) == Vec3{}) {
     throw SceneError(up_direction_ ? location(*up_direction_) : position_at,
                      "upDirection is zero or parallel to the view direction");
   }
-}
-
-Vec3 unit_or_zero(const Vec3& v) {
-  // Scaling by the largest component first keeps the squared length from under- or
-  // overflowing.
-  const double largest = max_component(abs(v));
-  if (!(largest > 0) || !std::isfinite(largest)) return {};
-  return normalize_or(v / largest, Vec3{});
 }
 
 Scene load_sdl_with_limits(const SceneSource& source, const std::string& path,

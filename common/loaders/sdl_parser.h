@@ -128,9 +128,6 @@ class FileParser {
   std::optional<Token> up_direction_;
 };
 
-// The unit vector along `v`, also for tiny or huge lengths; zero when `v` has no direction.
-Vec3 unit_or_zero(const Vec3& v);
-
 // load_sdl with chosen limits.
 Scene load_sdl_with_limits(const SceneSource& source, const std::string& path,
                            const Limits& limits);

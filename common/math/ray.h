@@ -29,6 +29,11 @@ struct Bounds3 {
     lo = min(lo, b.lo);
     hi = max(hi, b.hi);
   }
+  // Whether the two boxes share a point (touching counts).
+  bool overlaps(const Bounds3& b) const {
+    return lo.x <= b.hi.x && b.lo.x <= hi.x && lo.y <= b.hi.y && b.lo.y <= hi.y && lo.z <= b.hi.z &&
+           b.lo.z <= hi.z;
+  }
   Vec3 centroid() const { return (lo + hi) * 0.5; }
   Vec3 diagonal() const { return hi - lo; }
   double surface_area() const {

@@ -74,4 +74,12 @@ inline Vec3 normalize_or(const Vec3& a, const Vec3& fallback) {
   return a / len;
 }
 
+// The unit vector along `v`, also for lengths whose square under- or overflows (1e-200,
+// 1e300); zero when `v` has no direction (zero or not finite).
+inline Vec3 unit_or_zero(const Vec3& v) {
+  const double largest = max_component(abs(v));
+  if (!(largest > 0) || !std::isfinite(largest)) return {};
+  return normalize_or(v / largest, Vec3{});
+}
+
 }  // namespace tessera

@@ -12,16 +12,14 @@ namespace {
 
 CameraFrame make_camera_frame(const Camera& camera) {
   const SourceLocation nowhere{"camera", 0, 0};
-  const Vec3 view = camera.look_at - camera.eye;
-  if (!is_finite(view) || !(length(view) > 0))
-    throw SceneError(nowhere, "eyePoint and viewPoint coincide: the view has no direction");
   CameraFrame frame;
   frame.eye = camera.eye;
-  frame.forward = view / length(view);
-  const Vec3 right = cross(frame.forward, camera.up);
-  if (!(length(right) > 1e-12 * length(camera.up)))
-    throw SceneError(nowhere, "upDirection is parallel to the view direction");
-  frame.right = right / length(right);
+  frame.forward = view_direction(camera);
+  if (frame.forward == Vec3{})
+    throw SceneError(nowhere, "eyePoint and viewPoint coincide: the view has no direction");
+  frame.right = camera_right(camera, frame.forward);
+  if (frame.right == Vec3{})
+    throw SceneError(nowhere, "upDirection is zero or parallel to the view direction");
   frame.up = cross(frame.right, frame.forward);
   if (!(camera.view_angle > 0 && camera.view_angle < 180))
     throw SceneError(nowhere, "viewAngle must lie strictly between 0 and 180 degrees");
@@ -107,6 +105,25 @@ ObjectTexture object_texture(const SceneObject& object, const Scene& scene,
   return {make_solid_pattern(m.solid_texture), make_flat_texture(m.flat_texture, image)};
 }
 
+// Pairs of transparent objects whose bounds meet: where the tracer looks for coincident
+// boundaries (Tracer::cross_interface). Quadratic in the transparent objects only.
+std::vector<std::vector<std::uint32_t>> find_transparent_neighbours(
+    const Scene& scene, const EffectSet& effects, const std::vector<Bounds3>& bounds) {
+  std::vector<std::vector<std::uint32_t>> out(scene.objects.size());
+  if (!effects.has(Effect::Refraction)) return out;
+  std::vector<std::uint32_t> transparent;
+  for (std::uint32_t i = 0; i < scene.objects.size(); ++i)
+    if (scene.objects[i].material.transparency > scene.globals.min_transparency)
+      transparent.push_back(i);
+  for (std::size_t a = 0; a < transparent.size(); ++a)
+    for (std::size_t b = a + 1; b < transparent.size(); ++b)
+      if (bounds[transparent[a]].overlaps(bounds[transparent[b]])) {
+        out[transparent[a]].push_back(transparent[b]);
+        out[transparent[b]].push_back(transparent[a]);
+      }
+  return out;
+}
+
 }  // namespace
 
 PreparedScene::PreparedScene(const Scene& scene, BvhMode mode)
@@ -136,6 +153,7 @@ PreparedScene::PreparedScene(const Scene& scene, BvhMode mode)
       textures_.push_back(object_texture(object, scene, images_));
   }
   bvh_ = build_bvh(bounds, mode);
+  transparent_neighbours_ = find_transparent_neighbours(scene, effects_, bounds);
 }
 
 }  // namespace tessera

@@ -46,6 +46,11 @@ class PreparedScene {
   // Whether any shape has a texture; only then may texture() be called.
   bool textured() const { return !textures_.empty(); }
   const ObjectTexture& texture(std::uint32_t index) const { return textures_[index]; }
+  // For a transparent object, the other transparent objects whose world bounds meet its own:
+  // those whose boundaries may coincide with it (empty unless the scene refracts).
+  const std::vector<std::uint32_t>& transparent_neighbours(std::uint32_t instance) const {
+    return transparent_neighbours_[instance];
+  }
   // What the scene asks for that this renderer does not simulate (yet), one line each.
   const std::vector<std::string>& unsupported() const { return unsupported_; }
 
@@ -58,6 +63,7 @@ class PreparedScene {
   std::vector<Image> images_;            // Scene::images decoded, in the same order
   std::vector<ObjectTexture> textures_;  // per instance; empty when no shape has a texture
   Bvh bvh_;
+  std::vector<std::vector<std::uint32_t>> transparent_neighbours_;
   std::vector<std::string> unsupported_;
 };
 

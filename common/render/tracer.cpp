@@ -2,9 +2,11 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <numbers>
 
 #include "common/math/float_error.h"
+#include "common/render/optics.h"
 
 namespace tessera {
 
@@ -13,7 +15,8 @@ namespace {
 // A ray may cross at most this many false interfaces (media of lower priority) in a row.
 constexpr int kMaxFalseInterfaces = 64;
 
-Vec3 reflect(const Vec3& r, const Vec3& n) { return r - n * (2 * dot(n, r)); }
+// At most this many surfaces are taken as one coincident interface.
+constexpr int kMaxCoincident = 8;
 
 // Eq. 4.3: the normal perturbed by surface roughness, renormalized.
 Vec3 perturb_normal(const Vec3& n, double roughness, SampleStream& rng) {
@@ -69,6 +72,61 @@ Vec3 Tracer::spawn_origin(const Hit& hit, const Vec3& direction, double epsilon)
     epsilon = std::max(epsilon, g.mesh_epsilon);
   return offset_ray_origin(hit.world.point, hit.world.point_error, hit.world.normal, direction,
                            epsilon);
+}
+
+Tracer::Crossing Tracer::cross_interface(const Ray& ray, Hit& hit, const MediumStack& media) {
+  const std::vector<Instance>& instances = scene_.instances();
+  const std::vector<SceneObject>& objects = scene_.scene().objects;
+
+  // Probe a short stretch of the ray around the hit, as long as the hit's rounding (times a
+  // margin for the other surface's own rounding), for the transparent objects whose bounds
+  // meet this one's: usually none, so that the common case costs nothing.
+  Hit found[kMaxCoincident];
+  int count = 0;
+  found[count++] = hit;
+  const Vec3& p = hit.world.point;
+  const double reach =
+      8 * (length(hit.world.point_error) + kMachineEpsilon * max_component(abs(p))) /
+          length(ray.direction) +
+      std::numeric_limits<double>::min();
+  const Ray probe{p - ray.direction * reach, ray.direction, ray.time};
+  const Vec3 margin = abs(ray.direction) * reach;
+  const Bounds3 stretch{p - margin, p + margin};
+  for (const std::uint32_t index : scene_.transparent_neighbours(hit.instance)) {
+    if (count == kMaxCoincident || !instances[index].world_bounds.overlaps(stretch)) continue;
+    WorldHit h;
+    if (intersect_instance(instances[index], probe, 2 * reach, h, stats_.intersections))
+      found[count++] = {h, index};
+  }
+
+  Crossing crossing{media, true};
+  for (int k = 0; k < count; ++k) {
+    const Hit& h = found[k];
+    const Material& m = objects[h.instance].material;
+    crossing.after = dot(h.world.normal, ray.direction) < 0
+                         ? crossing.after.entered({h.instance, m.priority, m.speed_of_light})
+                         : crossing.after.exited(h.instance);
+  }
+  if (count > 1) {
+    // The governing surface: that of the medium entered, or else of the medium left.
+    const auto index_of = [&](std::uint32_t instance) {
+      for (int k = 0; k < count; ++k)
+        if (found[k].instance == instance) return k;
+      return -1;
+    };
+    int chosen = index_of(crossing.after.top().instance);
+    if (chosen < 0) chosen = std::max(index_of(media.top().instance), 0);
+    Vec3 error = found[chosen].world.point_error;
+    for (int k = 0; k < count; ++k)
+      error = max(error, found[k].world.point_error +
+                             abs(found[k].world.point - found[chosen].world.point));
+    const double t = hit.world.t;
+    hit = found[chosen];
+    hit.world.t = t;
+    hit.world.point_error = error;
+  }
+  crossing.known = dot(hit.world.normal, ray.direction) < 0 || media.contains(hit.instance);
+  return crossing;
 }
 
 Rgb Tracer::local_illumination(const Hit& hit, const Material& m, const SurfaceColours& colours,
@@ -140,32 +198,26 @@ Rgb Tracer::reflection(const Ray& ray, const Hit& hit, const Material& m, const 
 }
 
 Rgb Tracer::transmission(const Ray& ray, const Hit& hit, const Material& m, const Vec3& normal,
-                         int depth, double weight, const MediumStack& media, SampleStream& rng) {
+                         int depth, double weight, const MediumStack& media,
+                         const Crossing& crossing, SampleStream& rng) {
   ++stats_.refraction_rays;
   const SceneGlobals& g = scene_.scene().globals;
   const bool entering = dot(hit.world.normal, ray.direction) < 0;
-  const Medium here{hit.instance, m.priority, m.speed_of_light};
-  MediumStack after = entering ? media.entered(here) : media.exited(hit.instance);
+  MediumStack after = crossing.after;
   // Leaving an object the ray was not known to be in (the eye inside glass): its medium is
   // the one behind the surface.
-  const double c1 =
-      (!entering && !media.contains(hit.instance)) ? m.speed_of_light : media.top().speed_of_light;
+  const double c1 = crossing.known ? media.top().speed_of_light : m.speed_of_light;
   const double c2 = after.top().speed_of_light;
 
   Vec3 direction = ray.direction;  // disableRefraction: straight through
   if (!m.disable_refraction) {
-    // Snell's law by speeds of light (eq. 4.15-4.16, with 1 - (N.r)^2 under the root).
     const Vec3 n = entering ? normal : -normal;  // against the incoming ray
-    const double cos_i = std::clamp(-dot(n, ray.direction), 0.0, 1.0);
-    const double eta = c2 / c1;
-    const double k = 1 - eta * eta * (1 - cos_i * cos_i);
-    if (k < 0) {
+    if (const std::optional<Vec3> refracted = refract(ray.direction, n, c2 / c1)) {
+      direction = *refracted;
+    } else {
       // Total internal reflection: the transmitted share reflects and stays in this medium.
       direction = normalize_or(reflect(ray.direction, n), ray.direction);
       after = media;
-    } else {
-      direction =
-          normalize_or(ray.direction * eta + n * (eta * cos_i - std::sqrt(k)), ray.direction);
     }
   }
   const Ray refracted{spawn_origin(hit, direction, g.transparency_epsilon), direction, ray.time};
@@ -203,23 +255,22 @@ Rgb Tracer::trace(const Ray& ray_in, RayKind kind, int depth, double weight,
   double travelled = 0;
   Hit hit;
   const Material* m = nullptr;
+  Crossing crossing;
   for (int skipped = 0;; ++skipped) {
     if (!closest_hit(ray, hit)) {
       return kind == RayKind::Reflected ? Rgb{} : g.background;  // eq. 4.2
     }
     travelled += hit.world.t;
     m = &scene.objects[hit.instance].material;
-    if (!effects.has(Effect::Refraction) || !(m->transparency > g.min_transparency) ||
-        skipped == kMaxFalseInterfaces)
-      break;
+    if (!effects.has(Effect::Refraction) || !(m->transparency > g.min_transparency)) break;
+    crossing = cross_interface(ray, hit, media);
+    m = &scene.objects[hit.instance].material;
     // A transparent surface whose crossing leaves the governing medium unchanged is a false
     // interface: it neither shades nor refracts.
-    const bool entering = dot(hit.world.normal, ray.direction) < 0;
-    const Medium here{hit.instance, m->priority, m->speed_of_light};
-    const MediumStack after = entering ? media.entered(here) : media.exited(hit.instance);
-    const bool known = entering || media.contains(hit.instance);
-    if (!known || after.top().instance != media.top().instance) break;
-    media = after;
+    if (skipped == kMaxFalseInterfaces || !crossing.known ||
+        crossing.after.top().instance != media.top().instance)
+      break;
+    media = crossing.after;
     ray.origin = spawn_origin(hit, ray.direction, g.transparency_epsilon);
   }
 
@@ -238,7 +289,7 @@ Rgb Tracer::trace(const Ray& ray_in, RayKind kind, int depth, double weight,
     if (effects.has(Effect::Reflection) && weight * m->reflectivity > g.min_reflectivity)
       color += reflection(ray, hit, *m, normal, depth, weight, media, rng);
     if (effects.has(Effect::Refraction) && weight * m->transparency > g.min_transparency)
-      color += transmission(ray, hit, *m, normal, depth, weight, media, rng);
+      color += transmission(ray, hit, *m, normal, depth, weight, media, crossing, rng);
   }
   if (effects.has(Effect::AtmosphericAttenuation) || effects.has(Effect::Fog))
     color = apply_atmosphere(color, travelled);

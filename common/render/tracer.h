@@ -26,7 +26,19 @@ class Tracer {
     WorldHit world;
     std::uint32_t instance = 0;
   };
+  // The media behind a transparent surface, and whether the ray was known to be inside the
+  // object it leaves (it is not when the eye starts inside glass).
+  struct Crossing {
+    MediumStack after;
+    bool known = true;
+  };
   bool closest_hit(const Ray& ray, Hit& hit);
+  // Crosses the transparent surface at `hit`, together with every other transparent surface
+  // that crosses the ray within rounding of it: coincident boundaries (the same sphere twice,
+  // flush faces) are one interface, whichever of them closest_hit returned. `hit` becomes the
+  // surface of the object that governs the interface, with an error bound covering them all,
+  // so that rays leaving it start beyond every one.
+  Crossing cross_interface(const Ray& ray, Hit& hit, const MediumStack& media);
   // Eq. 4.24: the product of the transparencies of everything between `origin` and `target`.
   double shadow_factor(const Vec3& origin, const Vec3& target);
   // Eq. 4.4-4.12 and 4.24 at a hit: emissive, ambient, and every light's diffuse and specular.
@@ -36,7 +48,8 @@ class Tracer {
   Rgb reflection(const Ray& ray, const Hit& hit, const Material& m, const Vec3& normal, int depth,
                  double weight, const MediumStack& media, SampleStream& rng);
   Rgb transmission(const Ray& ray, const Hit& hit, const Material& m, const Vec3& normal, int depth,
-                   double weight, const MediumStack& media, SampleStream& rng);
+                   double weight, const MediumStack& media, const Crossing& crossing,
+                   SampleStream& rng);
   // Eq. 4.20-4.23: depth cueing and fog over the distance the ray travelled.
   Rgb apply_atmosphere(const Rgb& color, double distance) const;
   Vec3 spawn_origin(const Hit& hit, const Vec3& direction, double epsilon) const;

@@ -23,6 +23,21 @@ struct Camera {
   friend bool operator==(const Camera&, const Camera&) = default;
 };
 
+// The unit view direction, also for an eye and viewPoint 1e308 apart (their difference would
+// overflow); zero when they coincide. The loader and the renderer share these two rules.
+inline Vec3 view_direction(const Camera& camera) {
+  Vec3 difference = camera.look_at - camera.eye;
+  if (!is_finite(difference)) difference = camera.look_at * 0.5 - camera.eye * 0.5;
+  return unit_or_zero(difference);
+}
+
+// The unit vector to the right of the view, also for a tiny upDirection (1e-200); zero when
+// upDirection is zero or too nearly parallel to the view direction to give a frame.
+inline Vec3 camera_right(const Camera& camera, const Vec3& view) {
+  const Vec3 right = cross(view, unit_or_zero(camera.up));
+  return length(right) > 1e-9 ? unit_or_zero(right) : Vec3{};
+}
+
 // lightAttenuation: f = min(1, 1 / (kc + kl d + kq d^2)), eq. 4.12.
 struct LightAttenuation {
   double constant = 1, linear = 0, quadratic = 0;

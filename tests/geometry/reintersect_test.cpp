@@ -1,7 +1,8 @@
 // The robustness property of shapes.h (pbrt's "reintersect" tests): a ray spawned at a hit with
 // offset_ray_origin() and the hit's error bound never hits the same convex surface again
 // outward, and inward only hits its far side, for random transforms with scales 1e-4..1e4
-// (non-uniform), any rotation and translations up to 1e8.
+// (non-uniform), any rotation and translations up to 1e8. Tori: torus_test.cpp,
+// Torus.SpawnedRaysDoNotFindTheirOwnHit (the same transforms).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -175,6 +176,52 @@ TEST(Reintersect, SubdividedCube) {
   const Mesh mesh = testing::subdivided_cube(3);
   const MeshAccel accel = build_mesh_accel(mesh, BvhMode::Sah);
   run("subdivided cube", MeshShape{0, true}, &accel, 108);
+}
+
+// The algebraic surfaces are not convex: a spawned ray may meet the surface again elsewhere,
+// but never at its own hit (within 16 error bounds of it). Uniform scales 1e-4..1e4 with the
+// box extent scaled alike (it is in world units), any rotation, translations up to 1e8.
+TEST(Reintersect, AlgebraicSurfacesAtEveryScale) {
+  std::mt19937_64 rng(301);
+  std::uniform_real_distribution<double> unit(0, 1);
+  int tested = 0, failures = 0;
+  for (int kind = 0; kind <= static_cast<int>(AlgebraicKind::ToothCube); ++kind) {
+    SCOPED_TRACE(kind);
+    for (int i = 0; i < 40; ++i) {
+      const double scale = std::pow(10, 8 * unit(rng) - 4);
+      const Vec3 offset = random_unit(rng) * std::pow(10, 8 * unit(rng));
+      const Affine to_world = Affine::translation(offset) *
+                              *Affine::rotation(360 * unit(rng), random_unit(rng)) *
+                              Affine::scaling({scale, scale, scale});
+      const AlgebraicSurface surface{static_cast<AlgebraicKind>(kind), Vec3{4, 4, 4} * scale};
+      const std::optional<Instance> inst = make_instance(surface, to_world, nullptr);
+      ASSERT_TRUE(inst);
+      IntersectionCounters counters;
+      for (int r = 0; r < 25; ++r) {
+        const Vec3 target =
+            offset + Vec3{unit(rng) - 0.5, unit(rng) - 0.5, unit(rng) - 0.5} * (3 * scale);
+        const Vec3 origin = target + random_unit(rng) * (20 * scale);
+        WorldHit hit;
+        if (!intersect_instance(*inst, {origin, target - origin}, kInfinity, hit, counters))
+          continue;
+        ASSERT_TRUE(is_finite(hit.point) && is_finite(hit.normal) && is_finite(hit.point_error));
+        for (int k = 0; k < kSpawns; ++k) {
+          const Vec3 w = random_unit(rng);
+          if (dot(w, hit.normal) == 0) continue;
+          const Vec3 o = offset_ray_origin(hit.point, hit.point_error, hit.normal, w);
+          WorldHit again;
+          ++tested;
+          if (!intersect_instance(*inst, {o, w}, kInfinity, again, counters)) continue;
+          if (!(length(again.point - hit.point) > 16 * length(hit.point_error)) && ++failures <= 5)
+            ADD_FAILURE() << "transform " << i << " ray " << r << ": hit " << describe(hit.point)
+                          << " error " << describe(hit.point_error) << " found again at "
+                          << describe(again.point) << " along " << describe(w);
+        }
+      }
+    }
+  }
+  EXPECT_EQ(failures, 0);
+  EXPECT_GT(tested, 4000);
 }
 
 }  // namespace

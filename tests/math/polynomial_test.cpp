@@ -8,6 +8,8 @@
 #include <initializer_list>
 #include <random>
 
+#include "common/math/float_error.h"
+
 namespace tessera {
 namespace {
 
@@ -122,6 +124,77 @@ TEST(Polynomial, NearDoubleRoots) {
   const int n = real_roots(p, -10, 10, roots);
   ASSERT_TRUE(n == 3 || n == 4);
   EXPECT_NEAR(roots[1].x, 0.7, 1e-7);
+}
+
+// Ill-conditioned quartics of the kinds solver papers test (Flocke, "Algorithm 954", ACM TOMS
+// 41(4), 2015: roots of widely different magnitudes, clusters, multiple roots), built from known
+// roots whose products are exact in double, so the reference is the exact root, not another
+// solver. Each simple root must come out to a relative error within the conditioning bound
+// (Horner's rounding over the slope) and within a stated figure.
+struct KnownQuartic {
+  const char* name;
+  double roots[4];        // ascending
+  double leading;         // the polynomial is leading * prod (x - root)
+  double relative_error;  // stated bound on |x - root| / |root| for the simple roots
+};
+
+constexpr double k2m10 = 1.0 / 1024;
+constexpr KnownQuartic kKnownQuartics[] = {
+    {"spread 2^-10..2^20", {k2m10, 1, 1024, 1 << 20}, 1, 1e-15},
+    {"spread 2^-20..2^20", {1.0 / (1 << 20), 1.0 / 32, 32, 1 << 20}, 1, 1e-15},
+    {"mixed signs", {-(1 << 20), -k2m10, 1.0 / 32, 1 << 15}, 1, 1e-15},
+    {"tiny leading coefficient", {-3, 0.25, 1.5, 8}, 1e-12, 1e-15},
+    {"huge leading coefficient", {-3, 0.25, 1.5, 8}, 1e12, 1e-15},
+    {"cluster of four 2^-10 apart", {1, 1 + k2m10, 1 + 2 * k2m10, 1 + 3 * k2m10}, 1, 2e-7},
+    {"cluster of two near 2^20", {-1, 2, 1 << 20, (1 << 20) + 1}, 1, 1e-10},
+};
+
+TEST(Polynomial, KnownIllConditionedQuartics) {
+  PolynomialRoot roots[kMaxPolynomialDegree];
+  for (const KnownQuartic& q : kKnownQuartics) {
+    SCOPED_TRACE(q.name);
+    const Polynomial p = q.leading * from_roots({q.roots[0], q.roots[1], q.roots[2], q.roots[3]});
+    ASSERT_EQ(real_roots(p, -1e7, 1e7, roots), 4);
+    for (int k = 0; k < 4; ++k) {
+      const double exact = q.roots[k];
+      const double relative = std::fabs(roots[k].x - exact) / std::fabs(exact);
+      const double conditioning =
+          evaluation_error(p, exact) / std::fabs(evaluate(derivative(p), exact)) / std::fabs(exact);
+      EXPECT_LE(relative, 2 * conditioning + 4 * kMachineEpsilon) << "root " << exact;
+      EXPECT_LE(relative, q.relative_error) << "root " << exact;
+      EXPECT_FALSE(roots[k].touching);
+    }
+  }
+}
+
+// Double roots among simple ones, exact coefficients: one touching root each, within the
+// square root of the rounding (a double root is only that well defined), and the simple roots
+// as accurate as ever.
+TEST(Polynomial, KnownDoubleRoots) {
+  PolynomialRoot roots[kMaxPolynomialDegree];
+  struct Case {
+    double roots[4];
+    int count;
+    double expected[3];
+    bool touching[3];
+  };
+  const Case cases[] = {
+      {{1, 1, 2, 2}, 2, {1, 2}, {true, true}},
+      {{-1, 0.5, 3, 3}, 3, {-1, 0.5, 3}, {false, false, true}},
+      {{1, 2, 1024, 1024}, 3, {1, 2, 1024}, {false, false, true}},
+      {{k2m10, k2m10, 1 << 20, 1 << 20}, 2, {k2m10, 1 << 20}, {true, true}},
+  };
+  for (const Case& c : cases) {
+    const Polynomial p = from_roots({c.roots[0], c.roots[1], c.roots[2], c.roots[3]});
+    SCOPED_TRACE(c.expected[c.count - 1]);
+    ASSERT_EQ(real_roots(p, -1e7, 1e7, roots), c.count);
+    for (int k = 0; k < c.count; ++k) {
+      const double exact = c.expected[k];
+      const double tolerance = c.touching[k] ? 1e-7 : 1e-15;
+      EXPECT_LE(std::fabs(roots[k].x - exact), tolerance * std::fabs(exact)) << exact;
+      EXPECT_EQ(roots[k].touching, c.touching[k]) << exact;
+    }
+  }
 }
 
 // The root of p near x, by Newton's method in long double on p's own (rounded) coefficients.

@@ -113,6 +113,29 @@ TEST(Lighting, BackFacesAreDarkUnlessLit) {
   EXPECT_NEAR(centre_pixel(scene).r, 1.0, 1e-6);
 }
 
+// A light inside the sphere on the view axis: at the front point L = V, so the halfway vector
+// L - V vanishes and there is no highlight (normalizing it would give NaN). Around it, N.L and
+// N.H are negative or tiny, which with non-integer exponents is where pow() gives NaN.
+TEST(Lighting, HalfwayVectorVanishingAndNonIntegerExponentsStayFinite) {
+  for (double exponent : {0.0, 0.5, 2.5, 1e-9, 1e6}) {
+    for (bool back_faces : {false, true}) {
+      SCOPED_TRACE(::testing::Message() << "exponent " << exponent << " back " << back_faces);
+      Material m = black_material();
+      m.specular = {1, 1, 1};
+      m.specular_exponent = exponent;
+      m.light_back_faces = back_faces;
+      Scene scene = sphere_scene(m);
+      scene.globals.global_ambient = {};
+      scene.lights.push_back(point_light({0, 0, 0.5}, {1, 1, 1}));
+      RenderStats stats;
+      const Image image = render(scene, settings(kSize, kSize), &stats);
+      EXPECT_EQ(stats.nan_samples, 0u);
+      for (const float v : image.rgb) ASSERT_TRUE(std::isfinite(v) && v >= 0);
+      EXPECT_EQ(image.get(kCentre, kCentre), Rgb{});
+    }
+  }
+}
+
 TEST(Lighting, ShadowScaledByOccluderTransparency) {
   // A big flat box as the floor facing the camera, a small sphere between it and the light.
   Scene scene;

@@ -4,7 +4,9 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 
+#include "common/loaders/sdl_loader.h"
 #include "tests/render/scene_builder.h"
 
 namespace tessera::test {
@@ -130,6 +132,28 @@ TEST(Robustness, NoIsolatedDarkPixelsOnALitSphere) {
 
 TEST(Robustness, NoIsolatedDarkPixelsOnLitTori) {
   EXPECT_EQ(speckles(render(moved(torus_scene(), 1e-3, {1e5, -1e5, 1e5}), settings(160, 120))), 0);
+}
+
+// The sample scene of hard cases a million units away (scenes/features/stability_far.sdl)
+// renders as it does moved back to the origin, without speckles.
+TEST(Robustness, FarSampleSceneMatchesItselfAtTheOrigin) {
+  const Scene far = load_sdl_file(std::filesystem::path(TESSERA_SOURCE_DIR) /
+                                  "scenes/features/stability_far.sdl");
+  const RenderSettings s = settings(160, 120);
+  RenderStats stats;
+  const Image image = render(far, s, &stats);
+  const Image at_origin = render(moved(far, 1, {-1e6, -1e6, 1e6}), s);
+  EXPECT_EQ(stats.nan_samples, 0u);
+  int differing = 0;
+  double worst = 0;
+  for (std::size_t i = 0; i < image.rgb.size(); ++i) {
+    ASSERT_TRUE(std::isfinite(image.rgb[i]) && std::isfinite(at_origin.rgb[i]));
+    const double d = std::fabs(double(image.rgb[i]) - at_origin.rgb[i]);
+    worst = std::max(worst, d);
+    differing += d > 1e-3 ? 1 : 0;
+  }
+  EXPECT_LE(differing, 3) << "worst difference " << worst;
+  EXPECT_EQ(speckles(image), 0);
 }
 
 }  // namespace
