@@ -22,7 +22,7 @@ std::int64_t Scheduler::add_worker(WorkerHello hello, std::shared_ptr<FrameConne
   w.id = id;
   w.bundles = hello.cached;
   w.hello = std::move(hello);
-  w.pipeline = WorkerPipeline(w.hello.threads);
+  w.pipeline = WorkerPipeline(w.hello.threads, w.hello.handshake_round_trip);
   w.connection = std::move(connection);
   spdlog::info("worker {} \"{}\" joined from {} with {} threads", id, w.hello.name, w.hello.address,
                w.hello.threads);

@@ -38,7 +38,8 @@ struct SchedulerOptions {
 struct WorkerHello {
   std::string name, address;
   int threads = 1;
-  std::set<std::string> cached;  // bundle hashes the worker already holds
+  std::set<std::string> cached;     // bundle hashes the worker already holds
+  double handshake_round_trip = 0;  // seconds from the challenge to the worker's answer
 };
 
 struct Prediction {
