@@ -45,7 +45,8 @@ struct WorkerHello {
 struct Prediction {
   std::optional<double> seconds, uncalibrated;  // empty without a connected worker
   int threads = 0;
-  double factor = 1;  // the calibration applied
+  double factor = 1;            // the calibration applied: speed factor...
+  double overhead_seconds = 0;  // ...and the overhead added
 };
 
 class Scheduler {
