@@ -64,7 +64,7 @@ SolidCrossings shape_crossings(const Instance& instance, const Ray& world_ray,
   for (const LocalHit& l : local) {
     inside = !inside;
     SolidCrossing crossing;
-    crossing.hit = world_hit(instance, l);
+    to_world_hit(instance, l, crossing.hit);
     // How far along the ray the point may be from the exact crossing: its distance from the
     // surface, plus the rounding of t itself.
     crossing.t_error =

@@ -115,8 +115,7 @@ Ray object_ray(const Instance& instance, const Ray& world_ray) {
           instance.to_object.apply_vector(world_ray.direction), world_ray.time};
 }
 
-WorldHit world_hit(const Instance& instance, const LocalHit& local) {
-  WorldHit hit;
+void to_world_hit(const Instance& instance, const LocalHit& local, WorldHit& hit) {
   hit.t = local.t;
   hit.point = instance.to_world.apply_point(local.point);
   hit.point_error = instance.to_world.point_error(local.point, local.point_error);
@@ -130,7 +129,6 @@ WorldHit world_hit(const Instance& instance, const LocalHit& local) {
   hit.object_point = local.point;
   hit.part = local.part;
   hit.object = instance.object;
-  return hit;
 }
 
 bool intersect_instance(const Instance& instance, const Ray& world_ray, double t_max, WorldHit& hit,
@@ -143,7 +141,7 @@ bool intersect_instance(const Instance& instance, const Ray& world_ray, double t
   if (!std::visit(LocalIntersect{instance, world_ray, ray, t_max, local, counters},
                   instance.geometry))
     return false;
-  hit = world_hit(instance, local);
+  to_world_hit(instance, local, hit);
   return true;
 }
 

@@ -48,6 +48,6 @@ bool intersect_instance(const Instance& instance, const Ray& world_ray, double t
 // The world ray in the instance's object space (same t) and a local hit back in world space,
 // for routines that find several hits at once (csg.cpp).
 Ray object_ray(const Instance& instance, const Ray& world_ray);
-WorldHit world_hit(const Instance& instance, const LocalHit& local);
+void to_world_hit(const Instance& instance, const LocalHit& local, WorldHit& hit);
 
 }  // namespace tessera
