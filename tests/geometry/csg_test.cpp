@@ -206,6 +206,20 @@ TEST(Csg, CoincidentChildrenFollowTheTieBreakRule) {
       }
     }
     EXPECT_GT(hits, 300);
+
+    // The same solid through a transform that rounds differently: the crossings' t differ by
+    // a few ulps. A - A' is still empty, A u A' is hit where A is.
+    const Affine m2 = m * Affine::scaling({3, 3, 3}) * Affine::scaling({1 / 3.0, 1 / 3.0, 1 / 3.0});
+    const Instance& b2 = s.shape(g, m2);
+    const Instance& a_minus_b2 = s.csg(CsgOperation::Difference, a, b2);
+    const Instance& a_or_b2 = s.csg(CsgOperation::Union, a, b2);
+    for (const Ray& ray : random_rays(23, 2000)) {
+      IntersectionCounters counters;
+      WorldHit alone, h;
+      const bool hit = intersect_instance(a, ray, kInfinity, alone, counters);
+      ASSERT_FALSE(intersect_instance(a_minus_b2, ray, kInfinity, h, counters));
+      ASSERT_EQ(intersect_instance(a_or_b2, ray, kInfinity, h, counters), hit);
+    }
   }
 }
 

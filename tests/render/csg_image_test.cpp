@@ -26,22 +26,25 @@ Material emissive_white() {
 TEST(CsgImage, DrilledCubeHeadOnIsASquareMinusTheSeeThroughDisk) {
   Scene scene;
   scene.camera = camera_on_z(30);
-  // The cube [-1, 1]^3 minus a cylinder of radius 0.5 along z whose caps are flush with the
-  // cube's front and back faces.
-  scene.objects.push_back(object(Cube{}, Affine::identity(), emissive_white()));
-  scene.objects.push_back(object(TaperedCylinder{1, false},
-                                 Affine::translation({0, 0, -1}) * Affine::scaling({0.5, 0.5, 2}),
-                                 emissive_white()));
+  // The cube [-s, s]^3, moved by c along z, minus a cylinder of radius s/2 along z whose caps
+  // are flush with the cube's front and back faces. The two transforms round differently, so
+  // the flush faces' t differ by a few ulps, not by nothing.
+  const double s = 0.7, c = 0.3;
+  const Affine scale = Affine::translation({0, 0, c}) * Affine::scaling({s, s, s});
+  scene.objects.push_back(object(Cube{}, scale, emissive_white()));
+  scene.objects.push_back(object(
+      TaperedCylinder{1, false},
+      scale * Affine::translation({0, 0, -1}) * Affine::scaling({0.5, 0.5, 2}), emissive_white()));
   add_csg(scene, CsgOperation::Difference);
   const int size = 200;
   const Image image = render(scene, settings(size, size));
 
-  // In image-plane units at distance 1 from the eye: the front face is at distance 4, the
-  // back opening at 6. Rays through the back opening's outline see the background; rays
+  // In image-plane units at distance 1 from the eye: the front face is at distance 5 - c - s,
+  // the back opening at 5 - c + s. Rays through the back opening's outline see the background; rays
   // between it and the front opening's outline meet the hole's wall.
   const double px_per_unit = size / 2 / std::tan(M_PI / 12);
-  const double half_side = 0.25 * px_per_unit;
-  const double hole = 0.5 / 6 * px_per_unit;
+  const double half_side = s / (5 - c - s) * px_per_unit;
+  const double hole = s / 2 / (5 - c + s) * px_per_unit;
   int covered = 0, speckles = 0;
   for (int y = 0; y < size; ++y)
     for (int x = 0; x < size; ++x) {
