@@ -7,7 +7,8 @@ cd "$(dirname "$0")/.."
 size=(--width 320 --height 240 --repeats 3)
 [ $# -gt 0 ] && size=("$@")
 scripts/build.sh
-for scene in demo features/shadows features/reflection features/refraction features/mesh; do
+for scene in demo features/shadows features/reflection features/refraction features/mesh \
+  features/motion_blur; do
   name=$(basename "$scene")
   echo "== $scene"
   build/bench/accuracy/tessera-accuracy "scenes/$scene.sdl" -o "docs/accuracy/$name" "${size[@]}"

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <variant>
 
+#include "common/geometry/motion.h"
 #include "common/geometry/shapes.h"
 #include "common/math/float_error.h"
 
@@ -51,6 +52,10 @@ struct ShapeCrossings {
 // inside when the number ahead of it is odd.
 SolidCrossings shape_crossings(const Instance& instance, const Ray& world_ray,
                                IntersectionCounters& counters) {
+  if (instance.motion && world_ray.time != 0) {
+    const std::optional<Instance> posed = instance_at(instance, world_ray.time);
+    return posed ? shape_crossings(*posed, world_ray, counters) : SolidCrossings{};
+  }
   ++counters.shape_tests;
   SolidCrossings out;
   const double direction_length = length(world_ray.direction);

@@ -19,6 +19,7 @@
 #include <variant>
 
 #include "common/geometry/csg.h"
+#include "common/geometry/motion.h"
 #include "common/geometry/shapes.h"
 #include "common/math/float_error.h"
 
@@ -135,6 +136,10 @@ bool intersect_instance(const Instance& instance, const Ray& world_ray, double t
                         IntersectionCounters& counters) {
   if (std::holds_alternative<CsgShape>(instance.geometry))
     return intersect_csg(instance, world_ray, t_max, hit, counters);
+  if (instance.motion && world_ray.time != 0) {
+    const std::optional<Instance> posed = instance_at(instance, world_ray.time);
+    return posed && intersect_instance(*posed, world_ray, t_max, hit, counters);
+  }
   ++counters.shape_tests;
   const Ray ray = object_ray(instance, world_ray);
   LocalHit local;

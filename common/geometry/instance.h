@@ -8,6 +8,7 @@
 #include "common/geometry/local_hit.h"
 #include "common/math/affine.h"
 #include "common/math/ray.h"
+#include "common/scene/motion.h"
 #include "common/scene/shape.h"
 
 namespace tessera {
@@ -22,6 +23,9 @@ struct Instance {
   const Instance* right = nullptr;
   Bounds3 world_bounds;
   std::uint32_t object = 0;  // its index in Scene::objects, reported by its hits
+  // Set when the object moves during the shutter (geometry/motion.h): to_world is then its
+  // pose at time 0 and world_bounds cover its whole motion.
+  std::optional<ObjectMotion> motion;
 };
 
 // Builds an instance; nullopt when `to_world` is singular or not finite.
@@ -41,7 +45,7 @@ struct WorldHit {
   std::uint32_t object = 0;
 };
 
-// Nearest hit with t in (0, t_max), or false.
+// Nearest hit with t in (0, t_max), or false. A moving instance is posed at the ray's time.
 bool intersect_instance(const Instance& instance, const Ray& world_ray, double t_max, WorldHit& hit,
                         IntersectionCounters& counters);
 

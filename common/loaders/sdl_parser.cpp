@@ -100,7 +100,7 @@ class LoadContext {
         return;
       }
       scene_.objects.push_back({CsgShape{node.operation, *node.left, index}, Affine::identity(),
-                                Material{}, location(node.keyword)});
+                                Material{}, location(node.keyword), std::nullopt});
       index = static_cast<std::uint32_t>(scene_.objects.size() - 1);
       open_csg_.pop_back();
     }
@@ -405,7 +405,14 @@ void FileParser::add_object(const ShapeGeometry& geometry) {
   if (s.objects.size() >= limit) {
     fail(keyword_, "too many objects (more than " + std::to_string(limit) + ")");
   }
-  s.objects.push_back({geometry, ct_, material_, location(keyword_)});
+  std::optional<ObjectMotion> motion;
+  if (motion_.enabled) {
+    if (std::holds_alternative<AlgebraicSurface>(geometry))
+      fail(keyword_, name + " cannot move: algebraic surfaces do not take motion blur");
+    motion = motion_.motion;
+  }
+  motion_ = {};  // every shape clears the motion (§3.2.6)
+  s.objects.push_back({geometry, ct_, material_, location(keyword_), motion});
   context_.place_object(static_cast<std::uint32_t>(s.objects.size() - 1));
 }
 

@@ -85,7 +85,13 @@ class FileParser {
   void push_ct();
   void pop_ct();
   Material& material() { return material_; }
-  // Adds a shape with the CT and material; inside a boolean object, as its next child.
+  // The motion-blur state of §3.2.6: the next shape's motion, and whether mbEnable was given.
+  struct PendingMotion {
+    ObjectMotion motion;
+    bool enabled = false;
+  };
+  PendingMotion& motion() { return motion_; }
+  // Adds a shape with the CT, material and motion; inside a boolean object, as its next child.
   void add_object(const ShapeGeometry& geometry);
   // Starts a boolean object (§3.2.4): the next two objects (shapes or boolean objects, each
   // with whatever transforms and materials are set before it) are its children.
@@ -133,6 +139,7 @@ class FileParser {
   Affine ct_;
   std::vector<Affine> ct_stack_;
   Material material_;
+  PendingMotion motion_;
   std::optional<Token> last_camera_position_;  // the last eyePoint or viewPoint
   std::optional<Token> up_direction_;
 };

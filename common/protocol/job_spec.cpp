@@ -14,10 +14,15 @@ void apply_overrides(Scene& scene, const SceneOverrides& o) {
 
 nlohmann::json to_json(const JobSpec& spec) {
   const RenderSettings& s = spec.settings;
-  nlohmann::json j = {{"width", s.width},   {"height", s.height},
-                      {"aa", s.aa_samples}, {"stochastic", s.stochastic},
-                      {"jitter", s.jitter}, {"seed", s.seed},
-                      {"passes", s.passes}, {"bvh", s.bvh == BvhMode::Sah}};
+  nlohmann::json j = {{"width", s.width},
+                      {"height", s.height},
+                      {"aa", s.aa_samples},
+                      {"stochastic", s.stochastic},
+                      {"jitter", s.jitter},
+                      {"seed", s.seed},
+                      {"passes", s.passes},
+                      {"bvh", s.bvh == BvhMode::Sah},
+                      {"time_samples", s.time_samples}};
   if (spec.overrides.max_depth) j["max_depth"] = *spec.overrides.max_depth;
   if (spec.overrides.min_weight) j["min_weight"] = *spec.overrides.min_weight;
   return j;
@@ -34,6 +39,7 @@ JobSpec job_spec_from_json(const nlohmann::json& j) {
     s.jitter = j.at("jitter").get<double>();
     s.seed = j.at("seed").get<std::uint64_t>();
     s.passes = j.at("passes").get<int>();
+    s.time_samples = j.at("time_samples").get<int>();
     s.bvh = j.at("bvh").get<bool>() ? BvhMode::Sah : BvhMode::None;
     if (j.contains("max_depth")) spec.overrides.max_depth = j["max_depth"].get<int>();
     if (j.contains("min_weight")) spec.overrides.min_weight = j["min_weight"].get<double>();

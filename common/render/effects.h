@@ -22,7 +22,8 @@ enum class Effect : std::uint32_t {
   SolidTexture = 1u << 10,
   ImageTexture = 1u << 11,
   ProceduralTexture = 1u << 12,
-  Csg = 1u << 13,  // boolean objects (union, intersection, difference)
+  MotionBlur = 1u << 13,
+  Csg = 1u << 14,  // boolean objects (union, intersection, difference)
 };
 
 class EffectSet {

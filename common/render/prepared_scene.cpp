@@ -5,6 +5,7 @@
 #include <stdexcept>
 
 #include "common/geometry/csg.h"
+#include "common/geometry/motion.h"
 #include "common/texture/image_texture.h"
 
 namespace tessera {
@@ -52,6 +53,8 @@ EffectSet scene_effects(const Scene& scene) {
     if (m.flat_texture.kind == FlatTexture::Kind::Image) effects.add(Effect::ImageTexture);
     if (m.flat_texture.kind == FlatTexture::Kind::Procedural)
       effects.add(Effect::ProceduralTexture);
+    if (object.motion && object.motion->moves() && g.motion_blur_frame_length > 0)
+      effects.add(Effect::MotionBlur);
   }
   return effects;
 }
@@ -192,7 +195,10 @@ PreparedScene::PreparedScene(const Scene& scene, BvhMode mode)
       const MeshAccel* mesh = nullptr;
       if (const auto* m = std::get_if<MeshShape>(&object.geometry))
         mesh = meshes_.at(m->mesh).get();
-      instance = make_instance(object.geometry, object.transform, mesh);
+      instance = object.motion && object.motion->moves() && effects_.has(Effect::MotionBlur)
+                     ? make_moving_instance(object.geometry, object.transform, *object.motion,
+                                            scene.globals.motion_blur_frame_length, mesh)
+                     : make_instance(object.geometry, object.transform, mesh);
     }
     if (!instance) throw SceneError(object.where, "the shape's transform is singular");
     instance->object = i;

@@ -35,6 +35,7 @@ double facing(double cosine, bool light_back_faces) {
 bool Tracer::closest_hit(const Ray& ray, Hit& hit) {
   const std::vector<Instance>& instances = scene_.instances();
   bool found = false;
+  hit.time = ray.time;
   traverse_bvh(scene_.bvh(), ray, kInfinity, stats_.intersections.bvh_nodes,
                [&](std::uint32_t index, double t_max) {
                  WorldHit h;
@@ -48,9 +49,9 @@ bool Tracer::closest_hit(const Ray& ray, Hit& hit) {
   return found;
 }
 
-double Tracer::shadow_factor(const Vec3& origin, const Vec3& target) {
+double Tracer::shadow_factor(const Vec3& origin, const Vec3& target, double time) {
   ++stats_.shadow_rays;
-  const Ray ray{origin, target - origin, 0};
+  const Ray ray{origin, target - origin, time};
   const std::vector<Instance>& instances = scene_.instances();
   const std::vector<SceneObject>& objects = scene_.scene().objects;
   double factor = 1;
@@ -175,7 +176,7 @@ Rgb Tracer::local_illumination(const Hit& hit, const Material& m, const SurfaceC
     }
 
     const double shadow =
-        shadow_factor(spawn_origin(hit, l, g.shadow_feeler_epsilon), light.position);
+        shadow_factor(spawn_origin(hit, l, g.shadow_feeler_epsilon), light.position, hit.time);
     if (shadow <= 0) continue;
 
     Rgb contribution = colours.diffuse * light.color * (n_dot_l * diffuse_scale);  // eq. 4.8

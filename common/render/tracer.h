@@ -27,6 +27,7 @@ class Tracer {
   struct Hit {
     WorldHit world;
     std::uint32_t instance = 0;
+    double time = 0;  // the ray's shutter time: rays leaving the hit keep it
   };
   // The media behind a transparent surface, and whether the ray was known to be inside the
   // object it leaves (it is not when the eye starts inside glass).
@@ -41,8 +42,9 @@ class Tracer {
   // surface of the object that governs the interface, with an error bound covering them all,
   // so that rays leaving it start beyond every one.
   Crossing cross_interface(const Ray& ray, Hit& hit, const MediumStack& media);
-  // Eq. 4.24: the product of the transparencies of everything between `origin` and `target`.
-  double shadow_factor(const Vec3& origin, const Vec3& target);
+  // Eq. 4.24: the product of the transparencies of everything between `origin` and `target`
+  // at shutter time `time`.
+  double shadow_factor(const Vec3& origin, const Vec3& target, double time);
   // Eq. 4.4-4.12 and 4.24 at a hit: emissive, ambient, and every light's diffuse and specular.
   // `colours` are the material's after texturing (§4.3).
   Rgb local_illumination(const Hit& hit, const Material& m, const SurfaceColours& colours,

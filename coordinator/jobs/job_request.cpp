@@ -217,8 +217,9 @@ void check_scene(const Submission& sub, const std::optional<std::filesystem::pat
 
 void parse_settings(const json& s, const ServiceLimits& limits, JobRequest& out) {
   static const std::set<std::string> known = {
-      "width", "height",   "aa",      "stochastic",  "jitter", "seed",      "passes",
-      "order", "priority", "preview", "progressive", "bvh",    "max_depth", "min_weight"};
+      "width",       "height", "aa",        "stochastic", "jitter",
+      "seed",        "passes", "order",     "priority",   "preview",
+      "progressive", "bvh",    "max_depth", "min_weight", "time_samples"};
   for (const auto& [key, value] : s.items())
     if (!known.count(key)) throw bad_request("unknown setting \"" + key + "\"");
   RenderSettings& r = out.spec.settings;
@@ -239,6 +240,7 @@ void parse_settings(const json& s, const ServiceLimits& limits, JobRequest& out)
   }
   r.passes = get_int(s, "passes", defaults.passes, 1, limits.max_passes);
   r.bvh = get_bool(s, "bvh", true) ? BvhMode::Sah : BvhMode::None;
+  r.time_samples = get_int(s, "time_samples", defaults.time_samples, 0, kMaxTimeSamples);
   if (s.contains("max_depth"))
     out.spec.overrides.max_depth = get_int(s, "max_depth", 0, 0, limits.max_depth);
   if (s.contains("min_weight"))

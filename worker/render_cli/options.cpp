@@ -15,6 +15,7 @@ const char* const kRenderCliUsage =
     "  --stochastic     jitter the sample positions\n"
     "  --jitter J       jitter strength in pixels, 0..1 (default 1)\n"
     "  --passes P       sample passes, averaged (default 1)\n"
+    "  --time-samples N motion-blur times per sample, 1..256 (default: the scene's motionBlur)\n"
     "  --seed S         seed of every random number (default 0)\n"
     "  --threads T      threads (default: all cores)\n"
     "  --no-bvh         trace without the bounding volume hierarchy (for comparison)\n"
@@ -67,6 +68,11 @@ std::variant<RenderCliOptions, CliHelp, std::string> parse_render_cli(
        [&](const std::string& v) {
          return parse_number(v, o.settings.passes) && o.settings.passes >= 1 &&
                 o.settings.passes <= 4096;
+       }},
+      {"--time-samples",
+       [&](const std::string& v) {
+         return parse_number(v, o.settings.time_samples) && o.settings.time_samples >= 1 &&
+                o.settings.time_samples <= kMaxTimeSamples;
        }},
       {"--seed", [&](const std::string& v) { return parse_number(v, o.settings.seed); }},
       {"--threads",
