@@ -43,6 +43,8 @@ BENCHMARK_CAPTURE(render_scene, textures, "features/textures.sdl", BvhMode::Sah,
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(render_scene, image_texture, "features/image_texture.sdl", BvhMode::Sah, 1)
     ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(render_scene, csg, "features/csg.sdl", BvhMode::Sah, 1)
+    ->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace tessera

@@ -22,14 +22,15 @@ std::uint32_t face_index(int axis, bool positive) {
   return static_cast<std::uint32_t>(2 * axis + (positive ? 1 : 0));
 }
 
-}  // namespace
-
-bool intersect_cube(const Ray& ray, double t_max, LocalHit& hit) {
-  const Vec3& o = ray.origin;
-  const Vec3& d = ray.direction;
-  if (!is_finite(o) || !is_finite(d)) return false;
+// Where the ray enters and leaves the cube's slabs, and through which faces' axes (-1 when no
+// slab bounds that end); false when it misses.
+struct SlabSpan {
   double t_enter = -kInfinity, t_exit = kInfinity;
   int enter_axis = -1, exit_axis = -1;
+};
+
+bool slab_span(const Vec3& o, const Vec3& d, SlabSpan& span) {
+  if (!is_finite(o) || !is_finite(d)) return false;
   for (int a = 0; a < 3; ++a) {
     if (d[a] == 0) {
       if (!(o[a] >= -1 && o[a] <= 1)) return false;  // parallel and outside (or NaN)
@@ -39,23 +40,14 @@ bool intersect_cube(const Ray& ray, double t_max, LocalHit& hit) {
     const double t_hi = (1 - o[a]) / d[a];
     const double t_near = d[a] > 0 ? t_lo : t_hi;
     const double t_far = d[a] > 0 ? t_hi : t_lo;
-    if (t_near > t_enter) t_enter = t_near, enter_axis = a;
-    if (t_far < t_exit) t_exit = t_far, exit_axis = a;
+    if (t_near > span.t_enter) span.t_enter = t_near, span.enter_axis = a;
+    if (t_far < span.t_exit) span.t_exit = t_far, span.exit_axis = a;
   }
-  if (!(t_enter <= t_exit)) return false;  // also rejects NaN
+  return span.t_enter <= span.t_exit;  // also rejects NaN
+}
 
-  double t = 0;
-  int axis = -1;
-  bool positive_face = false;
-  if (t_enter > 0 && enter_axis >= 0) {
-    t = t_enter, axis = enter_axis, positive_face = d[axis] < 0;
-  } else if (t_exit > 0 && exit_axis >= 0) {
-    t = t_exit, axis = exit_axis, positive_face = d[axis] > 0;
-  } else {
-    return false;
-  }
-  if (!(t < t_max)) return false;
-
+// The hit at t on the face of `axis` that faces +axis when `positive_face`.
+LocalHit face_hit(const Vec3& o, const Vec3& d, double t, int axis, bool positive_face) {
   Vec3 p;
   Vec3 error;
   for (int a = 0; a < 3; ++a) {
@@ -69,13 +61,52 @@ bool intersect_cube(const Ray& ray, double t_max, LocalHit& hit) {
   }
   Vec3 n;
   n[axis] = positive_face ? 1 : -1;
+  LocalHit hit;
   hit.t = t;
   hit.point = p;
   hit.point_error = error;
   hit.normal = n;
   hit.shading_normal = n;
   hit.part = face_index(axis, positive_face);
+  return hit;
+}
+
+}  // namespace
+
+bool intersect_cube(const Ray& ray, double t_max, LocalHit& hit) {
+  const Vec3& o = ray.origin;
+  const Vec3& d = ray.direction;
+  SlabSpan span;
+  if (!slab_span(o, d, span)) return false;
+  double t = 0;
+  int axis = -1;
+  bool positive_face = false;
+  if (span.t_enter > 0 && span.enter_axis >= 0) {
+    t = span.t_enter, axis = span.enter_axis, positive_face = d[axis] < 0;
+  } else if (span.t_exit > 0 && span.exit_axis >= 0) {
+    t = span.t_exit, axis = span.exit_axis, positive_face = d[axis] > 0;
+  } else {
+    return false;
+  }
+  if (!(t < t_max)) return false;
+  hit = face_hit(o, d, t, axis, positive_face);
   return true;
+}
+
+std::vector<LocalHit> cube_crossings(const Ray& ray, double t_max) {
+  const Vec3& o = ray.origin;
+  const Vec3& d = ray.direction;
+  std::vector<LocalHit> crossings;
+  SlabSpan span;
+  if (!slab_span(o, d, span)) return crossings;
+  // A ray parallel to every slab it is inside (d = 0) has no ends: enter_axis is then -1 too.
+  if (span.enter_axis < 0 || span.exit_axis < 0) return crossings;
+  const int enter = span.enter_axis, exit = span.exit_axis;
+  if (span.t_enter > 0 && span.t_enter < t_max)
+    crossings.push_back(face_hit(o, d, span.t_enter, enter, d[enter] < 0));
+  if (span.t_exit > 0 && span.t_exit < t_max)
+    crossings.push_back(face_hit(o, d, span.t_exit, exit, d[exit] > 0));
+  return crossings;
 }
 
 }  // namespace tessera

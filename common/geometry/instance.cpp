@@ -18,6 +18,7 @@
 #include <cmath>
 #include <variant>
 
+#include "common/geometry/csg.h"
 #include "common/geometry/motion.h"
 #include "common/geometry/shapes.h"
 #include "common/math/float_error.h"
@@ -73,6 +74,9 @@ struct LocalIntersect {
     if (instance.mesh == nullptr) return false;
     return intersect_mesh(*instance.mesh, m.interpolate_normals, ray, t_max, hit, counters);
   }
+  // Boolean objects have no object space of their own: intersect_instance hands them to
+  // intersect_csg before this point.
+  bool operator()(const CsgShape&) const { return false; }
 };
 
 }  // namespace
@@ -106,21 +110,13 @@ std::optional<Instance> make_instance(const ShapeGeometry& geometry, const Affin
   return instance;
 }
 
-bool intersect_instance(const Instance& instance, const Ray& world_ray, double t_max, WorldHit& hit,
-                        IntersectionCounters& counters) {
-  if (instance.motion && world_ray.time != 0) {
-    const std::optional<Instance> posed = instance_at(instance, world_ray.time);
-    return posed && intersect_instance(*posed, world_ray, t_max, hit, counters);
-  }
-  ++counters.shape_tests;
+Ray object_ray(const Instance& instance, const Ray& world_ray) {
   // The direction is not renormalized, so t means the same in both spaces.
-  const Ray ray{instance.to_object.apply_point(world_ray.origin),
-                instance.to_object.apply_vector(world_ray.direction), world_ray.time};
-  LocalHit local;
-  if (!std::visit(LocalIntersect{instance, world_ray, ray, t_max, local, counters},
-                  instance.geometry))
-    return false;
+  return {instance.to_object.apply_point(world_ray.origin),
+          instance.to_object.apply_vector(world_ray.direction), world_ray.time};
+}
 
+void to_world_hit(const Instance& instance, const LocalHit& local, WorldHit& hit) {
   hit.t = local.t;
   hit.point = instance.to_world.apply_point(local.point);
   hit.point_error = instance.to_world.point_error(local.point, local.point_error);
@@ -133,6 +129,24 @@ bool intersect_instance(const Instance& instance, const Ray& world_ray, double t
       normalize_or(instance.to_object.apply_transpose(local.shading_normal), hit.normal);
   hit.object_point = local.point;
   hit.part = local.part;
+  hit.object = instance.object;
+}
+
+bool intersect_instance(const Instance& instance, const Ray& world_ray, double t_max, WorldHit& hit,
+                        IntersectionCounters& counters) {
+  if (std::holds_alternative<CsgShape>(instance.geometry))
+    return intersect_csg(instance, world_ray, t_max, hit, counters);
+  if (instance.motion && world_ray.time != 0) {
+    const std::optional<Instance> posed = instance_at(instance, world_ray.time);
+    return posed && intersect_instance(*posed, world_ray, t_max, hit, counters);
+  }
+  ++counters.shape_tests;
+  const Ray ray = object_ray(instance, world_ray);
+  LocalHit local;
+  if (!std::visit(LocalIntersect{instance, world_ray, ray, t_max, local, counters},
+                  instance.geometry))
+    return false;
+  to_world_hit(instance, local, hit);
   return true;
 }
 

@@ -18,7 +18,11 @@ struct Instance {
   Affine to_world;
   Affine to_object;                 // inverse of to_world
   const MeshAccel* mesh = nullptr;  // for MeshShape geometry
+  // For CsgShape geometry, the children's instances (make_csg_instance, csg.h).
+  const Instance* left = nullptr;
+  const Instance* right = nullptr;
   Bounds3 world_bounds;
+  std::uint32_t object = 0;  // its index in Scene::objects, reported by its hits
   // Set when the object moves during the shutter (geometry/motion.h): to_world is then its
   // pose at time 0 and world_bounds cover its whole motion.
   std::optional<ObjectMotion> motion;
@@ -36,10 +40,18 @@ struct WorldHit {
   Vec3 shading_normal;  // unit shading normal (interpolated for smooth meshes), world space
   Vec3 object_point;    // the hit in object space (solid textures, texture coordinates)
   std::uint32_t part = 0;
+  // The scene object whose surface was hit (Instance::object): the instance itself, or for a
+  // boolean object the child whose surface it is, which gives the hit its material.
+  std::uint32_t object = 0;
 };
 
 // Nearest hit with t in (0, t_max), or false. A moving instance is posed at the ray's time.
 bool intersect_instance(const Instance& instance, const Ray& world_ray, double t_max, WorldHit& hit,
                         IntersectionCounters& counters);
+
+// The world ray in the instance's object space (same t) and a local hit back in world space,
+// for routines that find several hits at once (csg.cpp).
+Ray object_ray(const Instance& instance, const Ray& world_ray);
+void to_world_hit(const Instance& instance, const LocalHit& local, WorldHit& hit);
 
 }  // namespace tessera

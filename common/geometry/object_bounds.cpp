@@ -23,6 +23,7 @@ Bounds3 object_bounds(const ShapeGeometry& shape, const MeshAccel* mesh) {
       return {{-e, -e, -t.tube_radius}, {e, e, t.tube_radius}};
     }
     Bounds3 operator()(const AlgebraicSurface&) const { return {}; }
+    Bounds3 operator()(const CsgShape&) const { return {}; }  // from its children (csg.h)
   };
   return std::visit(Visitor{mesh}, shape);
 }

@@ -26,10 +26,21 @@ bool intersect_torus(const Torus& shape, const Ray& ray, double t_max, LocalHit&
 bool intersect_mesh(const MeshAccel& mesh, bool interpolate_normals, const Ray& ray, double t_max,
                     LocalHit& hit, IntersectionCounters& counters);
 
-// Every crossing of the surface with t in (0, t_max), ascending by t, for CSG. A ray touching
-// the surface (a tangent, or the horn torus' pinch) crosses it twice at the same t, so the
-// parity of a crossing's index still tells inside from outside.
+// Every crossing of the surface with t in (0, t_max), ascending by t, for CSG (csg.h). A ray
+// touching the surface (a tangent, or the horn torus' pinch) crosses it twice at the same t,
+// so the parity of a crossing's index still tells inside from outside. A crossing within its
+// error bound of the origin is left out, as by the nearest-hit routines: it is the surface a
+// ray starting there is leaving, and the origin's side of it is the side it was offset to.
+std::vector<LocalHit> sphere_crossings(const Ray& ray, double t_max);
+std::vector<LocalHit> cube_crossings(const Ray& ray, double t_max);
+std::vector<LocalHit> tapered_cylinder_crossings(const TaperedCylinder& shape, const Ray& ray,
+                                                 double t_max);
 std::vector<LocalHit> torus_crossings(const Torus& shape, const Ray& ray, double t_max);
+// A mesh's crossings are those of all its triangles; hits of two triangles at one point (the
+// ray through their shared edge) that cross in the same sense are one crossing. Counting them
+// tells inside from outside only for a closed mesh.
+std::vector<LocalHit> mesh_crossings(const MeshAccel& mesh, bool interpolate_normals,
+                                     const Ray& ray, double t_max, IntersectionCounters& counters);
 
 // Algebraic surfaces are clipped to their box extent, a box in world space: the instance
 // narrows [t_min, t_max] to the world ray's span through it (algebraic_extent_span; t means the
@@ -44,7 +55,7 @@ std::vector<LocalHit> algebraic_crossings(const AlgebraicSurface& shape, const R
                                           double t_min, double t_max);
 
 // Bounds of a generic shape in its object space; empty for an algebraic surface, whose extent
-// is a world-space box (algebraic_extent).
+// is a world-space box (algebraic_extent), and for a boolean object (csg.h).
 Bounds3 object_bounds(const ShapeGeometry& shape, const MeshAccel* mesh);
 
 }  // namespace tessera

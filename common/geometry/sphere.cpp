@@ -13,11 +13,15 @@
 
 namespace tessera {
 
-bool intersect_sphere(const Ray& ray, double t_max, LocalHit& hit) {
+namespace {
+
+// The roots with t in (their error bound, t_max), ascending, as hits: at most `wanted` of them,
+// so that the nearest-hit routine does not complete the farther one.
+int sphere_hits(const Ray& ray, double t_max, int wanted, LocalHit* hits) {
   const Vec3& f = ray.origin;  // the centre is the origin
   const Vec3& d = ray.direction;
   const double a = dot(d, d);
-  if (!(a > 0) || !std::isfinite(a)) return false;
+  if (!(a > 0) || !std::isfinite(a)) return 0;
   // a t^2 + 2 beta t + c = 0.
   const double beta = dot(f, d);
   const double f2 = dot(f, f);
@@ -26,10 +30,10 @@ bool intersect_sphere(const Ray& ray, double t_max, LocalHit& hit) {
   const Vec3 closest = f - d * s;  // the point of the line nearest the centre
   const double l = length(closest);
   const double disc = a * (1 - l) * (1 + l);  // beta^2 - a c, without cancellation
-  if (!(disc >= 0)) return false;
+  if (!(disc >= 0)) return 0;
   const double root = std::sqrt(disc);
   const double q = beta < 0 ? root - beta : -(beta + root);
-  if (q == 0) return false;  // origin on the sphere, ray tangent there: both roots are 0
+  if (q == 0) return 0;  // origin on the sphere, ray tangent there: both roots are 0
 
   // Error bounds of the two roots, t0 = c / q and t1 = q / a (first order).
   const double c_error = gamma_bound(4) * (f2 + 1);
@@ -49,25 +53,38 @@ bool intersect_sphere(const Ray& ray, double t_max, LocalHit& hit) {
     std::swap(t_candidates[0], t_candidates[1]);
     std::swap(t_errors[0], t_errors[1]);
   }
-  for (int i = 0; i < 2; ++i) {
+  int count = 0;
+  for (int i = 0; i < 2 && count < wanted; ++i) {
     const double t = t_candidates[i];
     if (!(t > t_errors[i])) continue;  // not certainly in front of the origin (or NaN)
-    if (!(t < t_max)) return false;
+    if (!(t < t_max)) break;
     // From the line's point nearest the centre, which keeps the digits of a far origin when
     // the line is exactly representable (an axis-parallel ray, say); o + t d would not.
     Vec3 p = closest + d * ((i == 0 ? -root : root) / a);
     const double len = length(p);
-    if (!(len > 0) || !std::isfinite(len)) return false;
+    if (!(len > 0) || !std::isfinite(len)) break;
     p = p * (1 / len);  // re-project onto the sphere
+    LocalHit& hit = hits[count++];
     hit.t = t;
     hit.point = p;
     hit.point_error = abs(p) * gamma_bound(5);
     hit.normal = p;
     hit.shading_normal = p;
     hit.part = 0;
-    return true;
   }
-  return false;
+  return count;
+}
+
+}  // namespace
+
+bool intersect_sphere(const Ray& ray, double t_max, LocalHit& hit) {
+  return sphere_hits(ray, t_max, 1, &hit) == 1;
+}
+
+std::vector<LocalHit> sphere_crossings(const Ray& ray, double t_max) {
+  LocalHit hits[2];
+  const int count = sphere_hits(ray, t_max, 2, hits);
+  return std::vector<LocalHit>(hits, hits + count);
 }
 
 }  // namespace tessera

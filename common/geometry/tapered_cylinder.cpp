@@ -27,9 +27,21 @@ namespace tessera {
 
 namespace {
 
+// Where accepted hits go: the nearest so far, or every one (for CSG).
 struct Candidate {
-  double t = kInfinity;
+  double t = kInfinity;  // hits must be nearer than this
   LocalHit hit;
+  std::vector<LocalHit>* all = nullptr;  // when set, every hit with t < t is kept here
+
+  // Keeps `h`: as the nearest so far (callers only offer hits nearer than t), or among all.
+  void take(const LocalHit& h) {
+    if (all != nullptr) {
+      all->push_back(h);
+      return;
+    }
+    hit = h;
+    t = h.t;
+  }
 };
 
 // Entry and exit of the ray through [-r, r]^2 x [0, 1]; false when it misses.
@@ -62,7 +74,7 @@ bool accept_wall_hit(double k, const Vec3& o, const Vec3& d, double shift, doubl
   const double x = o.x + t_local * d.x, y = o.y + t_local * d.y;
   const double w = 1 + k * z;
   const double h = std::sqrt(x * x + y * y);
-  LocalHit& hit = best.hit;
+  LocalHit hit;
   // |w| is within gamma(3) (1 + |k z|) of the wall's radius at z; the unit direction (x, y) / h
   // carries gamma(4) relative, and the product one more rounding.
   const double radius_error = gamma_bound(3) * (1 + std::fabs(k * z));
@@ -83,11 +95,11 @@ bool accept_wall_hit(double k, const Vec3& o, const Vec3& d, double shift, doubl
   hit.t = t;
   hit.shading_normal = hit.normal;
   hit.part = 0;
-  best.t = t;
+  best.take(hit);
   return true;
 }
 
-// The nearest wall hit with shift + t' in (0, best.t), for the ray o + t' d.
+// The nearest wall hit (or every one) with shift + t' in (0, best.t), for the ray o + t' d.
 void intersect_wall(double k, const Vec3& o, const Vec3& d, double shift, Candidate& best) {
   const double w0 = 1 + k * o.z;
   const double wd = k * d.z;
@@ -134,7 +146,7 @@ void intersect_wall(double k, const Vec3& o, const Vec3& d, double shift, Candid
     const double t = shift + t_local;
     if (!(t > errors[i] + gamma_bound(1) * shift)) continue;
     if (!(t < best.t)) return;
-    if (accept_wall_hit(k, o, d, shift, t_local, best)) return;
+    if (accept_wall_hit(k, o, d, shift, t_local, best) && best.all == nullptr) return;
   }
 }
 
@@ -146,41 +158,58 @@ void intersect_cap(double height, double radius, std::uint32_t part, const Vec3&
   if (!(t > 0 && t < best.t)) return;
   const double x = o.x + t * d.x, y = o.y + t * d.y;
   if (!(x * x + y * y <= radius * radius)) return;
-  LocalHit& hit = best.hit;
+  LocalHit hit;
   hit.t = t;
   hit.point = {x, y, height};
   hit.point_error = {gamma_bound(3) * std::fabs(x), gamma_bound(3) * std::fabs(y), 0};
   hit.normal = {0, 0, height > 0 ? 1.0 : -1.0};
   hit.shading_normal = hit.normal;
   hit.part = part;
-  best.t = t;
+  best.take(hit);
+}
+
+// The wall's and caps' hits with t in (0, best.t): the nearest, or every one.
+void tapered_cylinder_hits(const TaperedCylinder& shape, const Ray& ray, Candidate& best) {
+  const double k = shape.top_radius - 1;
+  const double top = 1 + k;
+  const double r = std::max(1.0, std::fabs(top));
+  const Vec3& o = ray.origin;
+  const Vec3& d = ray.direction;
+  if (!is_finite(o) || !is_finite(d) || !(best.t > 0)) return;
+
+  // The box is padded by a few ulps so that it certainly holds the rounded surface.
+  double t_enter = 0, t_exit = 0;
+  if (!box_span(o, d, r * (1 + gamma_bound(4)), t_enter, t_exit)) return;
+  if (!(t_exit > 0) || !(t_enter < best.t)) return;
+  const double shift = std::max(t_enter, 0.0);
+
+  intersect_wall(k, shift > 0 ? o + d * shift : o, d, shift, best);
+  intersect_cap(0, 1, 1, o, d, best);
+  if (top != 0) intersect_cap(1, std::fabs(top), 2, o, d, best);
 }
 
 }  // namespace
 
 bool intersect_tapered_cylinder(const TaperedCylinder& shape, const Ray& ray, double t_max,
                                 LocalHit& hit) {
-  const double k = shape.top_radius - 1;
-  const double top = 1 + k;
-  const double r = std::max(1.0, std::fabs(top));
-  const Vec3& o = ray.origin;
-  const Vec3& d = ray.direction;
-  if (!is_finite(o) || !is_finite(d) || !(t_max > 0)) return false;
-
-  // The box is padded by a few ulps so that it certainly holds the rounded surface.
-  double t_enter = 0, t_exit = 0;
-  if (!box_span(o, d, r * (1 + gamma_bound(4)), t_enter, t_exit)) return false;
-  if (!(t_exit > 0) || !(t_enter < t_max)) return false;
-  const double shift = std::max(t_enter, 0.0);
-
   Candidate best;
   best.t = t_max;
-  intersect_wall(k, shift > 0 ? o + d * shift : o, d, shift, best);
-  intersect_cap(0, 1, 1, o, d, best);
-  if (top != 0) intersect_cap(1, std::fabs(top), 2, o, d, best);
+  tapered_cylinder_hits(shape, ray, best);
   if (!(best.t < t_max)) return false;
   hit = best.hit;
   return true;
+}
+
+std::vector<LocalHit> tapered_cylinder_crossings(const TaperedCylinder& shape, const Ray& ray,
+                                                 double t_max) {
+  std::vector<LocalHit> crossings;
+  Candidate every;
+  every.t = t_max;
+  every.all = &crossings;
+  tapered_cylinder_hits(shape, ray, every);
+  std::sort(crossings.begin(), crossings.end(),
+            [](const LocalHit& a, const LocalHit& b) { return a.t < b.t; });
+  return crossings;
 }
 
 }  // namespace tessera

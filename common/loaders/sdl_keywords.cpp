@@ -424,10 +424,11 @@ void use(FileParser& p) { p.use(); }
 void include(FileParser& p) { p.include(p.word("a file name after 'include'")); }
 
 // ---------------------------------------------------------------------------------------------
-// Keywords of later issues: CSG.
+// Boolean objects (§3.2.4): each takes the next two objects as its children.
 
-void not_supported_yet(FileParser& p) {
-  p.fail(p.keyword(), "'" + std::string(p.keyword_name()) + "' is not supported yet");
+template <CsgOperation operation>
+void boolean_object(FileParser& p) {
+  p.begin_csg(operation);
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -443,9 +444,9 @@ constexpr Keyword kKeywords[] = {
     {"push", push},
     {"pop", pop},
     // Boolean objects
-    {"union", not_supported_yet},
-    {"intersection", not_supported_yet},
-    {"difference", not_supported_yet},
+    {"union", boolean_object<CsgOperation::Union>},
+    {"intersection", boolean_object<CsgOperation::Intersection>},
+    {"difference", boolean_object<CsgOperation::Difference>},
     // Shapes
     {"sphere", sphere},
     {"cube", cube},

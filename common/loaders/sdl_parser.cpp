@@ -46,6 +46,7 @@ class LoadContext {
     FileParser parser(*this, file, /*included=*/false);
     parser.run();
     parser.validate_camera();
+    parser.validate_csg();
     return std::move(scene_);
   }
 
@@ -73,6 +74,37 @@ class LoadContext {
     }
   }
   void leave_nesting() { --nesting_; }
+
+  // ---- Boolean objects being read (§3.2.4), innermost last; shared by included files, so
+  // that a child may come from an include or a macro.
+  struct OpenCsg {
+    CsgOperation operation;
+    Token keyword;
+    std::optional<std::uint32_t> left;  // the first child, once read
+  };
+  const std::vector<OpenCsg>& open_csg() const { return open_csg_; }
+  void begin_csg(CsgOperation operation, const Token& keyword) {
+    if (open_csg_.size() >= limits_.max_csg_depth) {
+      fail(keyword, "boolean objects are nested too deeply (more than " +
+                        std::to_string(limits_.max_csg_depth) + " levels)");
+    }
+    open_csg_.push_back({operation, keyword, std::nullopt});
+  }
+  // Object `index` was just added: it becomes the next child of the innermost open boolean
+  // object, which, once it has two, is added as an object itself, and so on outwards.
+  void place_object(std::uint32_t index) {
+    while (!open_csg_.empty()) {
+      OpenCsg& node = open_csg_.back();
+      if (!node.left) {
+        node.left = index;
+        return;
+      }
+      scene_.objects.push_back({CsgShape{node.operation, *node.left, index}, Affine::identity(),
+                                Material{}, location(node.keyword), std::nullopt});
+      index = static_cast<std::uint32_t>(scene_.objects.size() - 1);
+      open_csg_.pop_back();
+    }
+  }
 
   void warn(const std::string& warning) {
     if (!warning_set_.insert(warning).second) return;
@@ -162,6 +194,7 @@ class LoadContext {
   std::unordered_set<std::string> image_paths_;                     // in Scene::images
   std::unordered_map<std::string, Macro> macros_;                   // by lower-case name
   std::vector<std::string> include_chain_;  // files being parsed, outermost first
+  std::vector<OpenCsg> open_csg_;
   std::unordered_set<std::string> warning_set_;
   int nesting_ = 0;
   std::uint64_t tokens_ = 0;
@@ -349,10 +382,24 @@ void FileParser::pop_ct() {
   ct_stack_.pop_back();
 }
 
+namespace {
+
+// "'union' at scene.sdl:3:1": the boolean object a message is about.
+std::string csg_at(const LoadContext& context, const Token& keyword) {
+  return in_quotes(keyword.text) + " at " + context.location(keyword).to_string();
+}
+
+}  // namespace
+
 void FileParser::add_object(const ShapeGeometry& geometry) {
   const std::string name = "'" + std::string(keyword_name_) + "'";
   if (!ct_.is_finite()) fail(keyword_, name + " has a transform that is not finite (too large?)");
   if (!ct_.inverse()) fail(keyword_, name + " has a singular transform (zero scale?)");
+  const auto& open = context_.open_csg();
+  if (!open.empty() && std::holds_alternative<AlgebraicSurface>(geometry)) {
+    fail(keyword_, name + " cannot be a child of " + csg_at(context_, open.back().keyword) +
+                       ": an algebraic surface is clipped to a box in world space, not a solid");
+  }
   Scene& s = scene();
   const std::size_t limit = context_.limits().max_objects;
   if (s.objects.size() >= limit) {
@@ -366,9 +413,21 @@ void FileParser::add_object(const ShapeGeometry& geometry) {
   }
   motion_ = {};  // every shape clears the motion (§3.2.6)
   s.objects.push_back({geometry, ct_, material_, location(keyword_), motion});
+  context_.place_object(static_cast<std::uint32_t>(s.objects.size() - 1));
+}
+
+void FileParser::begin_csg(CsgOperation operation) { context_.begin_csg(operation, keyword_); }
+
+void FileParser::refuse_in_csg() const {
+  const auto& open = context_.open_csg();
+  if (open.empty()) return;
+  fail(keyword_, "expected a shape or a boolean object as the next child of " +
+                     csg_at(context_, open.back().keyword) + ", found '" +
+                     std::string(keyword_name_) + "'");
 }
 
 void FileParser::add_light(const Light& light) {
+  refuse_in_csg();
   Scene& s = scene();
   const std::size_t limit = context_.limits().max_lights;
   if (s.lights.size() >= limit) {
@@ -460,6 +519,7 @@ void FileParser::use() {
 }
 
 bool FileParser::accept_global() {
+  refuse_in_csg();
   if (!included_) return true;
   context_.warn(location(keyword_).to_string() + ": '" + std::string(keyword_name_) +
                 "' in an included file is ignored");
@@ -478,6 +538,13 @@ void FileParser::validate_camera() const {
     throw SceneError(up_direction_ ? location(*up_direction_) : position_at,
                      "upDirection is zero or parallel to the view direction");
   }
+}
+
+void FileParser::validate_csg() const {
+  const auto& open = context_.open_csg();
+  if (open.empty()) return;
+  fail_at_end(std::string(open.back().left ? "the second" : "a first") + " child of " +
+              csg_at(context_, open.back().keyword));
 }
 
 Scene load_sdl_with_limits(const SceneSource& source, const std::string& path,

@@ -24,6 +24,7 @@ struct Limits {
   std::size_t max_file_bytes = 16u << 20;  // per SDL or mesh file
   std::uint64_t max_tokens = 64ull << 20;  // parsed in all, replays and includes counted
   std::size_t max_push_depth = 65'536;     // CTs saved by push
+  std::size_t max_csg_depth = 256;         // boolean objects awaiting children, nested
   std::size_t max_warnings = 100;
 };
 
@@ -57,6 +58,8 @@ class FileParser {
   // At the end of the top-level file: the camera must have a view direction and an up vector
   // that is not parallel to it.
   void validate_camera() const;
+  // At the end of the top-level file: every boolean object must have both children.
+  void validate_csg() const;
 
   // ---- The statement being parsed
   const Token& keyword() const { return keyword_; }
@@ -88,7 +91,11 @@ class FileParser {
     bool enabled = false;
   };
   PendingMotion& motion() { return motion_; }
+  // Adds a shape with the CT, material and motion; inside a boolean object, as its next child.
   void add_object(const ShapeGeometry& geometry);
+  // Starts a boolean object (§3.2.4): the next two objects (shapes or boolean objects, each
+  // with whatever transforms and materials are set before it) are its children.
+  void begin_csg(CsgOperation operation);
   void add_light(const Light& light);
   // The index in Scene::meshes of the mesh file `name` (loaded once per resolved path).
   std::size_t mesh(const Token& name);
@@ -120,6 +127,8 @@ class FileParser {
   Token expect(const std::string& what);  // the next token, or "unexpected end of file"
   [[noreturn]] void fail_at_end(const std::string& what) const;
   std::string of_keyword(const char* param) const;  // "<dx> of 'translate'"
+  // An error when a boolean object awaits a child: the current keyword is not one.
+  void refuse_in_csg() const;
 
   LoadContext& context_;
   const SourceFile& file_;

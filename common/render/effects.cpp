@@ -6,7 +6,7 @@
 namespace tessera {
 
 namespace {
-constexpr std::array<std::pair<Effect, const char*>, 14> kEffectNames{{
+constexpr std::array<std::pair<Effect, const char*>, 15> kEffectNames{{
     {Effect::HardShadows, "hard_shadows"},
     {Effect::Reflection, "reflection"},
     {Effect::Refraction, "refraction"},
@@ -21,6 +21,7 @@ constexpr std::array<std::pair<Effect, const char*>, 14> kEffectNames{{
     {Effect::ImageTexture, "image_texture"},
     {Effect::ProceduralTexture, "procedural_texture"},
     {Effect::MotionBlur, "motion_blur"},
+    {Effect::Csg, "csg"},
 }};
 }  // namespace
 

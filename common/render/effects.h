@@ -23,6 +23,7 @@ enum class Effect : std::uint32_t {
   ImageTexture = 1u << 11,
   ProceduralTexture = 1u << 12,
   MotionBlur = 1u << 13,
+  Csg = 1u << 14,  // boolean objects (union, intersection, difference)
 };
 
 class EffectSet {

@@ -4,6 +4,7 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "common/geometry/csg.h"
 #include "common/geometry/motion.h"
 #include "common/texture/image_texture.h"
 
@@ -47,6 +48,7 @@ EffectSet scene_effects(const Scene& scene) {
       effects.add(Effect::Refraction);
     if (m.surface_roughness > 0) effects.add(Effect::SurfaceRoughness);
     if (std::holds_alternative<MeshShape>(object.geometry)) effects.add(Effect::Meshes);
+    if (std::holds_alternative<CsgShape>(object.geometry)) effects.add(Effect::Csg);
     if (m.solid_texture.type != 0) effects.add(Effect::SolidTexture);
     if (m.flat_texture.kind == FlatTexture::Kind::Image) effects.add(Effect::ImageTexture);
     if (m.flat_texture.kind == FlatTexture::Kind::Procedural)
@@ -108,16 +110,41 @@ ObjectTexture object_texture(const SceneObject& object, const Scene& scene,
   return {make_solid_pattern(m.solid_texture), make_flat_texture(m.flat_texture, image)};
 }
 
+// Whether a surface of object `index` is transparent (for a boolean object, a child's).
+bool has_transparent_surface(const Scene& scene, std::uint32_t index) {
+  const SceneObject& object = scene.objects[index];
+  if (const auto* csg = std::get_if<CsgShape>(&object.geometry))
+    return has_transparent_surface(scene, csg->left) || has_transparent_surface(scene, csg->right);
+  return object.material.transparency > scene.globals.min_transparency;
+}
+
+// Which objects are children of boolean objects (parts of them, not objects by themselves);
+// a SceneError unless every boolean object's children come before it and belong to it alone.
+std::vector<bool> find_csg_children(const Scene& scene) {
+  std::vector<bool> child(scene.objects.size(), false);
+  for (std::uint32_t i = 0; i < scene.objects.size(); ++i) {
+    const auto* csg = std::get_if<CsgShape>(&scene.objects[i].geometry);
+    if (csg == nullptr) continue;
+    for (const std::uint32_t c : {csg->left, csg->right}) {
+      if (c >= i || child[c])
+        throw SceneError(scene.objects[i].where,
+                         "a boolean object's children must be distinct objects written before it");
+      child[c] = true;
+    }
+  }
+  return child;
+}
+
 // Pairs of transparent objects whose bounds meet: where the tracer looks for coincident
 // boundaries (Tracer::cross_interface). Quadratic in the transparent objects only.
 std::vector<std::vector<std::uint32_t>> find_transparent_neighbours(
-    const Scene& scene, const EffectSet& effects, const std::vector<Bounds3>& bounds) {
+    const Scene& scene, const EffectSet& effects, const std::vector<Bounds3>& bounds,
+    const std::vector<bool>& csg_children) {
   std::vector<std::vector<std::uint32_t>> out(scene.objects.size());
   if (!effects.has(Effect::Refraction)) return out;
   std::vector<std::uint32_t> transparent;
   for (std::uint32_t i = 0; i < scene.objects.size(); ++i)
-    if (scene.objects[i].material.transparency > scene.globals.min_transparency)
-      transparent.push_back(i);
+    if (!csg_children[i] && has_transparent_surface(scene, i)) transparent.push_back(i);
   for (std::size_t a = 0; a < transparent.size(); ++a)
     for (std::size_t b = a + 1; b < transparent.size(); ++b)
       if (bounds[transparent[a]].overlaps(bounds[transparent[b]])) {
@@ -125,6 +152,22 @@ std::vector<std::vector<std::uint32_t>> find_transparent_neighbours(
         out[transparent[b]].push_back(transparent[a]);
       }
   return out;
+}
+
+// The BVH over the objects that are not children of boolean objects (those are reached through
+// their boolean object), its leaves indexing Scene::objects as the tracer expects.
+Bvh build_scene_bvh(const std::vector<Bounds3>& bounds, const std::vector<bool>& csg_children,
+                    BvhMode mode) {
+  std::vector<std::uint32_t> top_level;
+  std::vector<Bounds3> top_bounds;
+  for (std::uint32_t i = 0; i < bounds.size(); ++i) {
+    if (csg_children[i]) continue;
+    top_level.push_back(i);
+    top_bounds.push_back(bounds[i]);
+  }
+  Bvh bvh = build_bvh(top_bounds, mode);
+  for (std::uint32_t& index : bvh.primitive_order) index = top_level[index];
+  return bvh;
 }
 
 }  // namespace
@@ -138,18 +181,27 @@ PreparedScene::PreparedScene(const Scene& scene, BvhMode mode)
   for (const Mesh& mesh : scene.meshes)
     meshes_.push_back(std::make_unique<MeshAccel>(build_mesh_accel(mesh, mode)));
 
+  // Boolean objects point at their children's instances: the vector must never reallocate.
   instances_.reserve(scene.objects.size());
+  const std::vector<bool> csg_children = find_csg_children(scene);
   std::vector<Bounds3> bounds;
   bounds.reserve(scene.objects.size());
-  for (const SceneObject& object : scene.objects) {
-    const MeshAccel* mesh = nullptr;
-    if (const auto* m = std::get_if<MeshShape>(&object.geometry)) mesh = meshes_.at(m->mesh).get();
-    std::optional<Instance> instance =
-        object.motion && object.motion->moves() && effects_.has(Effect::MotionBlur)
-            ? make_moving_instance(object.geometry, object.transform, *object.motion,
-                                   scene.globals.motion_blur_frame_length, mesh)
-            : make_instance(object.geometry, object.transform, mesh);
+  for (std::uint32_t i = 0; i < scene.objects.size(); ++i) {
+    const SceneObject& object = scene.objects[i];
+    std::optional<Instance> instance;
+    if (const auto* csg = std::get_if<CsgShape>(&object.geometry)) {
+      instance = make_csg_instance(*csg, instances_[csg->left], instances_[csg->right]);
+    } else {
+      const MeshAccel* mesh = nullptr;
+      if (const auto* m = std::get_if<MeshShape>(&object.geometry))
+        mesh = meshes_.at(m->mesh).get();
+      instance = object.motion && object.motion->moves() && effects_.has(Effect::MotionBlur)
+                     ? make_moving_instance(object.geometry, object.transform, *object.motion,
+                                            scene.globals.motion_blur_frame_length, mesh)
+                     : make_instance(object.geometry, object.transform, mesh);
+    }
     if (!instance) throw SceneError(object.where, "the shape's transform is singular");
+    instance->object = i;
     bounds.push_back(instance->world_bounds);
     instances_.push_back(std::move(*instance));
   }
@@ -159,8 +211,8 @@ PreparedScene::PreparedScene(const Scene& scene, BvhMode mode)
     for (const SceneObject& object : scene.objects)
       textures_.push_back(object_texture(object, scene, images_));
   }
-  bvh_ = build_bvh(bounds, mode);
-  transparent_neighbours_ = find_transparent_neighbours(scene, effects_, bounds);
+  bvh_ = build_scene_bvh(bounds, csg_children, mode);
+  transparent_neighbours_ = find_transparent_neighbours(scene, effects_, bounds, csg_children);
 }
 
 }  // namespace tessera

@@ -61,7 +61,7 @@ double Tracer::shadow_factor(const Vec3& origin, const Vec3& target, double time
                  WorldHit h;
                  if (!intersect_instance(instances[index], ray, t_max, h, stats_.intersections))
                    return t_max;
-                 factor *= objects[index].material.transparency;
+                 factor *= objects[h.object].material.transparency;
                  return factor > 0 ? t_max : -1.0;
                });
   return factor;
@@ -69,7 +69,7 @@ double Tracer::shadow_factor(const Vec3& origin, const Vec3& target, double time
 
 Vec3 Tracer::spawn_origin(const Hit& hit, const Vec3& direction, double epsilon) const {
   const SceneGlobals& g = scene_.scene().globals;
-  if (std::holds_alternative<MeshShape>(scene_.instances()[hit.instance].geometry))
+  if (std::holds_alternative<MeshShape>(scene_.instances()[hit.world.object].geometry))
     epsilon = std::max(epsilon, g.mesh_epsilon);
   return offset_ray_origin(hit.world.point, hit.world.point_error, hit.world.normal, direction,
                            epsilon);
@@ -103,7 +103,7 @@ Tracer::Crossing Tracer::cross_interface(const Ray& ray, Hit& hit, const MediumS
   Crossing crossing{media, true};
   for (int k = 0; k < count; ++k) {
     const Hit& h = found[k];
-    const Material& m = objects[h.instance].material;
+    const Material& m = objects[h.world.object].material;
     crossing.after = dot(h.world.normal, ray.direction) < 0
                          ? crossing.after.entered({h.instance, m.priority, m.speed_of_light})
                          : crossing.after.exited(h.instance);
@@ -262,10 +262,10 @@ Rgb Tracer::trace(const Ray& ray_in, RayKind kind, int depth, double weight,
       return kind == RayKind::Reflected ? Rgb{} : g.background;  // eq. 4.2
     }
     travelled += hit.world.t;
-    m = &scene.objects[hit.instance].material;
+    m = &scene.objects[hit.world.object].material;
     if (!effects.has(Effect::Refraction) || !(m->transparency > g.min_transparency)) break;
     crossing = cross_interface(ray, hit, media);
-    m = &scene.objects[hit.instance].material;
+    m = &scene.objects[hit.world.object].material;
     // A transparent surface whose crossing leaves the governing medium unchanged is a false
     // interface: it neither shades nor refracts.
     if (skipped == kMaxFalseInterfaces || !crossing.known ||
@@ -281,9 +281,9 @@ Rgb Tracer::trace(const Ray& ray_in, RayKind kind, int depth, double weight,
 
   SurfaceColours colours{m->ambient * g.global_ambient, m->diffuse};  // eq. 4.5
   if (scene_.textured()) {
-    const ObjectTexture& texture = scene_.texture(hit.instance);
+    const ObjectTexture& texture = scene_.texture(hit.world.object);
     if (!texture.empty())
-      colours = textured_colours(texture, scene_.instances()[hit.instance], hit.world, colours);
+      colours = textured_colours(texture, scene_.instances()[hit.world.object], hit.world, colours);
   }
   Rgb color = local_illumination(hit, *m, colours, normal, ray.direction);
   if (depth < g.max_recursion_depth) {

@@ -22,6 +22,8 @@ class Tracer {
             SampleStream& rng);
 
  private:
+  // `instance` is the object the ray met, which media are keyed on; its surface's material and
+  // texture are those of world.object (a child, for a boolean object).
   struct Hit {
     WorldHit world;
     std::uint32_t instance = 0;

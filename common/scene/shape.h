@@ -4,10 +4,12 @@
 //   cylinder: 1);  mesh: triangles of Scene::meshes[mesh];
 //   torus: around the z axis, lying in the XY-plane (§3.3.5);
 //   algebraic surface: the zero set of a fixed polynomial (common/geometry/algebraic_surfaces.h)
-//   clipped to a box that the CT only translates (§3.3.6).
+//   clipped to a box that the CT only translates (§3.3.6);
+//   boolean object (CSG, §3.2.4): the union, intersection or difference of two other objects.
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <variant>
 
 #include "common/math/vec3.h"
@@ -63,7 +65,21 @@ struct AlgebraicSurface {
   friend bool operator==(const AlgebraicSurface&, const AlgebraicSurface&) = default;
 };
 
+enum class CsgOperation { Union, Intersection, Difference };
+
+// A boolean object (§3.2.4). Its children are other entries of Scene::objects, written before
+// it, each with its own transform and material; a child may be a boolean object itself. The
+// children are parts of this object and not objects of the scene by themselves. The boolean
+// object's own transform is the identity and its material is unused: every surface point
+// belongs to one child, which gives it its material.
+struct CsgShape {
+  CsgOperation operation = CsgOperation::Union;
+  std::uint32_t left = 0;   // index into Scene::objects
+  std::uint32_t right = 0;  // index into Scene::objects; subtracted in a difference
+  friend bool operator==(const CsgShape&, const CsgShape&) = default;
+};
+
 using ShapeGeometry =
-    std::variant<Sphere, Cube, TaperedCylinder, MeshShape, Torus, AlgebraicSurface>;
+    std::variant<Sphere, Cube, TaperedCylinder, MeshShape, Torus, AlgebraicSurface, CsgShape>;
 
 }  // namespace tessera

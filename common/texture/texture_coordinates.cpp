@@ -54,6 +54,9 @@ struct ShapeCoordinates {
     const Vec3 centre = instance.to_world.apply_point({0, 0, 0});
     return algebraic_texture_coordinates(hit.point - centre, a.extent.z);
   }
+  // A boolean object's hits are on its children's surfaces, whose instances (WorldHit::object)
+  // the tracer asks instead.
+  TexCoord operator()(const CsgShape&) const { return {0.5, 0.5}; }
 };
 
 }  // namespace

@@ -225,15 +225,5 @@ TEST(SdlShapes, PolyhedraShareMeshesWithNoMeshFile) {
   EXPECT_EQ(scene.meshes[1].triangles.size(), 8u);
 }
 
-TEST(SdlShapes, KeywordsOfLaterIssuesAreNotSupportedYet) {
-  for (const std::string keyword : {"union", "intersection", "difference"}) {
-    EXPECT_TRUE(fails_at("sphere\n   " + keyword + " 1 2 3", 2, 4,
-                         "'" + keyword + "' is not supported yet"))
-        << keyword;
-  }
-  // Matched case-insensitively, and named in the canonical spelling.
-  EXPECT_TRUE(fails_at("UNION", 1, 1, "'union' is not supported yet"));
-}
-
 }  // namespace
 }  // namespace tessera::test
