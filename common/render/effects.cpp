@@ -6,7 +6,7 @@
 namespace tessera {
 
 namespace {
-constexpr std::array<std::pair<Effect, const char*>, 13> kEffectNames{{
+constexpr std::array<std::pair<Effect, const char*>, 17> kEffectNames{{
     {Effect::HardShadows, "hard_shadows"},
     {Effect::Reflection, "reflection"},
     {Effect::Refraction, "refraction"},
@@ -20,6 +20,10 @@ constexpr std::array<std::pair<Effect, const char*>, 13> kEffectNames{{
     {Effect::SolidTexture, "solid_texture"},
     {Effect::ImageTexture, "image_texture"},
     {Effect::ProceduralTexture, "procedural_texture"},
+    {Effect::Gloss, "gloss"},
+    {Effect::Translucency, "translucency"},
+    {Effect::SoftShadows, "soft_shadows"},
+    {Effect::ShowExtents, "show_extents"},
 }};
 }  // namespace
 

@@ -149,11 +149,14 @@ class Service:
 
 def render_cli(scene_path, settings, out):
     argv = [binary("worker", "tessera-render"), scene_path, "-o", out, "--quiet"]
-    for key in ("width", "height", "aa", "jitter", "seed", "passes"):
+    for key in ("width", "height", "aa", "jitter", "seed", "passes", "shadows", "cone_samples",
+                "shadow_jitter", "brightness"):
         if key in settings:
-            argv += ["--" + key, str(settings[key])]
+            argv += ["--" + key.replace("_", "-"), str(settings[key])]
     if settings.get("stochastic"):
         argv.append("--stochastic")
+    if settings.get("normalize"):
+        argv.append("--normalize")
     subprocess.run(argv, check=True)
 
 
@@ -194,6 +197,11 @@ def case_bit_identical():
                 assert table[0]["blocks"] in (2, 4)
                 scan = dict(SETTINGS, order="scanline", preview="area", passes=1)
                 render_and_compare(service, scan, tmp, "scan%d" % workers)
+                # Soft shadows' cones and the post-normalized final image match too.
+                shaded = dict(SETTINGS, aa=1, passes=1, shadows="soft", cone_samples=5,
+                              normalize=True, brightness=0.9)
+                final = render_and_compare(service, shaded, tmp, "shaded%d" % workers)
+                assert "soft_shadows" in final["effects"], final["effects"]
                 # The PNG carries an ETag; asking again with it gets 304, not the image again.
                 status, headers, _ = service.request("GET", "/api/jobs/%d/image" % final["id"])
                 assert status == 200 and headers.get("ETag"), headers
