@@ -69,7 +69,7 @@ async def worker(port, index, threads, counter):
 async def serve(port, index, threads, counter):
     reader, writer = await asyncio.open_connection("127.0.0.1", port)
     nonce = secrets.token_hex(32)
-    writer.write(frame(HELLO, {"version": 1, "name": "synthetic-%d" % index,
+    writer.write(frame(HELLO, {"version": 2, "name": "synthetic-%d" % index,
                                "threads": threads, "nonce": nonce, "cached": []}))
     _, challenge, _ = await read_frame(reader)
     message = "tessera-worker|1|%s|%s" % (challenge["nonce"], nonce)

@@ -8,7 +8,7 @@ size=(--width 320 --height 240 --repeats 3)
 [ $# -gt 0 ] && size=("$@")
 scripts/build.sh
 for scene in demo features/shadows features/reflection features/refraction features/mesh \
-  features/gloss; do
+  features/motion_blur features/gloss; do
   name=$(basename "$scene")
   echo "== $scene"
   build/bench/accuracy/tessera-accuracy "scenes/$scene.sdl" -o "docs/accuracy/$name" "${size[@]}"

@@ -18,6 +18,7 @@
 #include <cmath>
 #include <variant>
 
+#include "common/geometry/motion.h"
 #include "common/geometry/shapes.h"
 #include "common/math/float_error.h"
 
@@ -107,6 +108,10 @@ std::optional<Instance> make_instance(const ShapeGeometry& geometry, const Affin
 
 bool intersect_instance(const Instance& instance, const Ray& world_ray, double t_max, WorldHit& hit,
                         IntersectionCounters& counters) {
+  if (instance.motion && world_ray.time != 0) {
+    const std::optional<Instance> posed = instance_at(instance, world_ray.time);
+    return posed && intersect_instance(*posed, world_ray, t_max, hit, counters);
+  }
   ++counters.shape_tests;
   // The direction is not renormalized, so t means the same in both spaces.
   const Ray ray{instance.to_object.apply_point(world_ray.origin),

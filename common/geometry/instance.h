@@ -8,6 +8,7 @@
 #include "common/geometry/local_hit.h"
 #include "common/math/affine.h"
 #include "common/math/ray.h"
+#include "common/scene/motion.h"
 #include "common/scene/shape.h"
 
 namespace tessera {
@@ -18,6 +19,9 @@ struct Instance {
   Affine to_object;                 // inverse of to_world
   const MeshAccel* mesh = nullptr;  // for MeshShape geometry
   Bounds3 world_bounds;
+  // Set when the object moves during the shutter (geometry/motion.h): to_world is then its
+  // pose at time 0 and world_bounds cover its whole motion.
+  std::optional<ObjectMotion> motion;
 };
 
 // Builds an instance; nullopt when `to_world` is singular or not finite.
@@ -34,7 +38,7 @@ struct WorldHit {
   std::uint32_t part = 0;
 };
 
-// Nearest hit with t in (0, t_max), or false.
+// Nearest hit with t in (0, t_max), or false. A moving instance is posed at the ray's time.
 bool intersect_instance(const Instance& instance, const Ray& world_ray, double t_max, WorldHit& hit,
                         IntersectionCounters& counters);
 

@@ -47,6 +47,33 @@ void push(FileParser& p) { p.push_ct(); }
 void pop(FileParser& p) { p.pop_ct(); }
 
 // ---------------------------------------------------------------------------------------------
+// Motion blur (§3.2.6): the next shape's motion over one frame. Each keyword sets its part
+// (a second mbRotate replaces the first); the next shape takes the motion if mbEnable was
+// given, and every shape clears it.
+
+void mb_clear(FileParser& p) { p.motion() = {}; }
+
+void mb_rotate(FileParser& p) {
+  const double degrees = p.number("<angle>");
+  const Number ux = p.read_number("<ux>");
+  const Vec3 axis{ux.value, p.number("<uy>"), p.number("<uz>")};
+  if (!Affine::rotation(degrees, axis)) p.fail(ux.token, "'mbRotate' needs a non-zero axis");
+  p.motion().motion.angle_degrees = degrees;
+  p.motion().motion.axis = axis;
+}
+
+void mb_translate(FileParser& p) { p.motion().motion.translation = p.vec3("<dx>", "<dy>", "<dz>"); }
+
+void mb_scale(FileParser& p) {
+  const double sx = p.number("<sx>", Range::Positive);
+  const double sy = p.number("<sy>", Range::Positive);
+  const double sz = p.number("<sz>", Range::Positive);
+  p.motion().motion.scale = {sx, sy, sz};
+}
+
+void mb_enable(FileParser& p) { p.motion().enabled = true; }
+
+// ---------------------------------------------------------------------------------------------
 // Shapes (§3.3)
 
 void sphere(FileParser& p) { p.add_object(Sphere{}); }
@@ -382,8 +409,8 @@ void show_extents(FileParser& p) {
   if (p.accept_global()) p.scene().globals.show_extents = v;
 }
 void motion_blur(FileParser& p) {
-  const double frame_length = p.number("<frame-length>", Range::Positive);
-  const int samples = p.integer("<#time-samples>", 1, INT_MAX);
+  const double frame_length = p.number("<frame-length>", Range::NonNegative);
+  const int samples = p.integer("<#time-samples>", 1, kMaxTimeSamples);
   if (!p.accept_global()) return;
   p.scene().globals.motion_blur_frame_length = frame_length;
   p.scene().globals.motion_blur_time_samples = samples;
@@ -397,7 +424,7 @@ void use(FileParser& p) { p.use(); }
 void include(FileParser& p) { p.include(p.word("a file name after 'include'")); }
 
 // ---------------------------------------------------------------------------------------------
-// Keywords of later issues: CSG, motion blur.
+// Keywords of later issues: CSG.
 
 void not_supported_yet(FileParser& p) {
   p.fail(p.keyword(), "'" + std::string(p.keyword_name()) + "' is not supported yet");
@@ -474,11 +501,11 @@ constexpr Keyword kKeywords[] = {
     {"light", light},
     {"spotlight", spotlight},
     // Motion blur
-    {"mbClear", not_supported_yet},
-    {"mbRotate", not_supported_yet},
-    {"mbTranslate", not_supported_yet},
-    {"mbScale", not_supported_yet},
-    {"mbEnable", not_supported_yet},
+    {"mbClear", mb_clear},
+    {"mbRotate", mb_rotate},
+    {"mbTranslate", mb_translate},
+    {"mbScale", mb_scale},
+    {"mbEnable", mb_enable},
     // Global scene attributes
     {"eyePoint", eye_point},
     {"viewPoint", view_point},

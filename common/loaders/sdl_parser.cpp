@@ -358,7 +358,14 @@ void FileParser::add_object(const ShapeGeometry& geometry) {
   if (s.objects.size() >= limit) {
     fail(keyword_, "too many objects (more than " + std::to_string(limit) + ")");
   }
-  s.objects.push_back({geometry, ct_, material_, location(keyword_)});
+  std::optional<ObjectMotion> motion;
+  if (motion_.enabled) {
+    if (std::holds_alternative<AlgebraicSurface>(geometry))
+      fail(keyword_, name + " cannot move: algebraic surfaces do not take motion blur");
+    motion = motion_.motion;
+  }
+  motion_ = {};  // every shape clears the motion (§3.2.6)
+  s.objects.push_back({geometry, ct_, material_, location(keyword_), motion});
 }
 
 void FileParser::add_light(const Light& light) {

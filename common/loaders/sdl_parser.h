@@ -82,6 +82,12 @@ class FileParser {
   void push_ct();
   void pop_ct();
   Material& material() { return material_; }
+  // The motion-blur state of §3.2.6: the next shape's motion, and whether mbEnable was given.
+  struct PendingMotion {
+    ObjectMotion motion;
+    bool enabled = false;
+  };
+  PendingMotion& motion() { return motion_; }
   void add_object(const ShapeGeometry& geometry);
   void add_light(const Light& light);
   // The index in Scene::meshes of the mesh file `name` (loaded once per resolved path).
@@ -124,6 +130,7 @@ class FileParser {
   Affine ct_;
   std::vector<Affine> ct_stack_;
   Material material_;
+  PendingMotion motion_;
   std::optional<Token> last_camera_position_;  // the last eyePoint or viewPoint
   std::optional<Token> up_direction_;
 };

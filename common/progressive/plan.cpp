@@ -65,10 +65,9 @@ int level_count(int width, int height) {
 int block_side(int levels, int level) { return 1 << (levels - level); }
 
 long long unit_pixels_for_cost(double seconds_per_pixel_pass) {
-  constexpr double kUnitSeconds = 0.020;
   constexpr long long kFewest = 256, kMost = 16384, kUnknown = 1024;
   if (!(seconds_per_pixel_pass > 0)) return kUnknown;
-  const double pixels = kUnitSeconds / seconds_per_pixel_pass;
+  const double pixels = kUnitTargetSeconds / seconds_per_pixel_pass;
   return pixels >= static_cast<double>(kMost) ? kMost : std::max(kFewest, std::llround(pixels));
 }
 

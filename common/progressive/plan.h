@@ -57,10 +57,13 @@ struct Plan {
 int level_count(int width, int height);
 int block_side(int levels, int level);
 Plan make_plan(const PlanOptions& options);
-// Traced pixels a unit should hold so that it renders in about 20 ms on one thread, given a
-// probe's seconds per pixel and pass: long enough that its round trip and the coordinator's
-// work per unit are small beside it, short enough to balance the load and refine the preview
-// smoothly. Between 256 and 16384; 1024 when the cost is unknown (0).
+// How long a unit should take on one thread: long enough that its round trip and the
+// coordinator's work per unit are small beside it, short enough to balance the load and refine
+// the preview smoothly.
+inline constexpr double kUnitTargetSeconds = 0.020;
+
+// Traced pixels a unit should hold so that it renders in kUnitTargetSeconds on one thread, given a
+// probe's seconds per pixel and pass. Between 256 and 16384; 1024 when the cost is unknown (0).
 long long unit_pixels_for_cost(double seconds_per_pixel_pass);
 
 UnitOrder parse_unit_order(const std::string& name);      // "centre"/"center"/"scanline"; throws

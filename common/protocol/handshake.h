@@ -14,7 +14,7 @@
 
 namespace tessera {
 
-constexpr int kProtocolVersion = 1;
+constexpr int kProtocolVersion = 2;
 
 // 32 random bytes from the system's entropy source, as hex.
 std::string make_nonce();

@@ -14,10 +14,15 @@ void apply_overrides(Scene& scene, const SceneOverrides& o) {
 
 nlohmann::json to_json(const JobSpec& spec) {
   const RenderSettings& s = spec.settings;
-  nlohmann::json j = {{"width", s.width},   {"height", s.height},
-                      {"aa", s.aa_samples}, {"stochastic", s.stochastic},
-                      {"jitter", s.jitter}, {"seed", s.seed},
-                      {"passes", s.passes}, {"bvh", s.bvh == BvhMode::Sah}};
+  nlohmann::json j = {{"width", s.width},
+                      {"height", s.height},
+                      {"aa", s.aa_samples},
+                      {"stochastic", s.stochastic},
+                      {"jitter", s.jitter},
+                      {"seed", s.seed},
+                      {"passes", s.passes},
+                      {"bvh", s.bvh == BvhMode::Sah},
+                      {"time_samples", s.time_samples}};
   j["shadows"] = to_string(s.shadows);
   j["cone_samples"] = s.cone_samples;
   j["shadow_jitter"] = s.shadow_jitter;
@@ -39,6 +44,7 @@ JobSpec job_spec_from_json(const nlohmann::json& j) {
     s.jitter = j.at("jitter").get<double>();
     s.seed = j.at("seed").get<std::uint64_t>();
     s.passes = j.at("passes").get<int>();
+    s.time_samples = j.at("time_samples").get<int>();
     s.bvh = j.at("bvh").get<bool>() ? BvhMode::Sah : BvhMode::None;
     const std::optional<ShadowMode> shadows = parse_shadow_mode(j.at("shadows").get<std::string>());
     if (!shadows) throw ProtocolError("bad job settings: unknown shadow mode");

@@ -6,7 +6,7 @@
 namespace tessera {
 
 namespace {
-constexpr std::array<std::pair<Effect, const char*>, 17> kEffectNames{{
+constexpr std::array<std::pair<Effect, const char*>, 18> kEffectNames{{
     {Effect::HardShadows, "hard_shadows"},
     {Effect::Reflection, "reflection"},
     {Effect::Refraction, "refraction"},
@@ -20,6 +20,7 @@ constexpr std::array<std::pair<Effect, const char*>, 17> kEffectNames{{
     {Effect::SolidTexture, "solid_texture"},
     {Effect::ImageTexture, "image_texture"},
     {Effect::ProceduralTexture, "procedural_texture"},
+    {Effect::MotionBlur, "motion_blur"},
     {Effect::Gloss, "gloss"},
     {Effect::Translucency, "translucency"},
     {Effect::SoftShadows, "soft_shadows"},

@@ -22,10 +22,11 @@ enum class Effect : std::uint32_t {
   SolidTexture = 1u << 10,
   ImageTexture = 1u << 11,
   ProceduralTexture = 1u << 12,
-  Gloss = 1u << 13,         // blurred reflection: a cone of reflected rays (§4.1.4)
-  Translucency = 1u << 14,  // blurred refraction: a cone of refracted rays (§4.1.4)
-  SoftShadows = 1u << 15,   // a cone of shadow feelers per light (§4.2.1)
-  ShowExtents = 1u << 16,   // objects' bounding boxes drawn as white bars (§3.2.7)
+  MotionBlur = 1u << 13,
+  Gloss = 1u << 14,         // blurred reflection: a cone of reflected rays (§4.1.4)
+  Translucency = 1u << 15,  // blurred refraction: a cone of refracted rays (§4.1.4)
+  SoftShadows = 1u << 16,   // a cone of shadow feelers per light (§4.2.1)
+  ShowExtents = 1u << 17,   // objects' bounding boxes drawn as white bars (§3.2.7)
 };
 
 class EffectSet {

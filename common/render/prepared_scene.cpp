@@ -4,6 +4,7 @@
 #include <numbers>
 #include <stdexcept>
 
+#include "common/geometry/motion.h"
 #include "common/texture/image_texture.h"
 
 namespace tessera {
@@ -55,6 +56,8 @@ EffectSet scene_effects(const Scene& scene) {
     if (m.flat_texture.kind == FlatTexture::Kind::Image) effects.add(Effect::ImageTexture);
     if (m.flat_texture.kind == FlatTexture::Kind::Procedural)
       effects.add(Effect::ProceduralTexture);
+    if (object.motion && object.motion->moves() && g.motion_blur_frame_length > 0)
+      effects.add(Effect::MotionBlur);
   }
   return effects;
 }
@@ -98,8 +101,8 @@ std::vector<SceneObject> extent_bars(const std::vector<SceneObject>& objects,
         const int a1 = (axis + 1) % 3, a2 = (axis + 2) % 3;
         centre[a1] = corner & 1 ? b.hi[a1] : b.lo[a1];
         centre[a2] = corner & 2 ? b.hi[a2] : b.lo[a2];
-        bars.push_back(
-            {Cube{}, Affine::translation(centre) * Affine::scaling(half), white, objects[i].where});
+        bars.push_back({Cube{}, Affine::translation(centre) * Affine::scaling(half), white,
+                        objects[i].where, std::nullopt});
       }
   }
   return bars;
@@ -171,7 +174,11 @@ PreparedScene::PreparedScene(const Scene& scene, BvhMode mode)
   const auto add_instance = [&](const SceneObject& object) {
     const MeshAccel* mesh = nullptr;
     if (const auto* m = std::get_if<MeshShape>(&object.geometry)) mesh = meshes_.at(m->mesh).get();
-    std::optional<Instance> instance = make_instance(object.geometry, object.transform, mesh);
+    std::optional<Instance> instance =
+        object.motion && object.motion->moves() && effects_.has(Effect::MotionBlur)
+            ? make_moving_instance(object.geometry, object.transform, *object.motion,
+                                   scene.globals.motion_blur_frame_length, mesh)
+            : make_instance(object.geometry, object.transform, mesh);
     if (!instance) throw SceneError(object.where, "the shape's transform is singular");
     bounds.push_back(instance->world_bounds);
     instances_.push_back(std::move(*instance));

@@ -17,34 +17,60 @@ namespace {
 
 constexpr int kTileSize = 16;
 
-// One pass of one pixel: the mean of its samples. Sample k of pass p has the global sample
-// index p * samples + k, which keys its random numbers.
+// Motion-blur times per camera sample: the settings' count, else the scene's; 1 when nothing
+// moves.
+int time_samples(const PreparedScene& scene, const RenderSettings& settings) {
+  if (!scene.effects().has(Effect::MotionBlur)) return 1;
+  return settings.time_samples > 0 ? settings.time_samples
+                                   : scene.scene().globals.motion_blur_time_samples;
+}
+
+// Time sample j of `count` over a shutter of `length` frames centred on 0 (eq. 4.53-4.54):
+// the middle of the j-th of `count` equal stretches, jittered within it by `jitter` (0..1)
+// times `u` - 1/2.
+double shutter_time(double length, int j, int count, double jitter, double u) {
+  return length * ((j + 0.5 + jitter * (u - 0.5)) / count - 0.5);
+}
+
+// One pass of one pixel: the mean of its samples. With T motion-blur times and A samples per
+// pixel, sample k at time j of pass p has the global sample index (p * T + j) * A + k, which
+// keys its random numbers (without motion blur T is 1: p * A + k).
 Rgb trace_pixel(const PreparedScene& scene, const RenderSettings& settings, int x, int y, int pass,
                 RenderStats& stats) {
   Tracer tracer(scene, settings, stats);
   const std::span<const SampleOffset> offsets = regular_sample_offsets(settings.aa_samples);
-  const auto first = static_cast<std::uint32_t>(pass) * static_cast<std::uint32_t>(offsets.size());
+  const auto aa = static_cast<std::uint32_t>(offsets.size());
+  const int times = time_samples(scene, settings);
+  const bool moving = scene.effects().has(Effect::MotionBlur);
+  const double shutter = scene.scene().globals.motion_blur_frame_length;
   Rgb sum;
-  for (std::size_t k = 0; k < offsets.size(); ++k) {
-    SampleStream rng(settings.seed, static_cast<std::uint32_t>(x), static_cast<std::uint32_t>(y),
-                     first + static_cast<std::uint32_t>(k));
-    double px = x + offsets[k].dx, py = y + offsets[k].dy;
-    if (settings.stochastic) {
-      px += (rng.next() - 0.5) * settings.jitter;
-      py += (rng.next() - 0.5) * settings.jitter;
+  for (int j = 0; j < times; ++j) {
+    const auto first = (static_cast<std::uint32_t>(pass) * static_cast<std::uint32_t>(times) +
+                        static_cast<std::uint32_t>(j)) *
+                       aa;
+    for (std::uint32_t k = 0; k < aa; ++k) {
+      SampleStream rng(settings.seed, static_cast<std::uint32_t>(x), static_cast<std::uint32_t>(y),
+                       first + k);
+      double px = x + offsets[k].dx, py = y + offsets[k].dy;
+      if (settings.stochastic) {
+        px += (rng.next() - 0.5) * settings.jitter;
+        py += (rng.next() - 0.5) * settings.jitter;
+      }
+      Ray ray = scene.camera().ray_through(px, py, settings.width, settings.height);
+      if (moving) ray.time = shutter_time(shutter, j, times, settings.jitter, rng.next());
+      ++stats.camera_rays;
+      Rgb c = tracer.trace(ray, RayKind::Camera, 0, 1.0, MediumStack{}, rng);
+      if (!is_finite(c)) {
+        ++stats.nan_samples;  // counted and reported, never written into the image
+        c = Rgb{};
+      }
+      sum += c;
     }
-    const Ray ray = scene.camera().ray_through(px, py, settings.width, settings.height);
-    ++stats.camera_rays;
-    Rgb c = tracer.trace(ray, RayKind::Camera, 0, 1.0, MediumStack{}, rng);
-    if (!is_finite(c)) {
-      ++stats.nan_samples;  // counted and reported, never written into the image
-      c = Rgb{};
-    }
-    sum += c;
   }
-  stats.samples += offsets.size();
+  const std::size_t count = static_cast<std::size_t>(aa) * static_cast<std::size_t>(times);
+  stats.samples += count;
   ++stats.pixels;
-  return sum * (1.0 / static_cast<double>(offsets.size()));
+  return sum * (1.0 / static_cast<double>(count));
 }
 
 }  // namespace

@@ -6,6 +6,7 @@
 #include <string_view>
 
 #include "common/accel/bvh.h"
+#include "common/scene/motion.h"  // kMaxTimeSamples
 
 namespace tessera {
 
@@ -24,6 +25,8 @@ struct RenderSettings {
   double jitter = 1.0;      // jitter strength, in pixels (eq. 4.52 with block size 1)
   std::uint64_t seed = 0;   // keys every random number (render/sampler.h)
   int passes = 1;           // sample passes; the image is the mean of all passes
+  int time_samples = 0;     // motion-blur times per camera sample (1..kMaxTimeSamples); 0: the
+                            // scene's motionBlur count
   BvhMode bvh = BvhMode::Sah;
   ShadowMode shadows = ShadowMode::Hard;
   // nrOfConeSamples (§4.1.4): rays per gloss, translucency and soft-shadow cone, the central

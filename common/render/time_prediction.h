@@ -3,6 +3,8 @@
 // and the worker threads available.
 #pragma once
 
+#include <cstddef>
+#include <deque>
 #include <optional>
 #include <vector>
 
@@ -19,7 +21,7 @@ struct CostProbe {
 };
 
 struct ProbeBudget {
-  int max_pixels = 256;       // a 16 x 16 grid over the image
+  int max_pixels = 1024;      // a 32 x 32 grid over the image
   double max_seconds = 0.03;  // stop early on costly scenes (keeps submission quick)
 };
 
@@ -37,18 +39,31 @@ CostProbe probe_render_cost(const PreparedScene& scene, const RenderSettings& se
 std::optional<double> predict_render_seconds(double seconds_per_pixel_pass, long long pixel_passes,
                                              int threads);
 
-// Learns how the workers' real time relates to the probe's prediction: their speed against
-// the probing machine's, how well their threads scale, the service's own overhead. Each
-// finished job that ran alone moves the factor halfway (geometrically) towards its
-// actual / predicted ratio, clamped to [1/4, 4] so that one odd job cannot wreck it.
+// Learns what the probe cannot see from the jobs that finished alone, in two parts measured
+// separately on each job:
+//  - speed: the workers' render seconds per thread against the probe's prediction (their
+//    speed against the probing coordinator's, how their threads scale);
+//  - overhead: the wall seconds beyond the workers' render seconds per thread (preparing the
+//    scene on each worker, round trips, the last units' tail), nearly the same for every job.
+// Each is the median of the last kWindow jobs, so that one odd job moves neither; a
+// prediction is overhead + speed × uncalibrated.
 class PredictionCalibration {
  public:
-  double factor() const { return factor_; }
-  double apply(double predicted_seconds) const { return predicted_seconds * factor_; }
-  void observe(double uncalibrated_seconds, double actual_seconds);
+  static constexpr std::size_t kWindow = 9;
+
+  double factor() const { return median(speeds_, 1); }
+  double overhead_seconds() const { return median(overheads_, 0); }
+  double apply(double uncalibrated_seconds) const {
+    return overhead_seconds() + factor() * uncalibrated_seconds;
+  }
+  // A job that ran alone: its uncalibrated prediction, its workers' render seconds divided by
+  // the threads it was predicted for, and the wall seconds it took.
+  void observe(double uncalibrated_seconds, double render_seconds_per_thread,
+               double actual_seconds);
 
  private:
-  double factor_ = 1;
+  static double median(const std::deque<double>& values, double none);
+  std::deque<double> speeds_, overheads_;
 };
 
 }  // namespace tessera

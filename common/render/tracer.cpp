@@ -59,6 +59,7 @@ Tracer::Tracer(const PreparedScene& scene, const RenderSettings& settings, Rende
 bool Tracer::closest_hit(const Ray& ray, Hit& hit) {
   const std::vector<Instance>& instances = scene_.instances();
   bool found = false;
+  hit.time = ray.time;
   traverse_bvh(scene_.bvh(), ray, kInfinity, stats_.intersections.bvh_nodes,
                [&](std::uint32_t index, double t_max) {
                  WorldHit h;
@@ -72,9 +73,9 @@ bool Tracer::closest_hit(const Ray& ray, Hit& hit) {
   return found;
 }
 
-double Tracer::shadow_factor(const Vec3& origin, const Vec3& target) {
+double Tracer::shadow_factor(const Vec3& origin, const Vec3& target, double time) {
   ++stats_.shadow_rays;
-  const Ray ray{origin, target - origin, 0};
+  const Ray ray{origin, target - origin, time};
   const std::vector<Instance>& instances = scene_.instances();
   const std::vector<SceneObject>& objects = scene_.scene().objects;
   double factor = 1;
@@ -158,10 +159,10 @@ double Tracer::light_visibility(const Hit& hit, const Vec3& position, const Vec3
   const double epsilon = scene_.scene().globals.shadow_feeler_epsilon;
   if (effects_.has(Effect::SoftShadows))
     return Cone(l, shadow_cone_radius_).mean<double>(cone_samples_, rng, [&](const Vec3& d) {
-      return shadow_factor(spawn_origin(hit, d, epsilon), hit.world.point + d * distance);
+      return shadow_factor(spawn_origin(hit, d, epsilon), hit.world.point + d * distance, hit.time);
     });
   if (effects_.has(Effect::HardShadows))
-    return shadow_factor(spawn_origin(hit, l, epsilon), position);
+    return shadow_factor(spawn_origin(hit, l, epsilon), position, hit.time);
   return 1;
 }
 

@@ -28,6 +28,7 @@ class Tracer {
   struct Hit {
     WorldHit world;
     std::uint32_t instance = 0;
+    double time = 0;  // the ray's shutter time: rays leaving the hit keep it
   };
   // The media behind a transparent surface, and whether the ray was known to be inside the
   // object it leaves (it is not when the eye starts inside glass).
@@ -42,8 +43,9 @@ class Tracer {
   // surface of the object that governs the interface, with an error bound covering them all,
   // so that rays leaving it start beyond every one.
   Crossing cross_interface(const Ray& ray, Hit& hit, const MediumStack& media);
-  // Eq. 4.24: the product of the transparencies of everything between `origin` and `target`.
-  double shadow_factor(const Vec3& origin, const Vec3& target);
+  // Eq. 4.24: the product of the transparencies of everything between `origin` and `target`
+  // at shutter time `time`.
+  double shadow_factor(const Vec3& origin, const Vec3& target, double time);
   // Eq. 4.24-4.26: the share of the point light at `position` (unit direction `l`, `distance`
   // away) that reaches the hit: all of it without shadows, one feeler's product of
   // transparencies for hard shadows, the mean over a cone of feelers for soft shadows.

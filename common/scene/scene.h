@@ -10,6 +10,7 @@
 #include "common/scene/light.h"
 #include "common/scene/material.h"
 #include "common/scene/mesh.h"
+#include "common/scene/motion.h"
 #include "common/scene/shape.h"
 #include "common/scene/source_location.h"
 
@@ -77,7 +78,8 @@ struct SceneGlobals {
   double min_transparency = 0.01;
   int max_recursion_depth = 5;
   bool show_extents = false;
-  // motionBlur <frame-length> <#time-samples>; stored for the motion-blur renderer.
+  // motionBlur <frame-length> <#time-samples>: the shutter is open from -frame-length/2 to
+  // +frame-length/2 (eq. 4.53-4.54), sampled at that many jittered times per camera sample.
   double motion_blur_frame_length = 1;
   int motion_blur_time_samples = 8;
   friend bool operator==(const SceneGlobals&, const SceneGlobals&) = default;
@@ -88,7 +90,8 @@ struct SceneObject {
   ShapeGeometry geometry;
   Affine transform;  // object to world (the CT when the shape was written)
   Material material;
-  SourceLocation where;  // the shape keyword, for messages
+  SourceLocation where;                // the shape keyword, for messages
+  std::optional<ObjectMotion> motion;  // mbEnable: moves during the shutter
 };
 
 // The bytes of an image file a scene names (imageTexture), read once per path by the loader so

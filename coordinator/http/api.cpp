@@ -149,6 +149,7 @@ HttpResponse Api::create_job(const HttpRequest& request,
       scheduler_.predict(job->seconds_per_pixel_pass, job->plan.total_cost);
   job->predicted_seconds = prediction.seconds;
   job->uncalibrated_prediction = prediction.uncalibrated;
+  job->prediction_threads = prediction.threads;
   scheduler_.add_job(*job);
   HttpResponse res = json_response(201, job_status_json(*job, Clock::now()));
   res.set(http::field::location, "/api/jobs/" + std::to_string(job->id));
@@ -169,6 +170,7 @@ HttpResponse Api::predict(const HttpRequest& request,
                         {"pixel_passes", pixel_passes},
                         {"threads", p.threads},
                         {"calibration", p.factor},
+                        {"overhead_seconds", p.overhead_seconds},
                         {"effects", job.effects}});
 }
 

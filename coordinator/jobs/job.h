@@ -57,7 +57,8 @@ struct Job {
   // (issue 5); empty when no worker was connected.
   double seconds_per_pixel_pass = 0;
   std::optional<double> uncalibrated_prediction, predicted_seconds;
-  bool ran_alone = true;  // no other job ran beside it: its time can calibrate predictions
+  int prediction_threads = 0;  // the worker threads the prediction was made for
+  bool ran_alone = true;       // no other job ran beside it: its time can calibrate predictions
 
   JobState state = JobState::Queued;
   std::string error;

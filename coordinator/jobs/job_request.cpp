@@ -220,7 +220,7 @@ void parse_settings(const json& s, const ServiceLimits& limits, JobRequest& out)
       "width",       "height",     "aa",        "stochastic",   "jitter",
       "seed",        "passes",     "order",     "priority",     "preview",
       "progressive", "bvh",        "shadows",   "cone_samples", "shadow_jitter",
-      "normalize",   "brightness", "max_depth", "min_weight"};
+      "normalize",   "brightness", "max_depth", "min_weight",   "time_samples"};
   for (const auto& [key, value] : s.items())
     if (!known.count(key)) throw bad_request("unknown setting \"" + key + "\"");
   RenderSettings& r = out.spec.settings;
@@ -249,6 +249,7 @@ void parse_settings(const json& s, const ServiceLimits& limits, JobRequest& out)
   r.shadow_jitter = get_double(s, "shadow_jitter", defaults.shadow_jitter, 0, 2);
   r.normalize_colors = get_bool(s, "normalize", defaults.normalize_colors);
   r.normalize_brightness = get_double(s, "brightness", defaults.normalize_brightness, 0, 16);
+  r.time_samples = get_int(s, "time_samples", defaults.time_samples, 0, kMaxTimeSamples);
   if (s.contains("max_depth"))
     out.spec.overrides.max_depth = get_int(s, "max_depth", 0, 0, limits.max_depth);
   if (s.contains("min_weight"))

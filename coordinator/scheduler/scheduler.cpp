@@ -22,7 +22,7 @@ std::int64_t Scheduler::add_worker(WorkerHello hello, std::shared_ptr<FrameConne
   w.id = id;
   w.bundles = hello.cached;
   w.hello = std::move(hello);
-  w.pipeline = WorkerPipeline(w.hello.threads);
+  w.pipeline = WorkerPipeline(w.hello.threads, w.hello.handshake_round_trip);
   w.connection = std::move(connection);
   spdlog::info("worker {} \"{}\" joined from {} with {} threads", id, w.hello.name, w.hello.address,
                w.hello.threads);
@@ -274,8 +274,10 @@ void Scheduler::finish(JobRun& run, JobState state, const std::string& error) {
     std::erase_if(w.in_flight, [&](const auto& entry) { return entry.first.first == job.id; });
   }
   spdlog::info("job {} {}{}{}", job.id, to_string(state), error.empty() ? "" : ": ", error);
-  if (state == JobState::Done && job.ran_alone && job.uncalibrated_prediction)
-    calibration_.observe(*job.uncalibrated_prediction, job.elapsed_seconds(*job.finished));
+  if (state == JobState::Done && job.ran_alone && job.uncalibrated_prediction &&
+      job.prediction_threads > 0)
+    calibration_.observe(*job.uncalibrated_prediction, job.stats.seconds / job.prediction_threads,
+                         job.elapsed_seconds(*job.finished));
   runs_.erase(job.id);  // `run` and `job` references end here
   fill_slots();
 }
@@ -284,6 +286,7 @@ Prediction Scheduler::predict(double seconds_per_pixel_pass, long long pixel_pas
   Prediction p;
   for (const auto& [id, w] : workers_) p.threads += w.hello.threads;
   p.factor = calibration_.factor();
+  p.overhead_seconds = calibration_.overhead_seconds();
   p.uncalibrated = predict_render_seconds(seconds_per_pixel_pass, pixel_passes, p.threads);
   if (p.uncalibrated) p.seconds = calibration_.apply(*p.uncalibrated);
   return p;

@@ -38,13 +38,15 @@ struct SchedulerOptions {
 struct WorkerHello {
   std::string name, address;
   int threads = 1;
-  std::set<std::string> cached;  // bundle hashes the worker already holds
+  std::set<std::string> cached;     // bundle hashes the worker already holds
+  double handshake_round_trip = 0;  // seconds from the challenge to the worker's answer
 };
 
 struct Prediction {
   std::optional<double> seconds, uncalibrated;  // empty without a connected worker
   int threads = 0;
-  double factor = 1;  // the calibration applied
+  double factor = 1;            // the calibration applied: speed factor...
+  double overhead_seconds = 0;  // ...and the overhead added
 };
 
 class Scheduler {

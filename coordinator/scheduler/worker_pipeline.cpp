@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "common/progressive/plan.h"
+
 namespace tessera {
 
 namespace {
@@ -12,20 +14,28 @@ namespace {
 int prefetch(int threads) { return std::max(1, threads / 2); }
 
 // A bound on the units one thread may hold, so that a lost worker or a cancelled job throws
-// away little work; at 8 a unit may take an eighth of the round trip and the pipeline still
+// away little work; at 16 a unit may take an eighth of the round trip and the pipeline still
 // stays full.
-constexpr int kMaxUnitsPerThread = 8;
+constexpr int kMaxUnitsPerThread = 16;
+
+// How many round trips the units in transit cover (see the header).
+constexpr double kRoundTripsCovered = 2;
 
 // Weight of the newest unit in the moving average of render time.
 constexpr double kUnitTimeWeight = 0.125;
 
 }  // namespace
 
+WorkerPipeline::WorkerPipeline(int threads, double handshake_round_trip)
+    : threads_(threads), unit_seconds_(kUnitTargetSeconds) {
+  if (handshake_round_trip > 0) round_trip_ = handshake_round_trip;
+}
+
 void WorkerPipeline::observe(double elapsed, double render) {
   const double transit = std::max(0.0, elapsed - render);
   round_trip_ = round_trip_ < 0 ? transit : std::min(round_trip_, transit);
-  unit_seconds_ =
-      unit_seconds_ > 0 ? unit_seconds_ + kUnitTimeWeight * (render - unit_seconds_) : render;
+  unit_seconds_ = observed_ ? unit_seconds_ + kUnitTimeWeight * (render - unit_seconds_) : render;
+  observed_ = true;
 }
 
 double WorkerPipeline::round_trip_seconds() const { return std::max(0.0, round_trip_); }
@@ -33,7 +43,7 @@ double WorkerPipeline::round_trip_seconds() const { return std::max(0.0, round_t
 int WorkerPipeline::slots() const {
   double per_thread = 1;  // the unit each thread renders
   if (round_trip_ > 0 && unit_seconds_ > 0)
-    per_thread = std::min<double>(kMaxUnitsPerThread, 1 + round_trip_ / unit_seconds_);
+    per_thread = std::min<double>(kMaxUnitsPerThread, 1 + kRoundTripsCovered * round_trip_ / unit_seconds_);
   return static_cast<int>(std::ceil(threads_ * per_thread)) + prefetch(threads_);
 }
 

@@ -66,6 +66,7 @@ void WorkerLink::on_hello(const Frame& frame) {
     if (hello_.cached.size() < kMaxCachedHashes) hello_.cached.insert(h.get<std::string>());
   nonce_ = make_nonce();
   stage_ = Stage::Auth;
+  challenge_sent_ = std::chrono::steady_clock::now();
   connection_->send(Frame{MessageType::Challenge,
                           {{"version", kProtocolVersion},
                            {"nonce", nonce_},
@@ -79,6 +80,8 @@ void WorkerLink::on_auth(const Frame& frame) {
     if (!constant_time_equal(frame.header.value("proof", std::string()), expected))
       return reject("authentication failed: wrong shared secret");
   }
+  hello_.handshake_round_trip =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - challenge_sent_).count();
   connection_->set_limits(kWorkerLimits);
   stage_ = Stage::Ready;
   id_ = scheduler_.add_worker(hello_, connection_);

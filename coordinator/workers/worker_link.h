@@ -3,6 +3,7 @@
 // scheduler. A peer that breaks the protocol is dropped; it never takes the coordinator down.
 #pragma once
 
+#include <chrono>
 #include <cstdint>
 #include <memory>
 #include <string>
@@ -35,6 +36,7 @@ class WorkerLink : public std::enable_shared_from_this<WorkerLink> {
   Scheduler& scheduler_;
   Stage stage_ = Stage::Hello;
   std::string nonce_, worker_nonce_;
+  std::chrono::steady_clock::time_point challenge_sent_;  // times the handshake's round trip
   WorkerHello hello_;
   std::int64_t id_ = 0;
 };

@@ -70,6 +70,36 @@ TEST(AccuracySweep, SweepsTheShadowModeOnlyWhenTheSceneHasLights) {
                           [](const std::string& s) { return s.rfind("shadow mode", 0) == 0; }));
 }
 
+TEST(AccuracySweep, SweepsTimeSamplesOnlyWhenSomethingMoves) {
+  RenderSettings base;
+  const Sweep moving =
+      make_sweep(load("light 0 5 5 1 1 1 mbTranslate 1 0 0 mbEnable sphere"), base);
+  EXPECT_TRUE(has_knob(moving, "motion-blur time samples"));
+  EXPECT_EQ(moving.reference.settings.time_samples, 16);  // converged in time too
+  // More time samples converge towards the reference on a moving ball.
+  AccuracyOptions options;
+  options.base.width = 24;
+  options.base.height = 18;
+  options.repeats = 1;
+  options.threads = 1;
+  const AccuracyReport report =
+      measure_accuracy(load("eyePoint 0 0 4 light 0 5 5 1 1 1 mbTranslate 2 0 0 mbEnable sphere"),
+                       "ball.sdl", options);
+  double one = -1, many = -1;
+  for (const Measured& m : report.measured) {
+    if (m.variant.label == "1 times") one = m.error.rmse;
+    if (m.variant.label == "16 times") many = m.error.rmse;
+  }
+  ASSERT_GE(one, 0);
+  ASSERT_GE(many, 0);
+  EXPECT_LT(many, one);
+  const Sweep still = make_sweep(load("light 0 5 5 1 1 1 sphere"), base);
+  EXPECT_FALSE(has_knob(still, "motion-blur time samples"));
+  EXPECT_TRUE(std::any_of(still.not_swept.begin(), still.not_swept.end(), [](const std::string& s) {
+    return s.rfind("motion-blur time samples", 0) == 0;
+  }));
+}
+
 TEST(AccuracySweep, ParetoFrontKeepsOnlyUndominatedSettings) {
   std::vector<Measured> m(4);
   m[0].seconds = 1, m[0].error.rmse = 0.5;  // fastest

@@ -140,9 +140,11 @@ TEST(SdlGlobals, RangeErrors) {
   EXPECT_TRUE(fails_at("maxRecursionDepth 2.5", 1, 19,
                        "expected an integer for <value> of 'maxRecursionDepth', found '2.5'"));
   EXPECT_TRUE(fails_at("motionBlur 1 0", 1, 14,
-                       "<#time-samples> of 'motionBlur' must be at least 1, found '0'"));
-  EXPECT_TRUE(fails_at("motionBlur 0 8", 1, 12,
-                       "<frame-length> of 'motionBlur' must be positive, found '0'"));
+                       "<#time-samples> of 'motionBlur' must be between 1 and 256, found '0'"));
+  EXPECT_TRUE(fails_at("motionBlur -1 8", 1, 12,
+                       "<frame-length> of 'motionBlur' must be non-negative, found '-1'"));
+  EXPECT_TRUE(fails_at("motionBlur 1 257", 1, 14,
+                       "<#time-samples> of 'motionBlur' must be between 1 and 256, found '257'"));
 }
 
 TEST(SdlCamera, EyeEqualToViewPointIsAnErrorAtTheLastOfTheTwo) {

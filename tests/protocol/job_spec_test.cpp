@@ -16,6 +16,7 @@ TEST(JobSpec, RoundTrips) {
                    .jitter = 0.5,
                    .seed = 1ull << 60,
                    .passes = 4,
+                   .time_samples = 12,
                    .bvh = BvhMode::None};
   spec.overrides.max_depth = 2;
   const JobSpec back = job_spec_from_json(to_json(spec));
@@ -24,6 +25,8 @@ TEST(JobSpec, RoundTrips) {
   EXPECT_TRUE(back.settings.stochastic);
   EXPECT_EQ(back.settings.jitter, 0.5);
   EXPECT_EQ(back.settings.seed, 1ull << 60);
+  EXPECT_EQ(back.settings.passes, 4);
+  EXPECT_EQ(back.settings.time_samples, 12);
   EXPECT_EQ(back.settings.bvh, BvhMode::None);
   EXPECT_EQ(back.overrides, spec.overrides);
 }

@@ -24,7 +24,7 @@ inline Material glowing(const Rgb& colour) {
 }
 
 inline SceneObject object(ShapeGeometry geometry, const Affine& transform, const Material& m) {
-  return SceneObject{geometry, transform, m, {"test.sdl", 1, 1}};
+  return SceneObject{geometry, transform, m, {"test.sdl", 1, 1}, std::nullopt};
 }
 
 inline Light point_light(const Vec3& position, const Rgb& color) {

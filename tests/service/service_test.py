@@ -149,8 +149,8 @@ class Service:
 
 def render_cli(scene_path, settings, out):
     argv = [binary("worker", "tessera-render"), scene_path, "-o", out, "--quiet"]
-    for key in ("width", "height", "aa", "jitter", "seed", "passes", "shadows", "cone_samples",
-                "shadow_jitter", "brightness"):
+    for key in ("width", "height", "aa", "jitter", "seed", "passes", "time_samples", "shadows",
+                "cone_samples", "shadow_jitter", "brightness"):
         if key in settings:
             argv += ["--" + key.replace("_", "-"), str(settings[key])]
     if settings.get("stochastic"):
@@ -212,8 +212,8 @@ def case_bit_identical():
 
 def case_bundle():
     """A tar bundle with a scene and its mesh, one with its image texture, a scene of
-    --scenes-dir with an include, and the same scene as a multipart form render like
-    tessera-render on the folder."""
+    --scenes-dir with an include, a moving scene with its time samples, and the same scene as
+    a multipart form render like tessera-render on the folder."""
     features = os.path.join(ARGS.source, "scenes", "features")
     buf = io.BytesIO()
     with tarfile.open(fileobj=buf, mode="w", format=tarfile.USTAR_FORMAT) as tar:
@@ -261,6 +261,19 @@ def case_bundle():
         service.exr(job["id"], os.path.join(tmp, "dir.exr"))
         render_cli(os.path.join(features, "macros.sdl"), settings, os.path.join(tmp, "dir-cli.exr"))
         assert_identical(os.path.join(tmp, "dir.exr"), os.path.join(tmp, "dir-cli.exr"))
+
+        # Motion blur: moving shapes and their time samples give the same pixels everywhere.
+        blur = dict(settings, time_samples=3)
+        status, _, body = service.request(
+            "POST", "/api/jobs", json.dumps({"scene_file": "motion_blur.sdl", "settings": blur}).encode(),
+            {"Content-Type": "application/json"})
+        assert status == 201, (status, body)
+        job = json.loads(body)
+        final = service.wait_job(job["id"])
+        assert final["state"] == "done" and "motion_blur" in final["effects"], final
+        service.exr(job["id"], os.path.join(tmp, "blur.exr"))
+        render_cli(os.path.join(features, "motion_blur.sdl"), blur, os.path.join(tmp, "blur-cli.exr"))
+        assert_identical(os.path.join(tmp, "blur.exr"), os.path.join(tmp, "blur-cli.exr"))
 
         # The same scene as a form: the scene text and its included file as a file part.
         boundary = "tessera-test-boundary"

@@ -13,12 +13,25 @@ TEST(WorkerPipeline, BeforeAnyResultThreadsPlusPrefetch) {
   EXPECT_EQ(WorkerPipeline(4).round_trip_seconds(), 0);
 }
 
+TEST(WorkerPipeline, TheHandshakeRoundTripDeepensThePipelineBeforeAnyResult) {
+  // 20 ms to the worker, units sized to take kUnitTargetSeconds (20 ms): two round trips are
+  // two more units a thread.
+  WorkerPipeline p(2, 0.020);
+  EXPECT_DOUBLE_EQ(p.round_trip_seconds(), 0.020);
+  EXPECT_EQ(p.slots(), 2 * 3 + 1);
+  p.observe(0.030, 0.005);  // the first result replaces the target unit time...
+  EXPECT_DOUBLE_EQ(p.unit_seconds(), 0.005);
+  EXPECT_EQ(p.slots(), 2 * 9 + 1);
+  p.observe(0.016, 0.005);  // ...and a shorter transit the handshake's round trip
+  EXPECT_DOUBLE_EQ(p.round_trip_seconds(), 0.011);
+}
+
 TEST(WorkerPipeline, CoversTheRoundTripWithUnitsInTransit) {
   WorkerPipeline p(2);
-  p.observe(0.030, 0.010);  // 20 ms in transit, 10 ms a unit: two more units per thread
+  p.observe(0.030, 0.010);  // 20 ms in transit, 10 ms a unit: four more units per thread
   EXPECT_DOUBLE_EQ(p.round_trip_seconds(), 0.020);
   EXPECT_DOUBLE_EQ(p.unit_seconds(), 0.010);
-  EXPECT_EQ(p.slots(), 2 * 3 + 1);
+  EXPECT_EQ(p.slots(), 2 * 5 + 1);
 }
 
 TEST(WorkerPipeline, TheRoundTripIsTheSmallestTransitSeen) {
@@ -27,7 +40,7 @@ TEST(WorkerPipeline, TheRoundTripIsTheSmallestTransitSeen) {
   p.observe(0.030, 0.010);
   p.observe(0.090, 0.010);
   EXPECT_DOUBLE_EQ(p.round_trip_seconds(), 0.020);
-  EXPECT_EQ(p.slots(), 3 + 1);
+  EXPECT_EQ(p.slots(), 5 + 1);
 }
 
 TEST(WorkerPipeline, UnitTimeIsAMovingAverage) {
@@ -46,7 +59,7 @@ TEST(WorkerPipeline, AFastLinkAddsAtMostOneUnitAThread) {
 TEST(WorkerPipeline, SlowLinksAreBoundedPerThread) {
   WorkerPipeline p(2);
   p.observe(1.001, 0.001);  // a second's round trip for a millisecond's unit
-  EXPECT_EQ(p.slots(), 2 * 8 + 1);
+  EXPECT_EQ(p.slots(), 2 * 16 + 1);
 }
 
 }  // namespace

@@ -16,6 +16,7 @@ const char* const kRenderCliUsage =
     "  --stochastic     jitter the sample positions\n"
     "  --jitter J       jitter strength in pixels, 0..1 (default 1)\n"
     "  --passes P       sample passes, averaged (default 1)\n"
+    "  --time-samples N motion-blur times per sample, 1..256 (default: the scene's motionBlur)\n"
     "  --seed S         seed of every random number (default 0)\n"
     "  --shadows none|hard|soft\n"
     "                   shadow mode (default hard): no shadow feelers, one per light, or a\n"
@@ -76,6 +77,11 @@ std::variant<RenderCliOptions, CliHelp, std::string> parse_render_cli(
        [&](const std::string& v) {
          return parse_number(v, o.settings.passes) && o.settings.passes >= 1 &&
                 o.settings.passes <= 4096;
+       }},
+      {"--time-samples",
+       [&](const std::string& v) {
+         return parse_number(v, o.settings.time_samples) && o.settings.time_samples >= 1 &&
+                o.settings.time_samples <= kMaxTimeSamples;
        }},
       {"--seed", [&](const std::string& v) { return parse_number(v, o.settings.seed); }},
       {"--shadows",
