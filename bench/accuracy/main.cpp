@@ -1,10 +1,11 @@
 // tessera-accuracy: what each accuracy knob costs in time and buys in error, for one scene.
 //   tessera-accuracy SCENE.sdl -o DIR [--width W] [--height H] [--repeats N] [--threads T]
-//                    [--seed S]
+//                    [--seed S] [--shadows none|hard|soft]
 // Writes DIR/report.md with its plots; see docs/ACCURACY.md.
 #include <cstdio>
 #include <exception>
 #include <filesystem>
+#include <optional>
 #include <string>
 
 #include "bench/accuracy/accuracy_report.h"
@@ -16,7 +17,7 @@ namespace {
 
 constexpr const char* kUsage =
     "usage: tessera-accuracy SCENE.sdl -o DIR [--width W] [--height H] [--repeats N] "
-    "[--threads T] [--seed S]\n";
+    "[--threads T] [--seed S] [--shadows none|hard|soft]\n";
 
 int number(const std::string& flag, const std::string& text, int lo, int hi) {
   std::size_t used = 0;
@@ -59,7 +60,13 @@ int main(int argc, char** argv) {
         options.threads = number(arg, value(), 0, 1024);
       else if (arg == "--seed")
         options.base.seed = static_cast<unsigned>(number(arg, value(), 0, 1 << 30));
-      else if (arg == "--help" || arg == "-h") {
+      else if (arg == "--shadows") {
+        const std::string name = value();
+        const std::optional<ShadowMode> mode = parse_shadow_mode(name);
+        if (!mode)
+          throw std::invalid_argument("--shadows takes none, hard or soft, not '" + name + "'");
+        options.base.shadows = *mode;
+      } else if (arg == "--help" || arg == "-h") {
         std::fputs(kUsage, stdout);
         return 0;
       } else if (!arg.empty() && arg[0] == '-')

@@ -23,6 +23,11 @@ nlohmann::json to_json(const JobSpec& spec) {
                       {"passes", s.passes},
                       {"bvh", s.bvh == BvhMode::Sah},
                       {"time_samples", s.time_samples}};
+  j["shadows"] = to_string(s.shadows);
+  j["cone_samples"] = s.cone_samples;
+  j["shadow_jitter"] = s.shadow_jitter;
+  j["normalize"] = s.normalize_colors;
+  j["brightness"] = s.normalize_brightness;
   if (spec.overrides.max_depth) j["max_depth"] = *spec.overrides.max_depth;
   if (spec.overrides.min_weight) j["min_weight"] = *spec.overrides.min_weight;
   return j;
@@ -41,6 +46,13 @@ JobSpec job_spec_from_json(const nlohmann::json& j) {
     s.passes = j.at("passes").get<int>();
     s.time_samples = j.at("time_samples").get<int>();
     s.bvh = j.at("bvh").get<bool>() ? BvhMode::Sah : BvhMode::None;
+    const std::optional<ShadowMode> shadows = parse_shadow_mode(j.at("shadows").get<std::string>());
+    if (!shadows) throw ProtocolError("bad job settings: unknown shadow mode");
+    s.shadows = *shadows;
+    s.cone_samples = j.at("cone_samples").get<int>();
+    s.shadow_jitter = j.at("shadow_jitter").get<double>();
+    s.normalize_colors = j.at("normalize").get<bool>();
+    s.normalize_brightness = j.at("brightness").get<double>();
     if (j.contains("max_depth")) spec.overrides.max_depth = j["max_depth"].get<int>();
     if (j.contains("min_weight")) spec.overrides.min_weight = j["min_weight"].get<double>();
   } catch (const nlohmann::json::exception& e) {

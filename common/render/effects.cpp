@@ -6,7 +6,7 @@
 namespace tessera {
 
 namespace {
-constexpr std::array<std::pair<Effect, const char*>, 15> kEffectNames{{
+constexpr std::array<std::pair<Effect, const char*>, 19> kEffectNames{{
     {Effect::HardShadows, "hard_shadows"},
     {Effect::Reflection, "reflection"},
     {Effect::Refraction, "refraction"},
@@ -22,6 +22,10 @@ constexpr std::array<std::pair<Effect, const char*>, 15> kEffectNames{{
     {Effect::ProceduralTexture, "procedural_texture"},
     {Effect::MotionBlur, "motion_blur"},
     {Effect::Csg, "csg"},
+    {Effect::Gloss, "gloss"},
+    {Effect::Translucency, "translucency"},
+    {Effect::SoftShadows, "soft_shadows"},
+    {Effect::ShowExtents, "show_extents"},
 }};
 }  // namespace
 

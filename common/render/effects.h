@@ -23,12 +23,17 @@ enum class Effect : std::uint32_t {
   ImageTexture = 1u << 11,
   ProceduralTexture = 1u << 12,
   MotionBlur = 1u << 13,
-  Csg = 1u << 14,  // boolean objects (union, intersection, difference)
+  Csg = 1u << 14,           // boolean objects (union, intersection, difference)
+  Gloss = 1u << 15,         // blurred reflection: a cone of reflected rays (§4.1.4)
+  Translucency = 1u << 16,  // blurred refraction: a cone of refracted rays (§4.1.4)
+  SoftShadows = 1u << 17,   // a cone of shadow feelers per light (§4.2.1)
+  ShowExtents = 1u << 18,   // objects' bounding boxes drawn as white bars (§3.2.7)
 };
 
 class EffectSet {
  public:
   void add(Effect e) { bits_ |= static_cast<std::uint32_t>(e); }
+  void remove(Effect e) { bits_ &= ~static_cast<std::uint32_t>(e); }
   bool has(Effect e) const { return (bits_ & static_cast<std::uint32_t>(e)) != 0; }
   std::uint32_t bits() const { return bits_; }
   // Stable lower-case names ("hard_shadows", ...) in declaration order, for reports and JSON.

@@ -40,12 +40,17 @@ EffectSet scene_effects(const Scene& scene) {
     effects.add(Effect::LightAttenuation);
   if (g.atmospheric_attenuation) effects.add(Effect::AtmosphericAttenuation);
   if (g.fog) effects.add(Effect::Fog);
+  if (g.show_extents && !scene.objects.empty()) effects.add(Effect::ShowExtents);
   for (const SceneObject& object : scene.objects) {
     const Material& m = object.material;
-    if (g.max_recursion_depth > 0 && m.reflectivity > g.min_reflectivity)
+    if (g.max_recursion_depth > 0 && m.reflectivity > g.min_reflectivity) {
       effects.add(Effect::Reflection);
-    if (g.max_recursion_depth > 0 && m.transparency > g.min_transparency)
+      if (m.gloss_strength > 0) effects.add(Effect::Gloss);
+    }
+    if (g.max_recursion_depth > 0 && m.transparency > g.min_transparency) {
       effects.add(Effect::Refraction);
+      if (m.translucency_strength > 0) effects.add(Effect::Translucency);
+    }
     if (m.surface_roughness > 0) effects.add(Effect::SurfaceRoughness);
     if (std::holds_alternative<MeshShape>(object.geometry)) effects.add(Effect::Meshes);
     if (std::holds_alternative<CsgShape>(object.geometry)) effects.add(Effect::Csg);
@@ -59,25 +64,50 @@ EffectSet scene_effects(const Scene& scene) {
   return effects;
 }
 
-// What the scene asks for that this renderer does not simulate yet: said, never dropped.
+// What the scene asks for that this renderer does not simulate, or that changes nothing
+// here: said, never dropped.
 std::vector<std::string> unsupported_features(const Scene& scene) {
   std::vector<std::string> out;
-  auto note = [&out](const std::string& where, const std::string& what) {
-    const std::string line = where + ": " + what + " is not rendered yet";
-    for (const std::string& seen : out)
-      if (seen == line) return;
-    out.push_back(line);
-  };
   const std::string global = "scene";  // global attributes keep no location
-  if (scene.globals.show_extents) note(global, "showExtents");
-  if (scene.globals.adapted_shadow_computation) note(global, "adaptedShadowComputation");
-  for (const SceneObject& object : scene.objects) {
-    const Material& m = object.material;
-    if (m.gloss_strength > 0 && m.reflectivity > 0) note(object.where.to_string(), "glossStrength");
-    if (m.translucency_strength > 0 && m.transparency > 0)
-      note(object.where.to_string(), "translucencyStrength");
-  }
+  // The manual's remedy for shadow acne: rays leaving a surface here start beyond the hit
+  // point's rounding error, so shadows are right without it.
+  if (scene.globals.adapted_shadow_computation)
+    out.push_back(global +
+                  ": adaptedShadowComputation changes nothing: shadow feelers already start "
+                  "beyond the hit point's rounding error");
   return out;
+}
+
+// showExtents (§3.2.7): the twelve edges of every object's world bounds as white bars,
+// ordinary opaque objects that glow white (emissive 1, no ambient or diffuse) and are
+// `thickness_share` of the box's largest side thick. Unbounded objects get none.
+std::vector<SceneObject> extent_bars(const std::vector<SceneObject>& objects,
+                                     const std::vector<Bounds3>& bounds) {
+  constexpr double thickness_share = 0.01;
+  Material white;
+  white.emissive = {1, 1, 1};
+  white.ambient = {};
+  white.diffuse = {};
+  std::vector<SceneObject> bars;
+  for (std::size_t i = 0; i < objects.size(); ++i) {
+    const Bounds3& b = bounds[i];
+    if (b.empty() || !is_finite(b.lo) || !is_finite(b.hi)) continue;
+    const Vec3 size = b.hi - b.lo;
+    const double half_thickness = thickness_share * max_component(size) / 2;
+    if (!(half_thickness > 0)) continue;
+    for (int axis = 0; axis < 3; ++axis)
+      for (int corner = 0; corner < 4; ++corner) {
+        // Along `axis`, at one of the four corners of the other two axes' extents.
+        Vec3 centre = (b.lo + b.hi) * 0.5, half{half_thickness, half_thickness, half_thickness};
+        half[axis] += size[axis] / 2;
+        const int a1 = (axis + 1) % 3, a2 = (axis + 2) % 3;
+        centre[a1] = corner & 1 ? b.hi[a1] : b.lo[a1];
+        centre[a2] = corner & 2 ? b.hi[a2] : b.lo[a2];
+        bars.push_back({Cube{}, Affine::translation(centre) * Affine::scaling(half), white,
+                        objects[i].where, std::nullopt});
+      }
+  }
+  return bars;
 }
 
 bool has_texture(const EffectSet& effects) {
@@ -181,13 +211,14 @@ PreparedScene::PreparedScene(const Scene& scene, BvhMode mode)
   for (const Mesh& mesh : scene.meshes)
     meshes_.push_back(std::make_unique<MeshAccel>(build_mesh_accel(mesh, mode)));
 
-  // Boolean objects point at their children's instances: the vector must never reallocate.
-  instances_.reserve(scene.objects.size());
-  const std::vector<bool> csg_children = find_csg_children(scene);
+  // Boolean objects point at their children's instances: the vector must never reallocate
+  // (showExtents adds up to 12 bars an object).
+  const bool extents = effects_.has(Effect::ShowExtents);
+  instances_.reserve(scene.objects.size() * (extents ? 13 : 1));
+  std::vector<bool> csg_children = find_csg_children(scene);
   std::vector<Bounds3> bounds;
-  bounds.reserve(scene.objects.size());
-  for (std::uint32_t i = 0; i < scene.objects.size(); ++i) {
-    const SceneObject& object = scene.objects[i];
+  bounds.reserve(instances_.capacity());
+  const auto add_instance = [&](const SceneObject& object) {
     std::optional<Instance> instance;
     if (const auto* csg = std::get_if<CsgShape>(&object.geometry)) {
       instance = make_csg_instance(*csg, instances_[csg->left], instances_[csg->right]);
@@ -201,18 +232,30 @@ PreparedScene::PreparedScene(const Scene& scene, BvhMode mode)
                      : make_instance(object.geometry, object.transform, mesh);
     }
     if (!instance) throw SceneError(object.where, "the shape's transform is singular");
-    instance->object = i;
+    instance->object = static_cast<std::uint32_t>(instances_.size());
     bounds.push_back(instance->world_bounds);
     instances_.push_back(std::move(*instance));
+  };
+  for (const SceneObject& object : scene.objects) add_instance(object);
+  if (extents) {
+    // The bars are objects of a copy of the scene, so that every lookup by instance finds them.
+    with_extents_ = std::make_unique<Scene>(scene);
+    for (const SceneObject& bar : extent_bars(scene.objects, bounds)) {
+      add_instance(bar);
+      with_extents_->objects.push_back(bar);
+    }
+    csg_children.resize(instances_.size(), false);
+    scene_ = with_extents_.get();
   }
+  const std::vector<SceneObject>& objects = scene_->objects;
   if (has_texture(effects_)) {
     images_ = decode_images(scene);
-    textures_.reserve(scene.objects.size());
-    for (const SceneObject& object : scene.objects)
+    textures_.reserve(objects.size());
+    for (const SceneObject& object : objects)
       textures_.push_back(object_texture(object, scene, images_));
   }
   bvh_ = build_scene_bvh(bounds, csg_children, mode);
-  transparent_neighbours_ = find_transparent_neighbours(scene, effects_, bounds, csg_children);
+  transparent_neighbours_ = find_transparent_neighbours(*scene_, effects_, bounds, csg_children);
 }
 
 }  // namespace tessera

@@ -38,6 +38,7 @@ class PreparedScene {
   PreparedScene(const PreparedScene&) = delete;
   PreparedScene& operator=(const PreparedScene&) = delete;
 
+  // The scene as traced: the given one, plus its extents' bars under showExtents.
   const Scene& scene() const { return *scene_; }
   const CameraFrame& camera() const { return camera_; }
   const EffectSet& effects() const { return effects_; }
@@ -51,11 +52,13 @@ class PreparedScene {
   const std::vector<std::uint32_t>& transparent_neighbours(std::uint32_t instance) const {
     return transparent_neighbours_[instance];
   }
-  // What the scene asks for that this renderer does not simulate (yet), one line each.
+  // What the scene asks for that this renderer does not simulate, or that changes nothing
+  // here, one line each.
   const std::vector<std::string>& unsupported() const { return unsupported_; }
 
  private:
-  const Scene* scene_;
+  const Scene* scene_;                   // the given scene, or with_extents_
+  std::unique_ptr<Scene> with_extents_;  // showExtents: the scene plus its extents' bars
   CameraFrame camera_;
   EffectSet effects_;
   std::vector<std::unique_ptr<MeshAccel>> meshes_;

@@ -8,6 +8,7 @@
 
 #include "common/render/frame_buffer.h"
 #include "common/render/pixel_samples.h"
+#include "common/render/post_normalization.h"
 #include "common/render/tracer.h"
 
 namespace tessera {
@@ -36,7 +37,7 @@ double shutter_time(double length, int j, int count, double jitter, double u) {
 // keys its random numbers (without motion blur T is 1: p * A + k).
 Rgb trace_pixel(const PreparedScene& scene, const RenderSettings& settings, int x, int y, int pass,
                 RenderStats& stats) {
-  Tracer tracer(scene, stats);
+  Tracer tracer(scene, settings, stats);
   const std::span<const SampleOffset> offsets = regular_sample_offsets(settings.aa_samples);
   const auto aa = static_cast<std::uint32_t>(offsets.size());
   const int times = time_samples(scene, settings);
@@ -78,6 +79,19 @@ EffectSet render_effects(const PreparedScene& scene, const RenderSettings& setti
   EffectSet effects = scene.effects();
   if (settings.aa_samples > 1 || (settings.stochastic && settings.passes > 1))
     effects.add(Effect::AntiAliasing);
+  // A cone of one ray, or of radius 0, is the single ray it would replace.
+  const bool cones = settings.cone_samples > 1;
+  if (!cones) {
+    effects.remove(Effect::Gloss);
+    effects.remove(Effect::Translucency);
+  }
+  if (settings.shadows == ShadowMode::None) {
+    effects.remove(Effect::HardShadows);
+  } else if (settings.shadows == ShadowMode::Soft && cones && settings.shadow_jitter > 0 &&
+             effects.has(Effect::HardShadows)) {
+    effects.remove(Effect::HardShadows);
+    effects.add(Effect::SoftShadows);
+  }
   return effects;
 }
 
@@ -137,8 +151,10 @@ Image render_image(const PreparedScene& scene, const RenderSettings& settings, i
   for (int i = 1; i < threads; ++i) pool.emplace_back(work);
   work();
   for (std::thread& t : pool) t.join();
+  Image image = frame.resolve();
+  if (settings.normalize_colors) post_normalize(image, settings.normalize_brightness);
   stats.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-  return frame.resolve();
+  return image;
 }
 
 }  // namespace tessera

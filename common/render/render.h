@@ -24,7 +24,8 @@ struct PixelRect {
 };
 
 // The effects a render simulates: the scene's, plus anti-aliasing when the settings ask for
-// more than one sample per pixel.
+// more than one sample per pixel; the shadow mode turns hard shadows off or into soft ones;
+// gloss and translucency need cones of more than one ray.
 EffectSet render_effects(const PreparedScene& scene, const RenderSettings& settings);
 
 // Traces one sample pass (settings.aa_samples samples per pixel) of the pixels of `rect` on
@@ -43,7 +44,8 @@ void render_pixels(const PreparedScene& scene, const RenderSettings& settings,
                    RenderStats& stats);
 
 // Renders the whole image with `threads` threads (0 = all cores): settings.passes passes,
-// averaged. `progress(done, total)` is called from worker threads with counts of tiles.
+// averaged, then post-normalized when the settings ask for it (§4.6). `progress(done, total)` is
+// called from worker threads with counts of tiles.
 using ProgressFn = std::function<void(long long done, long long total)>;
 Image render_image(const PreparedScene& scene, const RenderSettings& settings, int threads,
                    RenderStats& stats, const ProgressFn& progress = {});

@@ -2,11 +2,20 @@
 #pragma once
 
 #include <cstdint>
+#include <optional>
+#include <string_view>
 
 #include "common/accel/bvh.h"
 #include "common/scene/motion.h"  // kMaxTimeSamples
 
 namespace tessera {
+
+// shadowComputationMode (§4.2.1): no shadow feelers, one feeler per light, or a cone of them.
+enum class ShadowMode { None, Hard, Soft };
+
+// "none", "hard", "soft": the names of CLI flags and job settings.
+const char* to_string(ShadowMode mode);
+std::optional<ShadowMode> parse_shadow_mode(std::string_view name);
 
 struct RenderSettings {
   int width = 640;
@@ -19,6 +28,17 @@ struct RenderSettings {
   int time_samples = 0;     // motion-blur times per camera sample (1..kMaxTimeSamples); 0: the
                             // scene's motionBlur count
   BvhMode bvh = BvhMode::Sah;
+  ShadowMode shadows = ShadowMode::Hard;
+  // nrOfConeSamples (§4.1.4): rays per gloss, translucency and soft-shadow cone, the central
+  // one included; the central ray and eight around it, as in the manual's figure 4.1.
+  int cone_samples = 9;
+  // shadowFeelerJitterStrength (eq. 4.25): the soft-shadow cone's diameter one unit from the
+  // point, so its radius r_c = strength / 2 (half-angle atan(r_c)).
+  double shadow_jitter = 0.2;
+  // Post-normalization (§4.6), a step on the finished image: when its highest component
+  // exceeds 1 the image is scaled so that it becomes 1; then multiplied by the brightness.
+  bool normalize_colors = false;
+  double normalize_brightness = 1.0;
 };
 
 }  // namespace tessera

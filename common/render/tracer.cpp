@@ -6,7 +6,9 @@
 #include <numbers>
 
 #include "common/math/float_error.h"
+#include "common/render/cone.h"
 #include "common/render/optics.h"
+#include "common/render/render.h"
 
 namespace tessera {
 
@@ -30,7 +32,29 @@ double facing(double cosine, bool light_back_faces) {
   return light_back_faces ? std::fabs(cosine) : std::max(cosine, 0.0);
 }
 
+// Gloss and translucency (eq. 4.18-4.19): the mean of `trace_along` over a cone of `count`
+// rays around `axis`, of radius strength / 2. A rim ray jittered across the surface, to the
+// other side than the axis leaves on, is traced along the axis instead. The callers give each
+// cone ray the weight of its share of the pixel (the path's weight times the reflectivity or
+// transparency, over `count`), so that below nested cones recursion stops once a ray's share
+// falls under minReflectivity or minTransparency, instead of growing as count^depth.
+template <typename TraceAlong>
+Rgb blurred(const Vec3& axis, double strength, int count, const Vec3& surface_normal,
+            SampleStream& rng, TraceAlong&& trace_along) {
+  const double side = dot(axis, surface_normal);
+  return Cone(axis, strength / 2).mean<Rgb>(count, rng, [&](const Vec3& direction) {
+    return trace_along(dot(direction, surface_normal) * side > 0 ? direction : axis);
+  });
+}
+
 }  // namespace
+
+Tracer::Tracer(const PreparedScene& scene, const RenderSettings& settings, RenderStats& stats)
+    : scene_(scene),
+      stats_(stats),
+      effects_(render_effects(scene, settings)),
+      cone_samples_(settings.cone_samples),
+      shadow_cone_radius_(settings.shadow_jitter / 2) {}
 
 bool Tracer::closest_hit(const Ray& ray, Hit& hit) {
   const std::vector<Instance>& instances = scene_.instances();
@@ -130,8 +154,20 @@ Tracer::Crossing Tracer::cross_interface(const Ray& ray, Hit& hit, const MediumS
   return crossing;
 }
 
+double Tracer::light_visibility(const Hit& hit, const Vec3& position, const Vec3& l,
+                                double distance, SampleStream& rng) {
+  const double epsilon = scene_.scene().globals.shadow_feeler_epsilon;
+  if (effects_.has(Effect::SoftShadows))
+    return Cone(l, shadow_cone_radius_).mean<double>(cone_samples_, rng, [&](const Vec3& d) {
+      return shadow_factor(spawn_origin(hit, d, epsilon), hit.world.point + d * distance, hit.time);
+    });
+  if (effects_.has(Effect::HardShadows))
+    return shadow_factor(spawn_origin(hit, l, epsilon), position, hit.time);
+  return 1;
+}
+
 Rgb Tracer::local_illumination(const Hit& hit, const Material& m, const SurfaceColours& colours,
-                               const Vec3& normal, const Vec3& view_dir) {
+                               const Vec3& normal, const Vec3& view_dir, SampleStream& rng) {
   const Scene& scene = scene_.scene();
   const SceneGlobals& g = scene.globals;
   const double opacity = 1 - m.transparency;  // eq. 4.6, 4.10, 4.11
@@ -168,15 +204,14 @@ Rgb Tracer::local_illumination(const Hit& hit, const Material& m, const SurfaceC
     if (n_dot_l <= 0 && n_dot_h <= 0) continue;
 
     double attenuation = 1;  // eq. 4.12
-    if (scene_.effects().has(Effect::LightAttenuation)) {
+    if (effects_.has(Effect::LightAttenuation)) {
       const LightAttenuation& a = g.light_attenuation;
       const double denominator =
           a.constant + a.linear * distance + a.quadratic * distance * distance;
       if (denominator > 1) attenuation = 1 / denominator;
     }
 
-    const double shadow =
-        shadow_factor(spawn_origin(hit, l, g.shadow_feeler_epsilon), light.position, hit.time);
+    const double shadow = light_visibility(hit, light.position, l, distance, rng);
     if (shadow <= 0) continue;
 
     Rgb contribution = colours.diffuse * light.color * (n_dot_l * diffuse_scale);  // eq. 4.8
@@ -190,18 +225,24 @@ Rgb Tracer::local_illumination(const Hit& hit, const Material& m, const SurfaceC
 
 Rgb Tracer::reflection(const Ray& ray, const Hit& hit, const Material& m, const Vec3& normal,
                        int depth, double weight, const MediumStack& media, SampleStream& rng) {
-  ++stats_.reflection_rays;
-  const Vec3 direction = normalize_or(reflect(ray.direction, normal), ray.direction);  // eq. 4.13
-  const Ray reflected{spawn_origin(hit, direction, scene_.scene().globals.reflectivity_epsilon),
-                      direction, ray.time};
-  return trace(reflected, RayKind::Reflected, depth + 1, weight * m.reflectivity, media, rng) *
-         m.reflectivity;  // eq. 4.14
+  const Vec3 mirror = normalize_or(reflect(ray.direction, normal), ray.direction);  // eq. 4.13
+  const double epsilon = scene_.scene().globals.reflectivity_epsilon;
+  const bool glossy = effects_.has(Effect::Gloss) && m.gloss_strength > 0;
+  const double ray_weight = weight * m.reflectivity / (glossy ? cone_samples_ : 1);
+  const auto trace_along = [&](const Vec3& direction) {
+    ++stats_.reflection_rays;
+    const Ray reflected{spawn_origin(hit, direction, epsilon), direction, ray.time};
+    return trace(reflected, RayKind::Reflected, depth + 1, ray_weight, media, rng);
+  };
+  const Rgb incoming =
+      glossy ? blurred(mirror, m.gloss_strength, cone_samples_, hit.world.normal, rng, trace_along)
+             : trace_along(mirror);
+  return incoming * m.reflectivity;  // eq. 4.14
 }
 
 Rgb Tracer::transmission(const Ray& ray, const Hit& hit, const Material& m, const Vec3& normal,
                          int depth, double weight, const MediumStack& media,
                          const Crossing& crossing, SampleStream& rng) {
-  ++stats_.refraction_rays;
   const SceneGlobals& g = scene_.scene().globals;
   const bool entering = dot(hit.world.normal, ray.direction) < 0;
   MediumStack after = crossing.after;
@@ -221,9 +262,17 @@ Rgb Tracer::transmission(const Ray& ray, const Hit& hit, const Material& m, cons
       after = media;
     }
   }
-  const Ray refracted{spawn_origin(hit, direction, g.transparency_epsilon), direction, ray.time};
-  return trace(refracted, RayKind::Refracted, depth + 1, weight * m.transparency, after, rng) *
-         m.transparency;  // eq. 4.17
+  const bool translucent = effects_.has(Effect::Translucency) && m.translucency_strength > 0;
+  const double ray_weight = weight * m.transparency / (translucent ? cone_samples_ : 1);
+  const auto trace_along = [&](const Vec3& d) {
+    ++stats_.refraction_rays;
+    const Ray refracted{spawn_origin(hit, d, g.transparency_epsilon), d, ray.time};
+    return trace(refracted, RayKind::Refracted, depth + 1, ray_weight, after, rng);
+  };
+  const Rgb incoming = translucent ? blurred(direction, m.translucency_strength, cone_samples_,
+                                             hit.world.normal, rng, trace_along)
+                                   : trace_along(direction);
+  return incoming * m.transparency;  // eq. 4.17
 }
 
 Rgb Tracer::apply_atmosphere(const Rgb& color, double distance) const {
@@ -249,7 +298,7 @@ Rgb Tracer::trace(const Ray& ray_in, RayKind kind, int depth, double weight,
                   const MediumStack& media_in, SampleStream& rng) {
   const Scene& scene = scene_.scene();
   const SceneGlobals& g = scene.globals;
-  const EffectSet& effects = scene_.effects();
+  const EffectSet& effects = effects_;
 
   Ray ray = ray_in;
   MediumStack media = media_in;
@@ -285,7 +334,7 @@ Rgb Tracer::trace(const Ray& ray_in, RayKind kind, int depth, double weight,
     if (!texture.empty())
       colours = textured_colours(texture, scene_.instances()[hit.world.object], hit.world, colours);
   }
-  Rgb color = local_illumination(hit, *m, colours, normal, ray.direction);
+  Rgb color = local_illumination(hit, *m, colours, normal, ray.direction, rng);
   if (depth < g.max_recursion_depth) {
     if (effects.has(Effect::Reflection) && weight * m->reflectivity > g.min_reflectivity)
       color += reflection(ray, hit, *m, normal, depth, weight, media, rng);

@@ -4,6 +4,7 @@
 #include "common/render/media.h"
 #include "common/render/prepared_scene.h"
 #include "common/render/sampler.h"
+#include "common/render/settings.h"
 #include "common/render/stats.h"
 
 namespace tessera {
@@ -13,7 +14,9 @@ enum class RayKind { Camera, Reflected, Refracted };
 
 class Tracer {
  public:
-  Tracer(const PreparedScene& scene, RenderStats& stats) : scene_(scene), stats_(stats) {}
+  // Renders with the effects render_effects(scene, settings) names; `settings` gives the
+  // cone samples and the soft-shadow cone.
+  Tracer(const PreparedScene& scene, const RenderSettings& settings, RenderStats& stats);
 
   // The intensity arriving along `ray` (unit direction). `weight` is the product of the
   // reflectivities and transparencies along the path so far, compared with minReflectivity
@@ -45,10 +48,15 @@ class Tracer {
   // Eq. 4.24: the product of the transparencies of everything between `origin` and `target`
   // at shutter time `time`.
   double shadow_factor(const Vec3& origin, const Vec3& target, double time);
+  // Eq. 4.24-4.26: the share of the point light at `position` (unit direction `l`, `distance`
+  // away) that reaches the hit: all of it without shadows, one feeler's product of
+  // transparencies for hard shadows, the mean over a cone of feelers for soft shadows.
+  double light_visibility(const Hit& hit, const Vec3& position, const Vec3& l, double distance,
+                          SampleStream& rng);
   // Eq. 4.4-4.12 and 4.24 at a hit: emissive, ambient, and every light's diffuse and specular.
   // `colours` are the material's after texturing (§4.3).
   Rgb local_illumination(const Hit& hit, const Material& m, const SurfaceColours& colours,
-                         const Vec3& normal, const Vec3& view_dir);
+                         const Vec3& normal, const Vec3& view_dir, SampleStream& rng);
   Rgb reflection(const Ray& ray, const Hit& hit, const Material& m, const Vec3& normal, int depth,
                  double weight, const MediumStack& media, SampleStream& rng);
   Rgb transmission(const Ray& ray, const Hit& hit, const Material& m, const Vec3& normal, int depth,
@@ -60,6 +68,9 @@ class Tracer {
 
   const PreparedScene& scene_;
   RenderStats& stats_;
+  EffectSet effects_;
+  int cone_samples_;
+  double shadow_cone_radius_;  // r_c of eq. 4.25
 };
 
 }  // namespace tessera

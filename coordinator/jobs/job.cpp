@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "common/render/post_normalization.h"
+
 namespace tessera {
 
 const char* to_string(JobState state) {
@@ -63,7 +65,13 @@ void Job::apply_result(int unit_index, std::span<const float> values) {
   ++version;
 }
 
-Image Job::image() const { return state == JobState::Done ? frame_buffer.resolve() : display; }
+Image Job::image() const {
+  Image image = state == JobState::Done ? frame_buffer.resolve() : display;
+  // Post-normalization needs the whole image (§4.6): applied here, never to units.
+  const RenderSettings& s = spec.settings;
+  if (s.normalize_colors) post_normalize(image, s.normalize_brightness);
+  return image;
+}
 
 double Job::elapsed_seconds(Clock::time_point now) const {
   if (!started) return 0;

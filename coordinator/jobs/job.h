@@ -81,7 +81,8 @@ struct Job {
   }
   // Merges one unit's values (3 floats per pixel of expand(unit), in that order).
   void apply_result(int unit, std::span<const float> values);
-  // The final image once done (bit-identical to tessera-render), else the display image.
+  // The final image once done (bit-identical to tessera-render), else the display image;
+  // post-normalized when the settings ask for it.
   Image image() const;
   double elapsed_seconds(Clock::time_point now) const;
   std::optional<double> eta_seconds(Clock::time_point now) const;

@@ -217,9 +217,10 @@ void check_scene(const Submission& sub, const std::optional<std::filesystem::pat
 
 void parse_settings(const json& s, const ServiceLimits& limits, JobRequest& out) {
   static const std::set<std::string> known = {
-      "width",       "height", "aa",        "stochastic", "jitter",
-      "seed",        "passes", "order",     "priority",   "preview",
-      "progressive", "bvh",    "max_depth", "min_weight", "time_samples"};
+      "width",       "height",     "aa",        "stochastic",   "jitter",
+      "seed",        "passes",     "order",     "priority",     "preview",
+      "progressive", "bvh",        "shadows",   "cone_samples", "shadow_jitter",
+      "normalize",   "brightness", "max_depth", "min_weight",   "time_samples"};
   for (const auto& [key, value] : s.items())
     if (!known.count(key)) throw bad_request("unknown setting \"" + key + "\"");
   RenderSettings& r = out.spec.settings;
@@ -240,6 +241,14 @@ void parse_settings(const json& s, const ServiceLimits& limits, JobRequest& out)
   }
   r.passes = get_int(s, "passes", defaults.passes, 1, limits.max_passes);
   r.bvh = get_bool(s, "bvh", true) ? BvhMode::Sah : BvhMode::None;
+  const std::optional<ShadowMode> shadows =
+      parse_shadow_mode(get_string(s, "shadows", to_string(defaults.shadows)));
+  if (!shadows) throw bad_request("settings.shadows must be \"none\", \"hard\" or \"soft\"");
+  r.shadows = *shadows;
+  r.cone_samples = get_int(s, "cone_samples", defaults.cone_samples, 1, limits.max_cone_samples);
+  r.shadow_jitter = get_double(s, "shadow_jitter", defaults.shadow_jitter, 0, 2);
+  r.normalize_colors = get_bool(s, "normalize", defaults.normalize_colors);
+  r.normalize_brightness = get_double(s, "brightness", defaults.normalize_brightness, 0, 16);
   r.time_samples = get_int(s, "time_samples", defaults.time_samples, 0, kMaxTimeSamples);
   if (s.contains("max_depth"))
     out.spec.overrides.max_depth = get_int(s, "max_depth", 0, 0, limits.max_depth);

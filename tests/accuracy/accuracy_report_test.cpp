@@ -41,6 +41,35 @@ TEST(AccuracySweep, SweepsRecursionDepthOnlyWhenTheSceneRecurses) {
                           [](const std::string& s) { return s.rfind("recursion depth", 0) == 0; }));
 }
 
+TEST(AccuracySweep, SweepsConeSamplesOnlyForGlossTranslucencyOrSoftShadows) {
+  RenderSettings base;
+  const std::string cones = "cone samples (gloss, translucency, soft shadows)";
+  const Sweep mirror = make_sweep(load(kMirrorScene), base);
+  EXPECT_FALSE(has_knob(mirror, cones));
+  EXPECT_EQ(mirror.reference.settings.cone_samples, base.cone_samples);
+  const Sweep glossy =
+      make_sweep(load("light 0 5 5 1 1 1 reflectivity 0.8 glossStrength 0.3 sphere"), base);
+  EXPECT_TRUE(has_knob(glossy, cones));
+  EXPECT_GT(glossy.reference.settings.cone_samples, 17);  // beyond every swept count
+  RenderSettings soft = base;
+  soft.shadows = ShadowMode::Soft;
+  EXPECT_TRUE(has_knob(make_sweep(load(kMirrorScene), soft), cones));
+}
+
+TEST(AccuracySweep, SweepsTheShadowModeOnlyWhenTheSceneHasLights) {
+  RenderSettings base;
+  const Sweep lit = make_sweep(load(kMirrorScene), base);
+  ASSERT_TRUE(has_knob(lit, "shadow mode"));
+  std::vector<ShadowMode> modes;
+  for (const Variant& v : lit.variants)
+    if (v.knob == "shadow mode") modes.push_back(v.settings.shadows);
+  EXPECT_EQ(modes, (std::vector<ShadowMode>{ShadowMode::None, ShadowMode::Hard, ShadowMode::Soft}));
+  const Sweep dark = make_sweep(load("sphere"), base);
+  EXPECT_FALSE(has_knob(dark, "shadow mode"));
+  EXPECT_TRUE(std::any_of(dark.not_swept.begin(), dark.not_swept.end(),
+                          [](const std::string& s) { return s.rfind("shadow mode", 0) == 0; }));
+}
+
 TEST(AccuracySweep, SweepsTimeSamplesOnlyWhenSomethingMoves) {
   RenderSettings base;
   const Sweep moving =
@@ -102,6 +131,8 @@ TEST(AccuracyReport, MeasuresEveryKnobAndWritesEveryTableAndPlot) {
   EXPECT_LT(rmse_of("aa 9 jittered"), rmse_of("aa 1"));
   // Depth 0 leaves the mirror black: further from the reference than the scene's depth.
   EXPECT_GT(rmse_of("depth 0"), rmse_of("depth 4"));
+  // The reference has hard shadows: leaving them out is further from it than keeping them.
+  EXPECT_GT(rmse_of("no shadows"), rmse_of("hard shadows"));
   // One row per level, down to single pixels, each tracing new anchors; the last level's
   // preview is the finished pass 0.
   ASSERT_EQ(report.levels.size(), 5u);  // 24x18: blocks of 16, 8, 4, 2, 1
@@ -122,7 +153,7 @@ TEST(AccuracyReport, MeasuresEveryKnobAndWritesEveryTableAndPlot) {
   for (const char* heading :
        {"## anti-aliasing (regular)", "## anti-aliasing (jittered)", "## jitter strength",
         "## sample passes", "## recursion depth", "## Progressive levels", "time_vs_error.svg",
-        "progressive_levels.svg", "★", "soft-shadow samples"})
+        "progressive_levels.svg", "★", "## shadow mode", "cone samples: nothing"})
     EXPECT_NE(md.str().find(heading), std::string::npos) << heading;
   std::stringstream svg;
   svg << std::ifstream(files[1]).rdbuf();

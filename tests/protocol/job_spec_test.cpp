@@ -31,6 +31,33 @@ TEST(JobSpec, RoundTrips) {
   EXPECT_EQ(back.overrides, spec.overrides);
 }
 
+TEST(JobSpec, ShadingSettingsRoundTrip) {
+  JobSpec spec;
+  spec.settings.shadows = ShadowMode::Soft;
+  spec.settings.cone_samples = 17;
+  spec.settings.shadow_jitter = 0.375;
+  spec.settings.normalize_colors = true;
+  spec.settings.normalize_brightness = 1.25;
+  const nlohmann::json j = to_json(spec);
+  EXPECT_EQ(j.at("shadows"), "soft");
+  const RenderSettings back = job_spec_from_json(j).settings;
+  EXPECT_EQ(back.shadows, ShadowMode::Soft);
+  EXPECT_EQ(back.cone_samples, 17);
+  EXPECT_EQ(back.shadow_jitter, 0.375);
+  EXPECT_TRUE(back.normalize_colors);
+  EXPECT_EQ(back.normalize_brightness, 1.25);
+  for (const ShadowMode mode : {ShadowMode::None, ShadowMode::Hard}) {
+    spec.settings.shadows = mode;
+    EXPECT_EQ(job_spec_from_json(to_json(spec)).settings.shadows, mode);
+  }
+}
+
+TEST(JobSpec, UnknownShadowModeIsAProtocolError) {
+  nlohmann::json j = to_json(JobSpec{});
+  j["shadows"] = "penumbral";
+  EXPECT_THROW(job_spec_from_json(j), ProtocolError);
+}
+
 TEST(JobSpec, MistypedFieldsAreProtocolErrors) {
   nlohmann::json j = to_json(JobSpec{});
   j["width"] = "wide";

@@ -26,20 +26,30 @@ bool has_name(const EffectSet& effects, const std::string& name) {
   return std::find(names.begin(), names.end(), name) != names.end();
 }
 
-// Stored features the renderer does not simulate yet are reported, never silently dropped:
-// per shape with its location, and only where they would show (gloss needs a mirror).
-TEST(Effects, UnrenderedFeaturesAreReportedWhereTheyAreUsed) {
+// Keywords that change nothing here are reported, never silently dropped.
+TEST(Effects, KeywordsWithoutEffectAreReported) {
   Scene scene = plain_scene();
-  scene.objects[0].where = {"a.sdl", 3, 7};
-  scene.objects[0].material.gloss_strength = 0.5;
-  EXPECT_TRUE(PreparedScene(scene, BvhMode::Sah).unsupported().empty());  // not reflective
-  scene.objects[0].material.reflectivity = 0.5;
-  scene.objects.push_back(scene.objects[0]);  // the same report once, not twice
-  scene.globals.show_extents = true;
+  EXPECT_TRUE(PreparedScene(scene, BvhMode::Sah).unsupported().empty());
+  scene.globals.adapted_shadow_computation = true;
   const PreparedScene prepared(scene, BvhMode::Sah);
-  EXPECT_EQ(prepared.unsupported(),
-            (std::vector<std::string>{"scene: showExtents is not rendered yet",
-                                      "a.sdl:3:7: glossStrength is not rendered yet"}));
+  ASSERT_EQ(prepared.unsupported().size(), 1u);
+  EXPECT_EQ(prepared.unsupported()[0].rfind("scene: adaptedShadowComputation changes nothing", 0),
+            0u);
+}
+
+// Gloss and translucency are effects only where they would show: on a surface that reflects
+// (refracts) at all.
+TEST(Effects, GlossAndTranslucencyOnlyOnReflectiveAndTransparentSurfaces) {
+  Scene scene = plain_scene();
+  scene.objects[0].material.gloss_strength = 0.5;
+  scene.objects[0].material.translucency_strength = 0.5;
+  EXPECT_TRUE(PreparedScene(scene, BvhMode::Sah).effects().names().empty());
+  scene.objects[0].material.reflectivity = 0.5;
+  EXPECT_EQ(PreparedScene(scene, BvhMode::Sah).effects().names(),
+            (std::vector<std::string>{"reflection", "gloss"}));
+  scene.objects[0].material.transparency = 0.5;
+  EXPECT_EQ(PreparedScene(scene, BvhMode::Sah).effects().names(),
+            (std::vector<std::string>{"reflection", "refraction", "gloss", "translucency"}));
 }
 
 TEST(Effects, PlainSceneNeedsNothing) {

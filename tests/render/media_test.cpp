@@ -6,7 +6,6 @@
 
 #include <cmath>
 
-#include "common/render/tracer.h"
 #include "tests/render/scene_builder.h"
 
 namespace tessera::test {
@@ -20,18 +19,9 @@ Material glass(double speed, int priority) {
   return m;
 }
 
-Material glowing(const Rgb& colour) {
-  Material m = black_material();
-  m.emissive = colour;
-  return m;
-}
-
 Rgb trace_one(const Scene& scene, const Ray& ray) {
   const PreparedScene prepared(scene, BvhMode::Sah);
-  RenderStats stats;
-  Tracer tracer(prepared, stats);
-  SampleStream rng(0, 0, 0, 0);
-  return tracer.trace(ray, RayKind::Camera, 0, 1, MediumStack{}, rng);
+  return trace_ray(prepared, ray);
 }
 
 // A slab of glass with the speed of air but priority 2 (it bends nothing), holding a ball of

@@ -3,6 +3,7 @@
 
 #include "common/render/prepared_scene.h"
 #include "common/render/render.h"
+#include "common/render/tracer.h"
 #include "common/scene/scene.h"
 
 namespace tessera::test {
@@ -12,6 +13,13 @@ inline Material black_material() {
   Material m;
   m.ambient = {};
   m.diffuse = {};
+  return m;
+}
+
+// A material that only glows: emissive `colour`, nothing else.
+inline Material glowing(const Rgb& colour) {
+  Material m = black_material();
+  m.emissive = colour;
   return m;
 }
 
@@ -47,6 +55,16 @@ inline RenderSettings settings(int width, int height) {
   s.width = width;
   s.height = height;
   return s;
+}
+
+// The intensity arriving along one camera ray (unit direction), with the random numbers of
+// sample 0 of pixel (key, 0) under the settings' seed.
+inline Rgb trace_ray(const PreparedScene& prepared, const Ray& ray, const RenderSettings& s = {},
+                     std::uint32_t key = 0) {
+  RenderStats stats;
+  Tracer tracer(prepared, s, stats);
+  SampleStream rng(s.seed, key, 0, 0);
+  return tracer.trace(ray, RayKind::Camera, 0, 1, MediumStack{}, rng);
 }
 
 inline Image render(const Scene& scene, const RenderSettings& s, RenderStats* stats = nullptr,

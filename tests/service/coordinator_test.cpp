@@ -66,17 +66,36 @@ TEST(ParseSettings, DefaultsFollowTheRenderer) {
   const RenderSettings defaults;
   EXPECT_EQ(r.spec.settings.width, defaults.width);
   EXPECT_EQ(r.spec.settings.aa_samples, defaults.aa_samples);
+  EXPECT_EQ(r.spec.settings.shadows, ShadowMode::Hard);
+  EXPECT_EQ(r.spec.settings.cone_samples, defaults.cone_samples);
+  EXPECT_EQ(r.spec.settings.shadow_jitter, defaults.shadow_jitter);
+  EXPECT_FALSE(r.spec.settings.normalize_colors);
   EXPECT_EQ(r.plan.order, UnitOrder::Centre);
   EXPECT_TRUE(r.plan.progressive);
   EXPECT_FALSE(r.spec.overrides.max_depth.has_value());
 }
 
+TEST(ParseSettings, ReadsTheShadingSettings) {
+  JobRequest r;
+  parse_settings(nlohmann::json::parse(R"({"shadows": "soft", "cone_samples": 5,
+      "shadow_jitter": 0.5, "normalize": true, "brightness": 0.75})"),
+                 ServiceLimits{}, r);
+  EXPECT_EQ(r.spec.settings.shadows, ShadowMode::Soft);
+  EXPECT_EQ(r.spec.settings.cone_samples, 5);
+  EXPECT_EQ(r.spec.settings.shadow_jitter, 0.5);
+  EXPECT_TRUE(r.spec.settings.normalize_colors);
+  EXPECT_EQ(r.spec.settings.normalize_brightness, 0.75);
+}
+
 TEST(ParseSettings, RefusesWhatIsOutOfLimits) {
   const ServiceLimits limits;
-  for (const char* bad : {R"({"aa": 3})", R"({"width": 0})", R"({"width": 5000})",
-                          R"({"width": 4096, "height": 4096})", R"({"passes": 1000})",
-                          R"({"seed": -2})", R"({"order": "spiral"})", R"({"bvh": 1})",
-                          R"({"unknown": 1})", R"({"max_depth": 40})", R"({"min_weight": 2})"}) {
+  for (const char* bad :
+       {R"({"aa": 3})", R"({"width": 0})", R"({"width": 5000})",
+        R"({"width": 4096, "height": 4096})", R"({"passes": 1000})", R"({"seed": -2})",
+        R"({"order": "spiral"})", R"({"bvh": 1})", R"({"unknown": 1})", R"({"max_depth": 40})",
+        R"({"min_weight": 2})", R"({"shadows": "penumbral"})", R"({"shadows": 2})",
+        R"({"cone_samples": 0})", R"({"cone_samples": 65})", R"({"shadow_jitter": -0.1})",
+        R"({"normalize": "yes"})", R"({"brightness": -1})"}) {
     JobRequest r;
     EXPECT_THROW(parse_settings(nlohmann::json::parse(bad), limits, r), ApiError) << bad;
   }

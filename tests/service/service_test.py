@@ -149,11 +149,14 @@ class Service:
 
 def render_cli(scene_path, settings, out):
     argv = [binary("worker", "tessera-render"), scene_path, "-o", out, "--quiet"]
-    for key in ("width", "height", "aa", "jitter", "seed", "passes", "time_samples"):
+    for key in ("width", "height", "aa", "jitter", "seed", "passes", "time_samples", "shadows",
+                "cone_samples", "shadow_jitter", "brightness"):
         if key in settings:
             argv += ["--" + key.replace("_", "-"), str(settings[key])]
     if settings.get("stochastic"):
         argv.append("--stochastic")
+    if settings.get("normalize"):
+        argv.append("--normalize")
     subprocess.run(argv, check=True)
 
 
@@ -180,8 +183,8 @@ def render_and_compare(service, settings, tmp, name, scene=None):
 
 
 def case_bit_identical():
-    """1 and 3 workers give images bit-identical to tessera-render, in both unit orders and
-    for a scene with boolean objects."""
+    """1 and 3 workers give images bit-identical to tessera-render, in both unit orders, for a
+    scene with boolean objects, and with soft shadows and post-normalization."""
     with tempfile.TemporaryDirectory() as tmp:
         for workers in (1, 3):
             with Service() as service:
@@ -199,6 +202,11 @@ def case_bit_identical():
                 # Boolean objects travel as SDL and are rebuilt by every worker alike.
                 render_and_compare(service, SETTINGS, tmp, "csg%d" % workers,
                                    os.path.join(ARGS.source, "scenes", "features", "csg.sdl"))
+                # Soft shadows' cones and the post-normalized final image match too.
+                shaded = dict(SETTINGS, aa=1, passes=1, shadows="soft", cone_samples=5,
+                              normalize=True, brightness=0.9)
+                final = render_and_compare(service, shaded, tmp, "shaded%d" % workers)
+                assert "soft_shadows" in final["effects"], final["effects"]
                 # The PNG carries an ETag; asking again with it gets 304, not the image again.
                 status, headers, _ = service.request("GET", "/api/jobs/%d/image" % final["id"])
                 assert status == 200 and headers.get("ETag"), headers

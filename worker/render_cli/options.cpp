@@ -4,6 +4,7 @@
 #include <cmath>
 #include <functional>
 #include <map>
+#include <optional>
 
 namespace tessera {
 
@@ -17,6 +18,14 @@ const char* const kRenderCliUsage =
     "  --passes P       sample passes, averaged (default 1)\n"
     "  --time-samples N motion-blur times per sample, 1..256 (default: the scene's motionBlur)\n"
     "  --seed S         seed of every random number (default 0)\n"
+    "  --shadows none|hard|soft\n"
+    "                   shadow mode (default hard): no shadow feelers, one per light, or a\n"
+    "                   cone of them (soft)\n"
+    "  --cone-samples N rays per gloss, translucency and soft-shadow cone, 1..64 (default 9)\n"
+    "  --shadow-jitter S\n"
+    "                   soft-shadow cone diameter one unit from the point, 0..2 (default 0.2)\n"
+    "  --normalize      post-normalize: scale the image so its highest value is at most 1\n"
+    "  --brightness B   multiply the post-normalized image by B, 0..16 (default 1)\n"
     "  --threads T      threads (default: all cores)\n"
     "  --no-bvh         trace without the bounding volume hierarchy (for comparison)\n"
     "  --quiet          no progress or statistics\n";
@@ -75,6 +84,27 @@ std::variant<RenderCliOptions, CliHelp, std::string> parse_render_cli(
                 o.settings.time_samples <= kMaxTimeSamples;
        }},
       {"--seed", [&](const std::string& v) { return parse_number(v, o.settings.seed); }},
+      {"--shadows",
+       [&](const std::string& v) {
+         const std::optional<ShadowMode> mode = parse_shadow_mode(v);
+         if (mode) o.settings.shadows = *mode;
+         return mode.has_value();
+       }},
+      {"--cone-samples",
+       [&](const std::string& v) {
+         return parse_number(v, o.settings.cone_samples) && o.settings.cone_samples >= 1 &&
+                o.settings.cone_samples <= 64;
+       }},
+      {"--shadow-jitter",
+       [&](const std::string& v) {
+         return parse_number(v, o.settings.shadow_jitter) && o.settings.shadow_jitter >= 0 &&
+                o.settings.shadow_jitter <= 2;
+       }},
+      {"--brightness",
+       [&](const std::string& v) {
+         return parse_number(v, o.settings.normalize_brightness) &&
+                o.settings.normalize_brightness >= 0 && o.settings.normalize_brightness <= 16;
+       }},
       {"--threads",
        [&](const std::string& v) {
          return parse_number(v, o.threads) && o.threads >= 0 && o.threads <= 1024;
@@ -85,6 +115,8 @@ std::variant<RenderCliOptions, CliHelp, std::string> parse_render_cli(
     if (a == "-h" || a == "--help") return CliHelp{};
     if (a == "--stochastic") {
       o.settings.stochastic = true;
+    } else if (a == "--normalize") {
+      o.settings.normalize_colors = true;
     } else if (a == "--no-bvh") {
       o.settings.bvh = BvhMode::None;
     } else if (a == "--quiet") {
