@@ -39,5 +39,20 @@ TEST(ShowExtents, TheBoxEdgesGlowWhiteAndTheObjectStaysVisible) {
   EXPECT_EQ(seen_towards(ball(true), {0, 0, 0}), (Rgb{0.6, 0, 0}));
 }
 
+TEST(ShowExtents, BooleanObjectsKeepTheirChildren) {
+  // The bars are instances added after the scene's: the boolean object's pointers to its
+  // children's instances must survive them (the sanitizer build checks the memory).
+  Scene scene = ball(true);
+  scene.objects.push_back(object(Sphere{}, Affine::translation({0.5, 0, 0}), glowing({0, 0.6, 0})));
+  scene.objects.push_back(
+      object(CsgShape{CsgOperation::Difference, 0, 1}, Affine::identity(), glowing({0, 0, 0})));
+  const PreparedScene prepared(scene, BvhMode::Sah);
+  EXPECT_EQ(prepared.instances().size(), 3u + 3 * 12);
+  // Along x = 0 the left ball's front is outside the subtracted one: seen. Along x = 0.4 the
+  // subtracted ball holds all of the left one's chord: the ray passes through to the black.
+  EXPECT_EQ(trace_ray(prepared, {{0, 0, 5}, Vec3{0, 0, -1}, 0}), (Rgb{0.6, 0, 0}));
+  EXPECT_EQ(trace_ray(prepared, {{0.4, 0, 5}, Vec3{0, 0, -1}, 0}), Rgb{});
+}
+
 }  // namespace
 }  // namespace tessera::test
