@@ -6,7 +6,7 @@
 namespace tessera {
 
 namespace {
-constexpr std::array<std::pair<Effect, const char*>, 13> kEffectNames{{
+constexpr std::array<std::pair<Effect, const char*>, 14> kEffectNames{{
     {Effect::HardShadows, "hard_shadows"},
     {Effect::Reflection, "reflection"},
     {Effect::Refraction, "refraction"},
@@ -20,6 +20,7 @@ constexpr std::array<std::pair<Effect, const char*>, 13> kEffectNames{{
     {Effect::SolidTexture, "solid_texture"},
     {Effect::ImageTexture, "image_texture"},
     {Effect::ProceduralTexture, "procedural_texture"},
+    {Effect::DirectionalLight, "directional_light"},
 }};
 }  // namespace
 

@@ -22,6 +22,7 @@ enum class Effect : std::uint32_t {
   SolidTexture = 1u << 10,
   ImageTexture = 1u << 11,
   ProceduralTexture = 1u << 12,
+  DirectionalLight = 1u << 13,  // lights at infinity (VRML DirectionalLight, headlight)
 };
 
 class EffectSet {

@@ -30,6 +30,21 @@ double facing(double cosine, bool light_back_faces) {
   return light_back_faces ? std::fabs(cosine) : std::max(cosine, 0.0);
 }
 
+// The unit vector `l` from `point` towards `light` and the distance to it, infinite for a
+// directional light; false when the point is at the light.
+bool towards_light(const Light& light, const Vec3& point, Vec3& l, double& distance) {
+  if (light.is_directional) {
+    l = -light.direction;
+    distance = kInfinity;
+    return true;
+  }
+  const Vec3 to_light = light.position - point;
+  distance = length(to_light);
+  if (!(distance > 0)) return false;
+  l = to_light / distance;
+  return true;
+}
+
 }  // namespace
 
 bool Tracer::closest_hit(const Ray& ray, Hit& hit) {
@@ -49,19 +64,22 @@ bool Tracer::closest_hit(const Ray& ray, Hit& hit) {
 }
 
 double Tracer::shadow_factor(const Vec3& origin, const Vec3& target) {
+  return shadow_factor(Ray{origin, target - origin, 0}, 1.0);
+}
+
+double Tracer::shadow_factor(const Ray& ray, double t_max) {
   ++stats_.shadow_rays;
-  const Ray ray{origin, target - origin, 0};
   const std::vector<Instance>& instances = scene_.instances();
   const std::vector<SceneObject>& objects = scene_.scene().objects;
   double factor = 1;
   // Each object counts once, however often the feeler crosses its surface (eq. 4.24).
-  traverse_bvh(scene_.bvh(), ray, 1.0, stats_.intersections.bvh_nodes,
-               [&](std::uint32_t index, double t_max) {
+  traverse_bvh(scene_.bvh(), ray, t_max, stats_.intersections.bvh_nodes,
+               [&](std::uint32_t index, double t_limit) {
                  WorldHit h;
-                 if (!intersect_instance(instances[index], ray, t_max, h, stats_.intersections))
-                   return t_max;
+                 if (!intersect_instance(instances[index], ray, t_limit, h, stats_.intersections))
+                   return t_limit;
                  factor *= objects[index].material.transparency;
-                 return factor > 0 ? t_max : -1.0;
+                 return factor > 0 ? t_limit : -1.0;
                });
   return factor;
 }
@@ -145,10 +163,9 @@ Rgb Tracer::local_illumination(const Hit& hit, const Material& m, const SurfaceC
   const double specular_scale = m.retain_specular_reflection ? 1 : opacity;
   const bool has_specular = !m.specular.is_zero() && specular_scale > 0;
   for (const Light& light : scene.lights) {
-    const Vec3 to_light = light.position - hit.world.point;
-    const double distance = length(to_light);
-    if (!(distance > 0)) continue;
-    const Vec3 l = to_light / distance;
+    Vec3 l;
+    double distance = 0;
+    if (!towards_light(light, hit.world.point, l, distance)) continue;
 
     double cone = 1;  // spotlight: zero outside the cut-off, cos^exponent inside (§4.1.3)
     if (light.is_spot) {
@@ -167,15 +184,16 @@ Rgb Tracer::local_illumination(const Hit& hit, const Material& m, const SurfaceC
     if (n_dot_l <= 0 && n_dot_h <= 0) continue;
 
     double attenuation = 1;  // eq. 4.12
-    if (scene_.effects().has(Effect::LightAttenuation)) {
+    if (scene_.effects().has(Effect::LightAttenuation) && !light.is_directional) {
       const LightAttenuation& a = g.light_attenuation;
       const double denominator =
           a.constant + a.linear * distance + a.quadratic * distance * distance;
       if (denominator > 1) attenuation = 1 / denominator;
     }
 
-    const double shadow =
-        shadow_factor(spawn_origin(hit, l, g.shadow_feeler_epsilon), light.position);
+    const Vec3 feeler_origin = spawn_origin(hit, l, g.shadow_feeler_epsilon);
+    const double shadow = light.is_directional ? shadow_factor(Ray{feeler_origin, l, 0}, kInfinity)
+                                               : shadow_factor(feeler_origin, light.position);
     if (shadow <= 0) continue;
 
     Rgb contribution = colours.diffuse * light.color * (n_dot_l * diffuse_scale);  // eq. 4.8

@@ -41,6 +41,9 @@ class Tracer {
   Crossing cross_interface(const Ray& ray, Hit& hit, const MediumStack& media);
   // Eq. 4.24: the product of the transparencies of everything between `origin` and `target`.
   double shadow_factor(const Vec3& origin, const Vec3& target);
+  // The shadow factor along `feeler` for t in (0, t_max): to a directional light, t_max is
+  // infinite.
+  double shadow_factor(const Ray& feeler, double t_max);
   // Eq. 4.4-4.12 and 4.24 at a hit: emissive, ambient, and every light's diffuse and specular.
   // `colours` are the material's after texturing (§4.3).
   Rgb local_illumination(const Hit& hit, const Material& m, const SurfaceColours& colours,
