@@ -77,4 +77,10 @@ std::optional<std::string> MemorySource::read(const std::string& path) const {
   return it->second;
 }
 
+DirectorySource folder_of(const std::filesystem::path& file) {
+  std::filesystem::path root = file.parent_path();
+  if (root.empty()) root = ".";
+  return DirectorySource(root);
+}
+
 }  // namespace tessera

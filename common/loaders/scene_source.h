@@ -34,6 +34,9 @@ class DirectorySource : public SceneSource {
   std::filesystem::path root_;
 };
 
+// The folder that holds `file` ("." for a bare file name), for the command line.
+DirectorySource folder_of(const std::filesystem::path& file);
+
 // Files held in memory, keyed by root-relative path (tests, bundles).
 class MemorySource : public SceneSource {
  public:

@@ -565,10 +565,7 @@ Scene load_sdl(const SceneSource& source, const std::string& path) {
 }
 
 Scene load_sdl_file(const std::filesystem::path& file) {
-  std::filesystem::path root = file.parent_path();
-  if (root.empty()) root = ".";
-  const DirectorySource source(root);
-  return load_sdl(source, file.filename().string());
+  return load_sdl(folder_of(file), file.filename().string());
 }
 
 }  // namespace tessera

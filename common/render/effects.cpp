@@ -6,7 +6,7 @@
 namespace tessera {
 
 namespace {
-constexpr std::array<std::pair<Effect, const char*>, 19> kEffectNames{{
+constexpr std::array<std::pair<Effect, const char*>, 20> kEffectNames{{
     {Effect::HardShadows, "hard_shadows"},
     {Effect::Reflection, "reflection"},
     {Effect::Refraction, "refraction"},
@@ -26,6 +26,7 @@ constexpr std::array<std::pair<Effect, const char*>, 19> kEffectNames{{
     {Effect::Translucency, "translucency"},
     {Effect::SoftShadows, "soft_shadows"},
     {Effect::ShowExtents, "show_extents"},
+    {Effect::DirectionalLight, "directional_light"},
 }};
 }  // namespace
 

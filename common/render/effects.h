@@ -23,11 +23,12 @@ enum class Effect : std::uint32_t {
   ImageTexture = 1u << 11,
   ProceduralTexture = 1u << 12,
   MotionBlur = 1u << 13,
-  Csg = 1u << 14,           // boolean objects (union, intersection, difference)
-  Gloss = 1u << 15,         // blurred reflection: a cone of reflected rays (§4.1.4)
-  Translucency = 1u << 16,  // blurred refraction: a cone of refracted rays (§4.1.4)
-  SoftShadows = 1u << 17,   // a cone of shadow feelers per light (§4.2.1)
-  ShowExtents = 1u << 18,   // objects' bounding boxes drawn as white bars (§3.2.7)
+  Csg = 1u << 14,               // boolean objects (union, intersection, difference)
+  Gloss = 1u << 15,             // blurred reflection: a cone of reflected rays (§4.1.4)
+  Translucency = 1u << 16,      // blurred refraction: a cone of refracted rays (§4.1.4)
+  SoftShadows = 1u << 17,       // a cone of shadow feelers per light (§4.2.1)
+  ShowExtents = 1u << 18,       // objects' bounding boxes drawn as white bars (§3.2.7)
+  DirectionalLight = 1u << 19,  // lights at infinity (VRML DirectionalLight, headlight)
 };
 
 class EffectSet {

@@ -26,6 +26,7 @@ CameraFrame make_camera_frame(const Camera& camera) {
   if (!(camera.view_angle > 0 && camera.view_angle < 180))
     throw SceneError(nowhere, "viewAngle must lie strictly between 0 and 180 degrees");
   frame.tan_half_height = std::tan(camera.view_angle * std::numbers::pi / 360);
+  frame.angle_on_smaller_side = camera.view_angle_on_smaller_side;
   return frame;
 }
 
@@ -34,8 +35,10 @@ EffectSet scene_effects(const Scene& scene) {
   const SceneGlobals& g = scene.globals;
   EffectSet effects;
   if (!scene.lights.empty() && !scene.objects.empty()) effects.add(Effect::HardShadows);
-  for (const Light& light : scene.lights)
+  for (const Light& light : scene.lights) {
     if (light.is_spot) effects.add(Effect::Spotlights);
+    if (light.is_directional) effects.add(Effect::DirectionalLight);
+  }
   if (!g.light_attenuation.is_identity() && !scene.lights.empty())
     effects.add(Effect::LightAttenuation);
   if (g.atmospheric_attenuation) effects.add(Effect::AtmosphericAttenuation);

@@ -23,6 +23,9 @@ struct CameraFrame {
   Vec3 eye;
   Vec3 forward, right, up;  // orthonormal; right x up = -forward
   double tan_half_height = 0;
+  // VRML: the view angle spans the smaller side of the image, so a portrait image widens
+  // the vertical angle (Camera::view_angle_on_smaller_side).
+  bool angle_on_smaller_side = false;
   // The primary ray through image position (px, py) in pixels, (0, 0) the top-left corner of
   // the image and (width, height) the bottom-right one.
   Ray ray_through(double px, double py, int width, int height) const;

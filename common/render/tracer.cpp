@@ -47,6 +47,21 @@ Rgb blurred(const Vec3& axis, double strength, int count, const Vec3& surface_no
   });
 }
 
+// The unit vector `l` from `point` towards `light` and the distance to it, infinite for a
+// directional light; false when the point is at the light.
+bool towards_light(const Light& light, const Vec3& point, Vec3& l, double& distance) {
+  if (light.is_directional) {
+    l = -light.direction;
+    distance = kInfinity;
+    return true;
+  }
+  const Vec3 to_light = light.position - point;
+  distance = length(to_light);
+  if (!(distance > 0)) return false;
+  l = to_light / distance;
+  return true;
+}
+
 }  // namespace
 
 Tracer::Tracer(const PreparedScene& scene, const RenderSettings& settings, RenderStats& stats)
@@ -73,20 +88,19 @@ bool Tracer::closest_hit(const Ray& ray, Hit& hit) {
   return found;
 }
 
-double Tracer::shadow_factor(const Vec3& origin, const Vec3& target, double time) {
+double Tracer::shadow_factor(const Ray& ray, double t_max) {
   ++stats_.shadow_rays;
-  const Ray ray{origin, target - origin, time};
   const std::vector<Instance>& instances = scene_.instances();
   const std::vector<SceneObject>& objects = scene_.scene().objects;
   double factor = 1;
   // Each object counts once, however often the feeler crosses its surface (eq. 4.24).
-  traverse_bvh(scene_.bvh(), ray, 1.0, stats_.intersections.bvh_nodes,
-               [&](std::uint32_t index, double t_max) {
+  traverse_bvh(scene_.bvh(), ray, t_max, stats_.intersections.bvh_nodes,
+               [&](std::uint32_t index, double t_limit) {
                  WorldHit h;
-                 if (!intersect_instance(instances[index], ray, t_max, h, stats_.intersections))
-                   return t_max;
+                 if (!intersect_instance(instances[index], ray, t_limit, h, stats_.intersections))
+                   return t_limit;
                  factor *= objects[h.object].material.transparency;
-                 return factor > 0 ? t_max : -1.0;
+                 return factor > 0 ? t_limit : -1.0;
                });
   return factor;
 }
@@ -154,15 +168,21 @@ Tracer::Crossing Tracer::cross_interface(const Ray& ray, Hit& hit, const MediumS
   return crossing;
 }
 
-double Tracer::light_visibility(const Hit& hit, const Vec3& position, const Vec3& l,
-                                double distance, SampleStream& rng) {
+double Tracer::light_visibility(const Hit& hit, const Light& light, const Vec3& l, double distance,
+                                SampleStream& rng) {
   const double epsilon = scene_.scene().globals.shadow_feeler_epsilon;
+  // A feeler along unit `d` to the light `distance` away (a point light's feeler ends at
+  // t = 1; a directional light's never ends), at the hit's time.
+  const auto feeler = [&](const Vec3& d, const Vec3& target) {
+    const Vec3 origin = spawn_origin(hit, d, epsilon);
+    if (light.is_directional) return shadow_factor(Ray{origin, d, hit.time}, kInfinity);
+    return shadow_factor(Ray{origin, target - origin, hit.time}, 1.0);
+  };
   if (effects_.has(Effect::SoftShadows))
     return Cone(l, shadow_cone_radius_).mean<double>(cone_samples_, rng, [&](const Vec3& d) {
-      return shadow_factor(spawn_origin(hit, d, epsilon), hit.world.point + d * distance, hit.time);
+      return feeler(d, hit.world.point + d * distance);
     });
-  if (effects_.has(Effect::HardShadows))
-    return shadow_factor(spawn_origin(hit, l, epsilon), position, hit.time);
+  if (effects_.has(Effect::HardShadows)) return feeler(l, light.position);
   return 1;
 }
 
@@ -182,10 +202,9 @@ Rgb Tracer::local_illumination(const Hit& hit, const Material& m, const SurfaceC
   const double specular_scale = m.retain_specular_reflection ? 1 : opacity;
   const bool has_specular = !m.specular.is_zero() && specular_scale > 0;
   for (const Light& light : scene.lights) {
-    const Vec3 to_light = light.position - hit.world.point;
-    const double distance = length(to_light);
-    if (!(distance > 0)) continue;
-    const Vec3 l = to_light / distance;
+    Vec3 l;
+    double distance = 0;
+    if (!towards_light(light, hit.world.point, l, distance)) continue;
 
     double cone = 1;  // spotlight: zero outside the cut-off, cos^exponent inside (§4.1.3)
     if (light.is_spot) {
@@ -204,14 +223,14 @@ Rgb Tracer::local_illumination(const Hit& hit, const Material& m, const SurfaceC
     if (n_dot_l <= 0 && n_dot_h <= 0) continue;
 
     double attenuation = 1;  // eq. 4.12
-    if (effects_.has(Effect::LightAttenuation)) {
+    if (effects_.has(Effect::LightAttenuation) && !light.is_directional) {
       const LightAttenuation& a = g.light_attenuation;
       const double denominator =
           a.constant + a.linear * distance + a.quadratic * distance * distance;
       if (denominator > 1) attenuation = 1 / denominator;
     }
 
-    const double shadow = light_visibility(hit, light.position, l, distance, rng);
+    const double shadow = light_visibility(hit, light, l, distance, rng);
     if (shadow <= 0) continue;
 
     Rgb contribution = colours.diffuse * light.color * (n_dot_l * diffuse_scale);  // eq. 4.8

@@ -45,13 +45,14 @@ class Tracer {
   // surface of the object that governs the interface, with an error bound covering them all,
   // so that rays leaving it start beyond every one.
   Crossing cross_interface(const Ray& ray, Hit& hit, const MediumStack& media);
-  // Eq. 4.24: the product of the transparencies of everything between `origin` and `target`
-  // at shutter time `time`.
-  double shadow_factor(const Vec3& origin, const Vec3& target, double time);
-  // Eq. 4.24-4.26: the share of the point light at `position` (unit direction `l`, `distance`
-  // away) that reaches the hit: all of it without shadows, one feeler's product of
-  // transparencies for hard shadows, the mean over a cone of feelers for soft shadows.
-  double light_visibility(const Hit& hit, const Vec3& position, const Vec3& l, double distance,
+  // Eq. 4.24: the product of the transparencies of everything along `feeler` (with its time)
+  // for t in (0, t_max): 1 to a point light the feeler's direction reaches, infinite to a
+  // directional light.
+  double shadow_factor(const Ray& feeler, double t_max);
+  // Eq. 4.24-4.26: the share of `light` (unit direction `l`, `distance` away, infinite for a
+  // directional light) that reaches the hit: all of it without shadows, one feeler's product
+  // of transparencies for hard shadows, the mean over a cone of feelers for soft shadows.
+  double light_visibility(const Hit& hit, const Light& light, const Vec3& l, double distance,
                           SampleStream& rng);
   // Eq. 4.4-4.12 and 4.24 at a hit: emissive, ambient, and every light's diffuse and specular.
   // `colours` are the material's after texturing (§4.3).

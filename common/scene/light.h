@@ -1,4 +1,5 @@
-// Light sources of SDL §3.2.2: positional point lights and spotlights, in world space.
+// Light sources of SDL §3.2.2 (positional point lights and spotlights) and VRML's
+// DirectionalLight (a light at infinity), in world space.
 #pragma once
 
 #include "common/math/vec3.h"
@@ -18,6 +19,10 @@ struct Light {
   Rgb color{1, 1, 1};  // both the diffuse and the specular colour of the light
   bool is_spot = false;
   Spot spot;  // meaningful when is_spot
+  // A light at infinity (VRML DirectionalLight, the headlight): its rays travel along
+  // `direction` (unit length) everywhere, with no attenuation; `position` is unused.
+  bool is_directional = false;
+  Vec3 direction{0, 0, -1};
   friend bool operator==(const Light&, const Light&) = default;
 };
 

@@ -21,6 +21,9 @@ struct Camera {
   Vec3 look_at{0, 0, 0};   // viewPoint
   Vec3 up{0, 1, 0};        // upDirection
   double view_angle = 45;  // vertical field of view in degrees (viewAngle)
+  // VRML's fieldOfView spans the smaller side of the image (ISO/IEC 14772-1 §6.53): then
+  // view_angle is the horizontal angle of a portrait image.
+  bool view_angle_on_smaller_side = false;
   friend bool operator==(const Camera&, const Camera&) = default;
 };
 

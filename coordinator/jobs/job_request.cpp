@@ -2,8 +2,8 @@
 
 #include <set>
 
+#include "common/loaders/scene_loader.h"
 #include "common/loaders/scene_source.h"
-#include "common/loaders/sdl_loader.h"
 #include "common/render/prepared_scene.h"
 #include "common/render/render.h"
 #include "common/render/time_prediction.h"
@@ -134,9 +134,11 @@ Submission read_tar_submission(std::string_view body,
   if (auto it = query.find("main"); it != query.end()) {
     sub.main = it->second;
   } else if (!sub.files.count(sub.main)) {
-    std::vector<std::string> top;  // a single top-level .sdl file is the scene
+    // A single top-level .sdl (.wrl) file is the scene.
+    const char* ending = sub.format == "vrml" ? ".wrl" : ".sdl";
+    std::vector<std::string> top;
     for (const auto& [path, bytes] : sub.files)
-      if (path.find('/') == std::string::npos && path.ends_with(".sdl")) top.push_back(path);
+      if (path.find('/') == std::string::npos && path.ends_with(ending)) top.push_back(path);
     if (top.size() != 1) throw bad_request("name the bundle's scene file with ?main=PATH");
     sub.main = top.front();
   }
@@ -189,7 +191,7 @@ void check_scene(const Submission& sub, const std::optional<std::filesystem::pat
   if (scenes_dir) folder.emplace(*scenes_dir);
   RecordingSource source(submitted, folder ? &*folder : nullptr);
   try {
-    Scene scene = load_sdl(source, sub.main);
+    Scene scene = load_scene(source, sub.main, *scene_format_named(sub.format));
     apply_overrides(scene, out.spec.overrides);
     if (scene.globals.max_recursion_depth > limits.max_depth)
       throw bad_request("maxRecursionDepth " + std::to_string(scene.globals.max_recursion_depth) +
@@ -281,9 +283,7 @@ JobRequest parse_job_request(const JobUpload& upload, const ServiceLimits& limit
     throw ApiError(415, "unsupported_media_type",
                    "POST JSON (application/json), a tar bundle (application/x-tar) or a form "
                    "(multipart/form-data)");
-  if (sub.format == "vrml")
-    throw ApiError(400, "unsupported_format", "VRML scenes are not supported by this build yet");
-  if (sub.format != "sdl") throw bad_request("format must be \"sdl\" or \"vrml\"");
+  if (!scene_format_named(sub.format)) throw bad_request("format must be \"sdl\" or \"vrml\"");
   JobRequest out;
   parse_settings(sub.settings, limits, out);
   check_scene(sub, scenes_dir, limits, out);

@@ -1,10 +1,11 @@
-// Every sample scene in scenes/ loads and renders at a small size with every pixel finite.
+// Every sample scene in scenes/ (SDL and VRML) loads and renders at a small size with every pixel
+// finite.
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <filesystem>
 
-#include "common/loaders/sdl_loader.h"
+#include "common/loaders/scene_loader.h"
 #include "tests/render/scene_builder.h"
 
 namespace tessera::test {
@@ -14,7 +15,8 @@ std::vector<std::filesystem::path> sample_scenes() {
   std::vector<std::filesystem::path> out;
   const std::filesystem::path root = std::filesystem::path(TESSERA_SOURCE_DIR) / "scenes";
   for (const auto& entry : std::filesystem::recursive_directory_iterator(root))
-    if (entry.path().extension() == ".sdl" && entry.path().parent_path().filename() != "parts")
+    if ((entry.path().extension() == ".sdl" || entry.path().extension() == ".wrl") &&
+        entry.path().parent_path().filename() != "parts")
       out.push_back(entry.path());
   std::sort(out.begin(), out.end());
   return out;
@@ -25,7 +27,7 @@ TEST(SampleScenes, ThereAreSampleScenes) { EXPECT_GE(sample_scenes().size(), 8u)
 TEST(SampleScenes, EveryOneRendersWithoutNaN) {
   for (const auto& path : sample_scenes()) {
     SCOPED_TRACE(path.string());
-    const Scene scene = load_sdl_file(path);
+    const Scene scene = load_scene_file(path);
     const PreparedScene prepared(scene, BvhMode::Sah);
     EXPECT_TRUE(prepared.unsupported().empty()) << prepared.unsupported().front();
     RenderSettings s = settings(64, 48);

@@ -299,6 +299,33 @@ def case_bundle():
         assert_identical(os.path.join(tmp, "form.exr"), os.path.join(tmp, "dir-cli.exr"))
 
 
+def case_vrml():
+    """A VRML world with an Inline and a texture, as a tar bundle (the single top-level .wrl is the scene),
+    renders bit-identical to tessera-render on its folder; its effects include the
+    directional light, and the ignored ROUTEs come back as one warning."""
+    folder = os.path.join(ARGS.source, "scenes", "vrml")
+    buf = io.BytesIO()
+    with tarfile.open(fileobj=buf, mode="w", format=tarfile.USTAR_FORMAT) as tar:
+        tar.add(os.path.join(folder, "world.wrl"), "world.wrl")
+        tar.add(os.path.join(folder, "parts", "arch.wrl"), "parts/arch.wrl")
+        tar.add(os.path.join(folder, "textures", "gradient.bmp"), "textures/gradient.bmp")
+    settings = {"width": 64, "height": 48}
+    with tempfile.TemporaryDirectory() as tmp, Service("--local-workers", "2",
+                                                       "--local-threads", "1") as service:
+        status, _, body = service.request(
+            "POST", "/api/jobs?format=vrml&width=64&height=48", buf.getvalue(),
+            {"Content-Type": "application/x-tar"})
+        assert status == 201, (status, body)
+        job = json.loads(body)
+        assert "directional_light" in job["effects"], job
+        assert any("ROUTE (2)" in w for w in job["warnings"]), job["warnings"]
+        final = service.wait_job(job["id"])
+        assert final["state"] == "done", final
+        service.exr(job["id"], os.path.join(tmp, "svc.exr"))
+        render_cli(os.path.join(folder, "world.wrl"), settings, os.path.join(tmp, "cli.exr"))
+        assert_identical(os.path.join(tmp, "svc.exr"), os.path.join(tmp, "cli.exr"))
+
+
 def case_worker_faults():
     """A worker killed with SIGKILL mid-level, and one that goes silent (SIGSTOP), lose their
     units to the others; the image is still identical to tessera-render."""
@@ -379,7 +406,9 @@ def case_http_errors():
         status, err = post(json.dumps({"scene": "sphere", "files": {"../x": "y"}}).encode())
         assert status == 400 and err["error"] == "bad_bundle", err
         status, err = post(json.dumps({"scene": "sphere", "format": "vrml"}).encode())
-        assert status == 400 and err["error"] == "unsupported_format", err
+        assert status == 400 and err["error"] == "scene_error" and err["line"] == 1, err
+        status, err = post(json.dumps({"scene": "sphere", "format": "obj"}).encode())
+        assert status == 400 and err["error"] == "bad_request", err
         status, err = post(b"scene", "text/plain")
         assert status == 415, err
         status, err = post(json.dumps({"scene": "!" * 100000}).encode())

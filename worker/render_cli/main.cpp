@@ -4,7 +4,7 @@
 #include <string>
 #include <vector>
 
-#include "common/loaders/sdl_loader.h"
+#include "common/loaders/scene_loader.h"
 #include "common/render/render.h"
 #include "worker/render_cli/options.h"
 #include "worker/render_cli/progress.h"
@@ -23,7 +23,7 @@ int main(int argc, char** argv) {
   }
   const auto& options = std::get<RenderCliOptions>(parsed);
   try {
-    const Scene scene = load_sdl_file(options.scene_path);
+    const Scene scene = load_scene_file(options.scene_path);
     const PreparedScene prepared(scene, options.settings.bvh);
     if (!options.quiet) print_warnings(scene, prepared);
     TerminalProgress progress;

@@ -2,10 +2,12 @@
 
 #include <atomic>
 #include <chrono>
+#include <optional>
+#include <stdexcept>
 
 #include <spdlog/spdlog.h>
 
-#include "common/loaders/sdl_loader.h"
+#include "common/loaders/scene_loader.h"
 #include "common/protocol/unit_message.h"
 #include "common/render/prepared_scene.h"
 #include "common/render/render.h"
@@ -32,7 +34,9 @@ struct PreparedJob {
     std::call_once(prepare_once, [this] {
       try {
         MemorySource source(bundle->files);
-        scene = std::make_unique<Scene>(load_sdl(source, bundle->main));
+        const std::optional<SceneFormat> format = scene_format_named(bundle->format);
+        if (!format) throw std::runtime_error("unknown scene format \"" + bundle->format + "\"");
+        scene = std::make_unique<Scene>(load_scene(source, bundle->main, *format));
         apply_overrides(*scene, spec.overrides);
         prepared = std::make_unique<PreparedScene>(*scene, spec.settings.bvh);
       } catch (const std::exception& e) {

@@ -1,0 +1,29 @@
+// The scene formats and the one entry point that picks the loader: SDL or VRML.
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include "common/loaders/scene_source.h"
+#include "common/scene/scene.h"
+
+namespace tessera {
+
+enum class SceneFormat { Sdl, Vrml };
+
+// The format named "sdl" or "vrml" (a job's `format`), or nullopt.
+std::optional<SceneFormat> scene_format_named(std::string_view name);
+
+// The format a file name implies: VRML for .wrl, .wrl.gz and .wrz, SDL otherwise.
+SceneFormat scene_format_of(const std::filesystem::path& file);
+
+// Loads the scene at root-relative `path` of `source` with the loader of `format`. Throws
+// SceneError naming file, line and column.
+Scene load_scene(const SceneSource& source, const std::string& path, SceneFormat format);
+
+// Convenience for the command line: the file's folder is the root, its name picks the format.
+Scene load_scene_file(const std::filesystem::path& file);
+
+}  // namespace tessera

@@ -1,0 +1,96 @@
+#include "common/loaders/vrml_lexer.h"
+
+#include <zlib.h>
+
+namespace tessera::vrml {
+namespace {
+
+constexpr std::string_view kHeader = "#VRML V2.0 utf8";
+
+bool is_space(char c) {
+  return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\v' || c == '\f' || c == ',';
+}
+bool is_punct(char c) { return c == '{' || c == '}' || c == '[' || c == ']'; }
+
+}  // namespace
+
+std::string vrml_text(const std::string& bytes, const std::string& path, std::size_t max_bytes) {
+  if (bytes.size() < 2 || static_cast<unsigned char>(bytes[0]) != 0x1f ||
+      static_cast<unsigned char>(bytes[1]) != 0x8b)
+    return bytes;
+  const SourceLocation at{path, 1, 1};
+  z_stream stream{};
+  if (inflateInit2(&stream, 16 + MAX_WBITS) != Z_OK)
+    throw SceneError(at, "cannot start inflating the gzip stream");
+  stream.next_in = reinterpret_cast<Bytef*>(const_cast<char*>(bytes.data()));
+  stream.avail_in = static_cast<uInt>(bytes.size());
+  std::string out;
+  char buffer[1 << 16];
+  int status = Z_OK;
+  while (status == Z_OK) {
+    stream.next_out = reinterpret_cast<Bytef*>(buffer);
+    stream.avail_out = sizeof buffer;
+    status = inflate(&stream, Z_NO_FLUSH);
+    out.append(buffer, sizeof buffer - stream.avail_out);
+    if (out.size() > max_bytes) status = Z_MEM_ERROR;
+  }
+  inflateEnd(&stream);
+  if (out.size() > max_bytes)
+    throw SceneError(
+        at, "the gzip stream inflates to more than " + std::to_string(max_bytes) + " bytes");
+  if (status != Z_STREAM_END) throw SceneError(at, "the gzip stream is corrupt or truncated");
+  return out;
+}
+
+LexedFile lex_vrml(std::string_view text, const std::string& path) {
+  if (!text.starts_with(kHeader)) {
+    const std::string found = text.starts_with("#VRML V1.0") ? " (VRML 1.0 is not supported)" : "";
+    throw SceneError({path, 1, 1}, "expected the header '#VRML V2.0 utf8'" + found);
+  }
+  LexedFile out;
+  out.path = path;
+  int line = 1;
+  std::size_t line_start = 0;
+  const auto column = [&](std::size_t offset) { return static_cast<int>(offset - line_start) + 1; };
+  std::size_t i = 0;
+  while (i < text.size()) {
+    const char c = text[i];
+    if (c == '\n' || c == '\r') {
+      if (c == '\r' && i + 1 < text.size() && text[i + 1] == '\n') ++i;
+      ++line;
+      line_start = ++i;
+    } else if (is_space(c)) {
+      ++i;
+    } else if (c == '#') {  // the header is a comment too
+      while (i < text.size() && text[i] != '\n' && text[i] != '\r') ++i;
+    } else if (is_punct(c)) {
+      out.tokens.push_back({Token::Kind::Punct, std::string(1, c), line, column(i)});
+      ++i;
+    } else if (c == '"') {
+      Token token{Token::Kind::String, "", line, column(i)};
+      ++i;
+      for (;;) {
+        if (i == text.size())
+          throw SceneError({path, token.line, token.column}, "unterminated string");
+        if (text[i] == '"') break;
+        if (text[i] == '\\' && i + 1 < text.size()) ++i;  // \" and \\ (§5.3.13)
+        if (text[i] == '\n') ++line, line_start = i + 1;
+        token.text += text[i++];
+      }
+      ++i;
+      out.tokens.push_back(std::move(token));
+    } else {
+      const std::size_t begin = i;
+      while (i < text.size() && !is_space(text[i]) && !is_punct(text[i]) && text[i] != '#' &&
+             text[i] != '"')
+        ++i;
+      out.tokens.push_back(
+          {Token::Kind::Word, std::string(text.substr(begin, i - begin)), line, column(begin)});
+    }
+  }
+  out.end_line = line;
+  out.end_column = column(text.size());
+  return out;
+}
+
+}  // namespace tessera::vrml

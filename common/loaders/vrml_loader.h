@@ -1,0 +1,17 @@
+// The VRML 2.0 loader (ISO/IEC 14772-1, VRML97): a .wrl or .wrl.gz world to the same Scene the
+// SDL loader produces, so that the tracer and the service treat both alike. docs/VRML.md
+// lists the nodes and how each maps to the tracer.
+#pragma once
+
+#include <string>
+
+#include "common/loaders/scene_source.h"
+#include "common/scene/scene.h"
+
+namespace tessera {
+
+// Parses the world at root-relative `path` of `source`, with its Inlines. Throws SceneError
+// naming file, line, column and what was expected.
+Scene load_vrml(const SceneSource& source, const std::string& path);
+
+}  // namespace tessera

@@ -1,0 +1,35 @@
+// VRML IndexedFaceSet (ISO/IEC 14772-1 §6.23) to a triangle mesh: polygons, convex or not,
+// triangulated by ear clipping; normals given per vertex or per face, or generated from the
+// creaseAngle.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <string>
+#include <vector>
+
+#include "common/loaders/vrml_nodes.h"
+#include "common/scene/mesh.h"
+
+namespace tessera::vrml {
+
+// Triangles, as index triples into `polygon`, covering the simple polygon `polygon` (in any
+// plane, either orientation) and keeping its orientation. A polygon that has no ear left
+// (self-intersecting, collinear) is finished as a fan.
+std::vector<std::array<std::uint32_t, 3>> triangulate_polygon(const std::vector<Vec3>& polygon);
+
+struct FaceSetMesh {
+  Mesh mesh;
+  bool smooth = false;  // the corners carry normals to interpolate
+};
+
+// ElevationGrid (§6.18) and Extrusion (§6.18) as the IndexedFaceSet that draws the same
+// surface, with the node's ccw, solid and creaseAngle, so that one path meshes all three.
+NodePtr elevation_grid_face_set(const Node& grid);
+NodePtr extrusion_face_set(const Node& extrusion);
+
+// The mesh of an IndexedFaceSet node (empty without coordinates). Throws SceneError at the
+// index field for an index out of range.
+FaceSetMesh face_set_mesh(const Node& face_set);
+
+}  // namespace tessera::vrml

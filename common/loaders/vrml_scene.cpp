@@ -1,0 +1,494 @@
+// VRML nodes to the Scene (docs/VRML.md has the mapping): a walk down the node tree keeping the
+// current transform, as the SDL loader keeps its CT.
+#include <algorithm>
+#include <cmath>
+#include <map>
+#include <numbers>
+#include <optional>
+#include <set>
+#include <string>
+#include <variant>
+#include <vector>
+
+#include "common/loaders/vrml_fields.h"
+#include "common/loaders/vrml_lexer.h"
+#include "common/loaders/vrml_loader.h"
+#include "common/loaders/vrml_mesh.h"
+#include "common/loaders/vrml_parser.h"
+
+namespace tessera {
+namespace vrml {
+namespace {
+
+constexpr std::size_t kMaxFileBytes = 16u << 20;      // a .wrl file as stored
+constexpr std::size_t kMaxInflatedBytes = 64u << 20;  // a .wrl.gz once inflated
+constexpr std::size_t kMaxObjects = 1'000'000;        // shapes, USE replays counted
+constexpr int kMaxInlineDepth = 16;
+
+double degrees(double radians) { return radians * 180 / std::numbers::pi; }
+
+Rgb clamp_unit(const Rgb& c) {
+  return {std::clamp(c.r, 0.0, 1.0), std::clamp(c.g, 0.0, 1.0), std::clamp(c.b, 0.0, 1.0)};
+}
+
+// "ROUTE (3), TimeSensor (1)"
+std::string listing(const std::map<std::string, int>& counts) {
+  std::string out;
+  for (const auto& [name, count] : counts)
+    out += (out.empty() ? "" : ", ") + name + " (" + std::to_string(count) + ")";
+  return out;
+}
+
+// A sphere around an object, for framing the camera.
+struct BoundingSphere {
+  Vec3 centre;
+  double radius = 0;
+};
+
+class Converter {
+ public:
+  Converter(const SceneSource& source, const std::string& path) : source_(source), path_(path) {}
+
+  Scene run() {
+    world(path_, Affine::identity(), 0, {path_, 1, 1});
+    finish();
+    return std::move(scene_);
+  }
+
+ private:
+  // ---- Files
+  void world(const std::string& path, const Affine& ct, int depth, const SourceLocation& from) {
+    if (depth > kMaxInlineDepth)
+      throw SceneError(from, "Inlines nest deeper than " + std::to_string(kMaxInlineDepth));
+    const std::optional<std::string> bytes = source_.read(path);
+    if (!bytes) throw SceneError(from, "cannot read " + quoted(path));
+    if (bytes->size() > kMaxFileBytes)
+      throw SceneError(
+          from, quoted(path) + " is larger than " + std::to_string(kMaxFileBytes) + " bytes");
+    const LexedFile file = lex_vrml(vrml_text(*bytes, path, kMaxInflatedBytes), path);
+    const ParsedWorld parsed = parse_vrml(file);
+    for (const auto& [name, count] : parsed.ignored) ignored_[name] += count;
+    for (const auto& [name, count] : parsed.unsupported) unsupported_[name] += count;
+    for (const std::string& w : parsed.warnings) scene_.warnings.push_back(w);
+    const std::string outer = file_;
+    file_ = path;
+    for (const NodePtr& node : parsed.roots) child(*node, ct, depth);
+    file_ = outer;
+    // Billboards and the mesh cache hold nodes by address until the end.
+    roots_.insert(roots_.end(), parsed.roots.begin(), parsed.roots.end());
+  }
+
+  static std::string quoted(const std::string& path) { return "'" + path + "'"; }
+
+  // ---- Children of grouping nodes
+  void children(const Node& n, const char* field, const Affine& ct, int depth) {
+    for (const NodePtr& c : mf_nodes(n, field)) child(*c, ct, depth);
+  }
+
+  void child(const Node& n, const Affine& ct, int depth) {
+    const std::string& t = n.type;
+    if (t == "Transform") {
+      children(n, "children", ct * transform(n), depth);
+    } else if (t == "Group" || t == "Anchor" || t == "Collision") {
+      children(n, "children", ct, depth);
+    } else if (t == "Billboard") {
+      billboards_.push_back({&n, ct, depth, file_});  // turned once the camera is known
+    } else if (t == "Switch") {
+      const std::vector<NodePtr>& choice = mf_nodes(n, "choice");
+      const double which = sf_float(n, "whichChoice", -1);
+      if (which >= 0 && which < static_cast<double>(choice.size()))
+        child(*choice[static_cast<std::size_t>(which)], ct, depth);
+    } else if (t == "LOD") {
+      const std::vector<NodePtr>& levels = mf_nodes(n, "level");
+      if (!levels.empty()) child(*levels.front(), ct, depth);  // the most detailed level
+    } else if (t == "Inline") {
+      inline_world(n, ct, depth);
+    } else if (t == "Shape") {
+      shape(n, ct);
+    } else if (t == "DirectionalLight" || t == "PointLight" || t == "SpotLight") {
+      light(n, ct);
+    } else if (t == "Viewpoint") {
+      if (!viewpoint_) viewpoint_ = viewpoint(n, ct);
+    } else if (t == "NavigationInfo") {
+      if (!headlight_) headlight_ = sf_bool(n, "headlight", true);
+    } else if (t == "Background") {
+      if (!background_) background_ = background(n);
+    } else if (t == "Fog") {
+      if (!fog_seen_) fog(n);
+    } else {
+      throw SceneError(n.where, quoted(t) + " is not a child node: it belongs in a " +
+                                    "field of a Shape, Appearance or geometry node");
+    }
+  }
+
+  // Transform (§6.52): T * C * R * SR * S * -SR * -C.
+  static Affine transform(const Node& n) {
+    const Vec3 center = sf_vec3(n, "center", {});
+    const Affine scale_orientation = sf_rotation(n, "scaleOrientation");
+    const Affine undo_orientation = scale_orientation.inverse().value_or(Affine::identity());
+    return Affine::translation(sf_vec3(n, "translation", {})) * Affine::translation(center) *
+           sf_rotation(n, "rotation") * scale_orientation *
+           Affine::scaling(sf_vec3(n, "scale", {1, 1, 1})) * undo_orientation *
+           Affine::translation(-center);
+  }
+
+  void inline_world(const Node& n, const Affine& ct, int depth) {
+    const FieldValue* url = n.field("url");
+    if (!url) return;
+    for (const std::string& name : url->strings) {
+      const std::optional<std::string> path = resolve_scene_path(file_, name);
+      if (path && source_.read(*path)) {
+        world(*path, ct, depth + 1, n.where);
+        return;
+      }
+    }
+    throw SceneError(n.where,
+                     "Inline: none of its urls names a file inside the scene's folder or bundle");
+  }
+
+  // ---- Shapes
+  void shape(const Node& n, const Affine& ct) {
+    const Node* geometry = sf_node(n, "geometry");
+    if (!geometry) return;
+    const Material material = appearance(sf_node(n, "appearance"));
+    const std::string& t = geometry->type;
+    if (t == "Sphere") {
+      // Turned so that the texture's poles lie on y, as VRML's do.
+      const double r = sf_float(*geometry, "radius", 1);
+      add(Sphere{}, ct * Affine::scaling({r, r, r}) * *Affine::rotation(-90, {1, 0, 0}), material,
+          *geometry);
+    } else if (t == "Box") {
+      add(Cube{}, ct * Affine::scaling(sf_vec3(*geometry, "size", {2, 2, 2}) * 0.5), material,
+          *geometry);
+    } else if (t == "Cone") {
+      if (!sf_bool(*geometry, "side", true) || !sf_bool(*geometry, "bottom", true))
+        ++unsupported_["Cone side or bottom FALSE (drawn whole)"];
+      const double r = sf_float(*geometry, "bottomRadius", 1);
+      add(TaperedCylinder{0, false}, ct * along_y(r, sf_float(*geometry, "height", 2)), material,
+          *geometry);
+    } else if (t == "Cylinder") {
+      if (!sf_bool(*geometry, "side", true) || !sf_bool(*geometry, "top", true) ||
+          !sf_bool(*geometry, "bottom", true))
+        ++unsupported_["Cylinder side, top or bottom FALSE (drawn whole)"];
+      const double r = sf_float(*geometry, "radius", 1);
+      add(TaperedCylinder{1, false}, ct * along_y(r, sf_float(*geometry, "height", 2)), material,
+          *geometry);
+    } else if (t == "IndexedFaceSet" || t == "ElevationGrid" || t == "Extrusion") {
+      face_set(*geometry, ct, material);
+    } else {
+      throw SceneError(geometry->where, quoted(t) + " is not a geometry node");
+    }
+  }
+
+  // Our tapered cylinder stands on z in [0, 1]; VRML's Cone and Cylinder are centred on the
+  // origin along y. Scale to radius and height, turn z to y, and centre.
+  static Affine along_y(double radius, double height) {
+    return Affine::translation({0, -height / 2, 0}) * *Affine::rotation(-90, {1, 0, 0}) *
+           Affine::scaling({radius, radius, height});
+  }
+
+  // IndexedFaceSet, ElevationGrid, Extrusion: a mesh.
+  void face_set(const Node& n, const Affine& ct, Material material) {
+    if (sf_node(n, "color")) ++unsupported_[n.type + " color"];
+    if (sf_node(n, "texCoord")) ++unsupported_[n.type + " texCoord"];
+    // A face set that is not solid may be seen from behind: light both faces.
+    if (!sf_bool(n, "solid", true)) material.light_back_faces = true;
+    auto [mesh_index, smooth] = mesh(n);
+    if (mesh_index) add(MeshShape{*mesh_index, smooth}, ct, material, n);
+  }
+
+  // The mesh of a face set node, made once per node however often USE repeats it.
+  std::pair<std::optional<std::size_t>, bool> mesh(const Node& n) {
+    if (const auto made = meshes_.find(&n); made != meshes_.end()) return made->second;
+    NodePtr generated;
+    if (n.type == "ElevationGrid") generated = elevation_grid_face_set(n);
+    if (n.type == "Extrusion") generated = extrusion_face_set(n);
+    FaceSetMesh made = face_set_mesh(generated ? *generated : n);
+    std::pair<std::optional<std::size_t>, bool> out{std::nullopt, made.smooth};
+    if (!made.mesh.triangles.empty()) {
+      out.first = scene_.meshes.size();
+      scene_.meshes.push_back(std::move(made.mesh));
+    }
+    meshes_[&n] = out;
+    return out;
+  }
+
+  void add(const ShapeGeometry& geometry, const Affine& to_world, const Material& material,
+           const Node& at) {
+    if (scene_.objects.size() == kMaxObjects)
+      throw SceneError(at.where,
+                       "the world has more than " + std::to_string(kMaxObjects) + " shapes");
+    scene_.objects.push_back({geometry, to_world, material, at.where, std::nullopt});
+  }
+
+  // Material (§6.27) onto the lighting model of §4.1 (docs/VRML.md): without one, a shape is
+  // unlit and white.
+  Material appearance(const Node* node) {
+    const Node* m = node ? sf_node(*node, "material") : nullptr;
+    Material out;
+    if (!m) {
+      out.emissive = {1, 1, 1};
+      out.ambient = out.diffuse = out.specular = {};
+    } else {
+      const Rgb diffuse = sf_color(*m, "diffuseColor", {0.8, 0.8, 0.8});
+      out.diffuse = diffuse;
+      out.ambient = diffuse * sf_float(*m, "ambientIntensity", 0.2);
+      out.emissive = sf_color(*m, "emissiveColor", {});
+      out.specular = sf_color(*m, "specularColor", {});
+      out.specular_exponent = sf_float(*m, "shininess", 0.2) * 128;
+      out.transparency = std::clamp(sf_float(*m, "transparency", 0), 0.0, 1.0);
+    }
+    if (const Node* t = node ? sf_node(*node, "texture") : nullptr) texture(*t, m, out);
+    if (node && sf_node(*node, "textureTransform")) ++unsupported_["TextureTransform"];
+    return out;
+  }
+
+  // ImageTexture (§6.22) with the shape's own texture mapping (texture_coordinates.h). An RGB
+  // texture replaces the diffuse colour (modulating white); with no material it is the unlit
+  // colour (a decal).
+  void texture(const Node& t, const Node* material, Material& out) {
+    for (const std::string& name :
+         t.field("url") ? t.field("url")->strings : std::vector<std::string>{}) {
+      const std::optional<std::string> path = resolve_scene_path(file_, name);
+      std::optional<std::string> bytes;
+      if (path) bytes = source_.read(*path);
+      if (!bytes) continue;
+      if (bytes->size() > kMaxFileBytes)
+        throw SceneError(
+            t.where, quoted(*path) + " is larger than " + std::to_string(kMaxFileBytes) + " bytes");
+      if (image_paths_.insert(*path).second)
+        scene_.images.push_back({*path, std::move(*bytes), t.where});
+      FlatTexture& flat = out.flat_texture;
+      flat.kind = FlatTexture::Kind::Image;
+      flat.image_file = *path;
+      flat.decal = !material;
+      if (material) {
+        out.ambient = Rgb::gray(sf_float(*material, "ambientIntensity", 0.2));
+        out.diffuse = {1, 1, 1};
+      } else {
+        out.emissive = {};
+      }
+      return;
+    }
+    throw SceneError(t.where,
+                     "ImageTexture: none of its urls names a file inside the scene's folder or "
+                     "bundle");
+  }
+
+  // ---- Lights (§6.16, §6.36, §6.43)
+  void light(const Node& n, const Affine& ct) {
+    if (!sf_bool(n, "on", true)) return;
+    const double intensity = std::clamp(sf_float(n, "intensity", 1), 0.0, 1.0);
+    const Rgb color = sf_color(n, "color", {1, 1, 1}) * intensity;
+    ambient_ += color * std::clamp(sf_float(n, "ambientIntensity", 0), 0.0, 1.0);
+    Light out;
+    out.color = color;
+    if (n.type == "DirectionalLight") {
+      out.is_directional = true;
+      out.direction = unit_or_zero(ct.apply_vector(sf_vec3(n, "direction", {0, 0, -1})));
+      if (out.direction == Vec3{}) throw SceneError(n.where, "DirectionalLight: zero direction");
+    } else {
+      out.position = ct.apply_point(sf_vec3(n, "location", {}));
+      attenuation(n);
+    }
+    if (n.type == "SpotLight") {
+      out.is_spot = true;
+      out.spot.direction = unit_or_zero(ct.apply_vector(sf_vec3(n, "direction", {0, 0, -1})));
+      if (out.spot.direction == Vec3{}) throw SceneError(n.where, "SpotLight: zero direction");
+      const double cutoff =
+          std::clamp(sf_float(n, "cutOffAngle", 0.785398), 1e-6, std::numbers::pi / 2);
+      const double beam = std::clamp(sf_float(n, "beamWidth", 1.570796), 0.0, cutoff);
+      out.spot.cutoff_degrees = degrees(cutoff);
+      // Full intensity inside beamWidth falling linearly to zero at cutOffAngle, approximated
+      // by cos^e with half intensity halfway between them (docs/VRML.md).
+      if (beam < cutoff) {
+        const double halfway = std::cos((beam + cutoff) / 2);
+        out.spot.exponent = std::log(0.5) / std::log(halfway);
+      }
+    }
+    scene_.lights.push_back(out);
+  }
+
+  // Our light attenuation is one for the scene: the first light's that attenuates at all.
+  void attenuation(const Node& n) {
+    const Vec3 a = sf_vec3(n, "attenuation", {1, 0, 0});
+    const LightAttenuation wanted{a.x, a.y, a.z};
+    if (!attenuation_) {
+      if (!wanted.is_identity()) attenuation_ = wanted;
+      if (!wanted.is_identity()) scene_.globals.light_attenuation = wanted;
+      return;
+    }
+    if (!(*attenuation_ == wanted) && !wanted.is_identity())
+      scene_.warnings.push_back(n.where.to_string() +
+                                ": attenuation differs from an earlier light's; the first is "
+                                "used for every light");
+  }
+
+  // ---- Bindable nodes: the first of each kind counts (§4.6.10)
+  static Camera viewpoint(const Node& n, const Affine& ct) {
+    const Affine orientation = sf_rotation(n, "orientation");
+    Camera camera;
+    camera.eye = ct.apply_point(sf_vec3(n, "position", {0, 0, 10}));
+    camera.look_at =
+        camera.eye + unit_or_zero(ct.apply_vector(orientation.apply_vector({0, 0, -1})));
+    camera.up = ct.apply_vector(orientation.apply_vector({0, 1, 0}));
+    camera.view_angle = degrees(std::clamp(sf_float(n, "fieldOfView", 0.785398), 1e-6, 3.14159));
+    camera.view_angle_on_smaller_side = true;
+    if (camera.look_at == camera.eye || camera_right(camera, view_direction(camera)) == Vec3{})
+      throw SceneError(n.where, "Viewpoint: the transform leaves the view no direction");
+    return camera;
+  }
+
+  static Rgb background(const Node& n) {
+    const std::vector<double>& sky = mf_numbers(n, "skyColor");
+    return sky.size() >= 3 ? Rgb{sky[0], sky[1], sky[2]} : Rgb{};
+  }
+
+  void fog(const Node& n) {
+    fog_seen_ = true;
+    const double range = sf_float(n, "visibilityRange", 0);
+    if (range <= 0) return;
+    const FieldValue* type = n.field("fogType");
+    if (type && !type->strings.empty() && type->strings[0] == "EXPONENTIAL")
+      scene_.warnings.push_back(n.where.to_string() +
+                                ": EXPONENTIAL fog is drawn as LINEAR fog over the same range");
+    scene_.globals.fog = Fog{0, range, sf_color(n, "color", {1, 1, 1})};
+  }
+
+  // ---- After the walk: camera, headlight, ambient light, warnings
+  void finish() {
+    SceneGlobals& g = scene_.globals;
+    g.background = background_.value_or(Rgb{});
+    g.global_ambient = clamp_unit(ambient_);
+    scene_.camera = viewpoint_ ? *viewpoint_ : framing_camera();
+    // Billboards nested in billboards are turned as they come: this loop sees them appended.
+    for (std::size_t i = 0; i < billboards_.size(); ++i) {
+      const Billboard b = billboards_[i];
+      file_ = b.file;
+      children(*b.node, "children", b.ct * billboard_turn(*b.node, b.ct), b.depth);
+    }
+    if (headlight_.value_or(true)) {
+      Light headlight;  // along the view, intensity 1, ambientIntensity 0 (§6.29)
+      headlight.is_directional = true;
+      headlight.direction = view_direction(scene_.camera);
+      scene_.lights.push_back(headlight);
+    }
+    if (!ignored_.empty())
+      scene_.warnings.push_back(path_ +
+                                ": ignored (a still image has no animation, sensing or "
+                                "sound): " +
+                                listing(ignored_));
+    if (!unsupported_.empty())
+      scene_.warnings.push_back(path_ + ": not rendered (yet): " + listing(unsupported_));
+  }
+
+  // Billboard (§6.6): the turn about axisOfRotation that points the children's +z at the eye;
+  // with a zero axis, +z at the eye and +y along the camera's up.
+  Affine billboard_turn(const Node& n, const Affine& ct) const {
+    const std::optional<Affine> to_local = ct.inverse();
+    if (!to_local) return Affine::identity();
+    const Vec3 eye = unit_or_zero(to_local->apply_point(scene_.camera.eye));
+    const Vec3 axis = unit_or_zero(sf_vec3(n, "axisOfRotation", {0, 1, 0}));
+    if (axis == Vec3{}) {
+      const Vec3 up = to_local->apply_vector(scene_.camera.up);
+      const Vec3 x = unit_or_zero(cross(up, eye));
+      if (eye == Vec3{} || x == Vec3{}) return Affine::identity();
+      return Affine::from_columns(x, cross(eye, x), eye);
+    }
+    const Vec3 z = Vec3{0, 0, 1} - axis * axis.z;  // +z and the eye, across the axis
+    const Vec3 towards = eye - axis * dot(eye, axis);
+    if (unit_or_zero(z) == Vec3{} || unit_or_zero(towards) == Vec3{}) return Affine::identity();
+    const double angle = std::atan2(dot(axis, cross(z, towards)), dot(z, towards));
+    return Affine::rotation(degrees(angle), axis).value_or(Affine::identity());
+  }
+
+  // No Viewpoint: look at the centre of the world's bounds down -z, from the distance at which
+  // their bounding sphere fills the field of view (`000_…` §4.4.2). An empty world gets VRML's
+  // default Viewpoint.
+  Camera framing_camera() const {
+    Camera camera;
+    camera.eye = {0, 0, 10};
+    camera.look_at = {0, 0, 0};
+    camera.view_angle = 45;
+    camera.view_angle_on_smaller_side = true;
+    std::vector<BoundingSphere> spheres;
+    for (const SceneObject& object : scene_.objects) spheres.push_back(bounding_sphere(object));
+    if (spheres.empty()) return camera;
+    Vec3 lo{kHuge, kHuge, kHuge}, hi = -lo;
+    for (const BoundingSphere& s : spheres) {
+      lo = min(lo, s.centre - Vec3{s.radius, s.radius, s.radius});
+      hi = max(hi, s.centre + Vec3{s.radius, s.radius, s.radius});
+    }
+    const Vec3 centre = (lo + hi) * 0.5;
+    double radius = 0;
+    for (const BoundingSphere& s : spheres)
+      radius = std::max(radius, length(s.centre - centre) + s.radius);
+    if (!(radius > 0)) radius = 1;
+    const double distance = radius / std::sin(camera.view_angle * std::numbers::pi / 360);
+    camera.look_at = centre;
+    camera.eye = centre + Vec3{0, 0, distance};
+    return camera;
+  }
+
+  static constexpr double kHuge = 1e300;
+
+  BoundingSphere bounding_sphere(const SceneObject& object) const {
+    const Affine& m = object.transform;
+    std::vector<Vec3> points;  // in object space
+    if (const auto* shape = std::get_if<MeshShape>(&object.geometry)) {
+      points = scene_.meshes[shape->mesh].positions;
+    } else if (std::holds_alternative<Sphere>(object.geometry)) {
+      // The unit sphere's image is an ellipsoid within the largest column's length.
+      const Vec3 c = m.apply_point({});
+      double r = 0;
+      for (const Vec3& axis : {Vec3{1, 0, 0}, Vec3{0, 1, 0}, Vec3{0, 0, 1}})
+        r = std::max(r, length(m.apply_vector(axis)));
+      return {c, r};
+    } else {
+      const double z0 = std::holds_alternative<Cube>(object.geometry) ? -1 : 0;
+      for (const double x : {-1.0, 1.0})
+        for (const double y : {-1.0, 1.0})
+          for (const double z : {z0, 1.0}) points.push_back({x, y, z});
+    }
+    Vec3 lo{kHuge, kHuge, kHuge}, hi = -lo;
+    for (Vec3& p : points) {
+      p = m.apply_point(p);
+      lo = min(lo, p);
+      hi = max(hi, p);
+    }
+    BoundingSphere out{(lo + hi) * 0.5, 0};
+    for (const Vec3& p : points) out.radius = std::max(out.radius, length(p - out.centre));
+    return out;
+  }
+
+  const SceneSource& source_;
+  const std::string path_;
+  std::string file_;  // the file being converted, for resolving Inline urls
+  Scene scene_;
+  std::map<std::string, int> ignored_, unsupported_;
+  struct Billboard {
+    const Node* node;
+    Affine ct;
+    int depth;
+    std::string file;
+  };
+  std::vector<Billboard> billboards_;
+  std::vector<NodePtr> roots_;         // every file's, alive for the whole conversion
+  std::set<std::string> image_paths_;  // in Scene::images
+  std::map<const Node*, std::pair<std::optional<std::size_t>, bool>> meshes_;
+  std::optional<Camera> viewpoint_;
+  std::optional<bool> headlight_;
+  std::optional<Rgb> background_;
+  bool fog_seen_ = false;
+  Rgb ambient_;
+  std::optional<LightAttenuation> attenuation_;
+};
+
+}  // namespace
+}  // namespace vrml
+
+Scene load_vrml(const SceneSource& source, const std::string& path) {
+  return vrml::Converter(source, path).run();
+}
+
+}  // namespace tessera

@@ -1,0 +1,47 @@
+// Helpers shared by the VRML loader tests: parse or load VRML text from memory.
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <string>
+
+#include "common/loaders/scene_source.h"
+#include "common/loaders/vrml_lexer.h"
+#include "common/loaders/vrml_loader.h"
+#include "common/loaders/vrml_parser.h"
+#include "tests/loaders/loader_test_util.h"
+
+namespace tessera::test {
+
+inline constexpr const char* kVrmlHeader = "#VRML V2.0 utf8\n";
+
+// Parses `body` (after the header line) as "world.wrl".
+inline vrml::ParsedWorld parse_world(const std::string& body) {
+  return vrml::parse_vrml(vrml::lex_vrml(kVrmlHeader + body, "world.wrl"));
+}
+
+// Loads `body` (after the header line) as "world.wrl", next to `files`.
+inline Scene load_world(const std::string& body, Files files = {}) {
+  MemorySource source(std::move(files));
+  source.add("world.wrl", kVrmlHeader + body);
+  return load_vrml(source, "world.wrl");
+}
+
+// Succeeds when loading `body` throws a SceneError at world.wrl:line:column (lines counted
+// with the header as line 1) with exactly `message`.
+inline ::testing::AssertionResult world_fails_at(const std::string& body, int line, int column,
+                                                 const std::string& message) {
+  try {
+    load_world(body);
+  } catch (const SceneError& e) {
+    const SourceLocation& at = e.where();
+    if (at.file == "world.wrl" && at.line == line && at.column == column && e.message() == message)
+      return ::testing::AssertionSuccess();
+    return ::testing::AssertionFailure()
+           << "got      " << e.what() << "\nexpected world.wrl:" << line << ":" << column << ": "
+           << message;
+  }
+  return ::testing::AssertionFailure() << "no error; expected " << message;
+}
+
+}  // namespace tessera::test
