@@ -43,7 +43,8 @@ double WorkerPipeline::round_trip_seconds() const { return std::max(0.0, round_t
 int WorkerPipeline::slots() const {
   double per_thread = 1;  // the unit each thread renders
   if (round_trip_ > 0 && unit_seconds_ > 0)
-    per_thread = std::min<double>(kMaxUnitsPerThread, 1 + kRoundTripsCovered * round_trip_ / unit_seconds_);
+    per_thread =
+        std::min<double>(kMaxUnitsPerThread, 1 + kRoundTripsCovered * round_trip_ / unit_seconds_);
   return static_cast<int>(std::ceil(threads_ * per_thread)) + prefetch(threads_);
 }
 

@@ -3,8 +3,8 @@
 // (Little's law: units in flight = units per second × seconds in transit), plus a small
 // prefetch. Units of cheap regions (background, diffuse walls) render several times faster
 // than the mean, and a run of them would drain a pipeline sized for the mean: it covers twice
-// the round trip. The round trip and a unit's render time are learnt from the worker's results; until
-// the first result, the handshake's round trip and the time units are sized for
+// the round trip. The round trip and a unit's render time are learnt from the worker's results;
+// until the first result, the handshake's round trip and the time units are sized for
 // (kUnitTargetSeconds) stand in for them, so a distant worker's pipeline is deep from its
 // first units.
 #pragma once
