@@ -1,7 +1,8 @@
-// Lexical helpers shared by the SDL and OBJ loaders, so that both accept the same numbers and
+// Lexical helpers shared by the SDL, VRML and OBJ loaders, so that both accept the same numbers and
 // quote user text in messages the same way.
 #pragma once
 
+#include <cstddef>
 #include <string>
 #include <string_view>
 
@@ -31,6 +32,15 @@ struct IntegerResult {
 };
 
 IntegerResult parse_integer(std::string_view text);
+
+// If a line break starts at text[i] (LF, CRLF or a lone CR, as old Mac files have), moves `i`
+// past it and returns true, so that errors name the lines editors show.
+inline bool skip_line_break(std::string_view text, std::size_t& i) {
+  if (text[i] != '\n' && text[i] != '\r') return false;
+  if (text[i] == '\r' && i + 1 < text.size() && text[i + 1] == '\n') ++i;
+  ++i;
+  return true;
+}
 
 // ASCII lower case (SDL keywords and macro names are case-insensitive).
 std::string to_lower(std::string_view text);

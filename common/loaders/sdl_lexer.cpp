@@ -1,5 +1,7 @@
 #include "common/loaders/sdl_lexer.h"
 
+#include "common/loaders/lexical.h"
+
 namespace tessera::sdl {
 namespace {
 
@@ -18,11 +20,9 @@ LexedText lex_sdl(std::string_view text, std::uint32_t file) {
   std::size_t i = 0;
   while (i < text.size()) {
     const char c = text[i];
-    if (c == '\n' || c == '\r') {
-      // A line ends at LF, CRLF or a lone CR (old Mac files), so that errors name real lines.
-      if (c == '\r' && i + 1 < text.size() && text[i + 1] == '\n') ++i;
+    if (skip_line_break(text, i)) {
       ++line;
-      line_start = ++i;
+      line_start = i;
     } else if (is_space(c)) {
       ++i;
     } else if (c == '!') {

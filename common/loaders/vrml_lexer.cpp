@@ -2,6 +2,8 @@
 
 #include <zlib.h>
 
+#include "common/loaders/lexical.h"
+
 namespace tessera::vrml {
 namespace {
 
@@ -55,10 +57,9 @@ LexedFile lex_vrml(std::string_view text, const std::string& path) {
   std::size_t i = 0;
   while (i < text.size()) {
     const char c = text[i];
-    if (c == '\n' || c == '\r') {
-      if (c == '\r' && i + 1 < text.size() && text[i + 1] == '\n') ++i;
+    if (skip_line_break(text, i)) {
       ++line;
-      line_start = ++i;
+      line_start = i;
     } else if (is_space(c)) {
       ++i;
     } else if (c == '#') {  // the header is a comment too
