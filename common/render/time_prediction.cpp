@@ -31,9 +31,15 @@ CostProbe probe_render_cost(const PreparedScene& scene, const RenderSettings& se
   CostProbe probe;
   RenderStats stats;
   Rgb value;
+  const std::vector<PixelCoord> order =
+      probe_pixel_order(settings.width, settings.height, budget.max_pixels);
+  // The first rays through a freshly prepared scene pay its page faults and cold caches, which
+  // a worker pays once per job, not per pixel: a few pixels warm them up untimed.
+  constexpr std::size_t kWarmUpPixels = 16;
+  for (std::size_t i = 0; i < std::min(kWarmUpPixels, order.size()); ++i)
+    render_pixels(scene, settings, {&order[i], 1}, 0, {&value, 1}, stats);
   const auto start = std::chrono::steady_clock::now();
-  for (const PixelCoord& pixel :
-       probe_pixel_order(settings.width, settings.height, budget.max_pixels)) {
+  for (const PixelCoord& pixel : order) {
     render_pixels(scene, settings, {&pixel, 1}, 0, {&value, 1}, stats);
     ++probe.pixels;
     probe.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
