@@ -88,6 +88,12 @@ bool Tracer::closest_hit(const Ray& ray, Hit& hit) {
   return found;
 }
 
+std::optional<WorldHit> Tracer::first_hit(const Ray& ray) {
+  Hit hit;
+  if (!closest_hit(ray, hit)) return std::nullopt;
+  return hit.world;
+}
+
 double Tracer::shadow_factor(const Ray& ray, double t_max) {
   ++stats_.shadow_rays;
   const std::vector<Instance>& instances = scene_.instances();

@@ -24,6 +24,9 @@ class Tracer {
   Rgb trace(const Ray& ray, RayKind kind, int depth, double weight, const MediumStack& media,
             SampleStream& rng);
 
+  // The nearest surface along `ray`, for the debug views; nothing when it meets none.
+  std::optional<WorldHit> first_hit(const Ray& ray);
+
  private:
   // `instance` is the object the ray met, which media are keyed on; its surface's material and
   // texture are those of world.object (a child, for a boolean object).

@@ -5,6 +5,7 @@
 #include <vector>
 
 #include "common/loaders/scene_loader.h"
+#include "common/render/debug_views.h"
 #include "common/render/render.h"
 #include "worker/render_cli/options.h"
 #include "worker/render_cli/progress.h"
@@ -26,6 +27,17 @@ int main(int argc, char** argv) {
     const Scene scene = load_scene_file(options.scene_path);
     const PreparedScene prepared(scene, options.settings.bvh);
     if (!options.quiet) print_warnings(scene, prepared);
+    if (options.debug_view != DebugView::None) {
+      std::uint64_t largest = 0;
+      write_image(options.debug_view == DebugView::Normals
+                      ? render_normals(prepared, options.settings)
+                      : render_cost(prepared, options.settings, largest),
+                  options.output_path);
+      if (!options.quiet && options.debug_view == DebugView::Cost)
+        std::printf("wrote %s: white is %llu intersection tests a pixel\n",
+                    options.output_path.c_str(), static_cast<unsigned long long>(largest));
+      return 0;
+    }
     TerminalProgress progress;
     RenderStats stats;
     const Image image = render_image(

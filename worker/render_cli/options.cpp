@@ -28,6 +28,8 @@ const char* const kRenderCliUsage =
     "  --brightness B   multiply the post-normalized image by B, 0..16 (default 1)\n"
     "  --threads T      threads (default: all cores)\n"
     "  --no-bvh         trace without the bounding volume hierarchy (for comparison)\n"
+    "  --debug-view V   writes a debug view instead of the render: normals (the first hit's\n"
+    "                   shading normal as colour) or cost (intersection tests per pixel)\n"
     "  --quiet          no progress or statistics\n";
 
 namespace {
@@ -84,6 +86,13 @@ std::variant<RenderCliOptions, CliHelp, std::string> parse_render_cli(
                 o.settings.time_samples <= kMaxTimeSamples;
        }},
       {"--seed", [&](const std::string& v) { return parse_number(v, o.settings.seed); }},
+      {"--debug-view",
+       [&](const std::string& v) {
+         o.debug_view = v == "normals" ? DebugView::Normals
+                        : v == "cost"  ? DebugView::Cost
+                                       : DebugView::None;
+         return o.debug_view != DebugView::None;
+       }},
       {"--shadows",
        [&](const std::string& v) {
          const std::optional<ShadowMode> mode = parse_shadow_mode(v);

@@ -9,12 +9,15 @@
 
 namespace tessera {
 
+enum class DebugView { None, Normals, Cost };  // common/render/debug_views.h
+
 struct RenderCliOptions {
   std::string scene_path;
   std::string output_path;
   RenderSettings settings;
   int threads = 0;  // 0: all cores
   bool quiet = false;
+  DebugView debug_view = DebugView::None;
 };
 
 struct CliHelp {};  // --help was asked for
