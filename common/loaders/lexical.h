@@ -33,13 +33,26 @@ struct IntegerResult {
 
 IntegerResult parse_integer(std::string_view text);
 
-// If a line break starts at text[i] (LF, CRLF or a lone CR, as old Mac files have), moves `i`
-// past it and returns true, so that errors name the lines editors show.
-inline bool skip_line_break(std::string_view text, std::size_t& i) {
-  if (text[i] != '\n' && text[i] != '\r') return false;
-  if (text[i] == '\r' && i + 1 < text.size() && text[i + 1] == '\n') ++i;
-  ++i;
-  return true;
+// Where a lexer is in its text: the line, and the offset where that line starts, for the
+// line and column of each token. Lines end at LF, CRLF or a lone CR (old Mac files), so that
+// errors name the lines editors show.
+struct LineCursor {
+  int line = 1;
+  std::size_t line_start = 0;
+  int column(std::size_t offset) const { return static_cast<int>(offset - line_start) + 1; }
+  // If a line break starts at text[i], moves `i` past it onto the next line and returns true.
+  bool skip_line_break(std::string_view text, std::size_t& i) {
+    if (text[i] != '\n' && text[i] != '\r') return false;
+    if (text[i] == '\r' && i + 1 < text.size() && text[i + 1] == '\n') ++i;
+    ++line;
+    line_start = ++i;
+    return true;
+  }
+};
+
+// Moves `i` to the line break (or the end of the text) that ends its line: past a comment.
+inline void skip_to_line_end(std::string_view text, std::size_t& i) {
+  while (i < text.size() && text[i] != '\n' && text[i] != '\r') ++i;
 }
 
 // ASCII lower case (SDL keywords and macro names are case-insensitive).

@@ -19,15 +19,25 @@ namespace {
 
 void identity_affine(FileParser& p) { p.ct() = Affine::identity(); }
 
-void rotate(FileParser& p) {
+// <angle> <ux> <uy> <uz>, shared by rotate and mbRotate: an error at <ux> when the axis is
+// zero, with `axis_hint` after the message.
+struct AxisRotation {
+  double degrees;
+  Vec3 axis;
+  Affine rotation;
+};
+
+AxisRotation read_rotation(FileParser& p, const char* axis_hint) {
   const double degrees = p.number("<angle>");
   const Number ux = p.read_number("<ux>");
-  const double uy = p.number("<uy>");
-  const double uz = p.number("<uz>");
-  const std::optional<Affine> rotation = Affine::rotation(degrees, {ux.value, uy, uz});
-  if (!rotation) p.fail(ux.token, "'rotate' needs a non-zero axis <ux> <uy> <uz>");
-  p.ct() = p.ct() * *rotation;
+  const Vec3 axis{ux.value, p.number("<uy>"), p.number("<uz>")};
+  const std::optional<Affine> rotation = Affine::rotation(degrees, axis);
+  if (!rotation)
+    p.fail(ux.token, "'" + std::string(p.keyword_name()) + "' needs a non-zero axis" + axis_hint);
+  return {degrees, axis, *rotation};
 }
+
+void rotate(FileParser& p) { p.ct() = p.ct() * read_rotation(p, " <ux> <uy> <uz>").rotation; }
 
 void translate(FileParser& p) {
   p.ct() = p.ct() * Affine::translation(p.vec3("<dx>", "<dy>", "<dz>"));
@@ -54,12 +64,9 @@ void pop(FileParser& p) { p.pop_ct(); }
 void mb_clear(FileParser& p) { p.motion() = {}; }
 
 void mb_rotate(FileParser& p) {
-  const double degrees = p.number("<angle>");
-  const Number ux = p.read_number("<ux>");
-  const Vec3 axis{ux.value, p.number("<uy>"), p.number("<uz>")};
-  if (!Affine::rotation(degrees, axis)) p.fail(ux.token, "'mbRotate' needs a non-zero axis");
-  p.motion().motion.angle_degrees = degrees;
-  p.motion().motion.axis = axis;
+  const AxisRotation r = read_rotation(p, "");
+  p.motion().motion.angle_degrees = r.degrees;
+  p.motion().motion.axis = r.axis;
 }
 
 void mb_translate(FileParser& p) { p.motion().motion.translation = p.vec3("<dx>", "<dy>", "<dz>"); }

@@ -51,31 +51,27 @@ LexedFile lex_vrml(std::string_view text, const std::string& path) {
   }
   LexedFile out;
   out.path = path;
-  int line = 1;
-  std::size_t line_start = 0;
-  const auto column = [&](std::size_t offset) { return static_cast<int>(offset - line_start) + 1; };
+  LineCursor at;
   std::size_t i = 0;
   while (i < text.size()) {
     const char c = text[i];
-    if (skip_line_break(text, i)) {
-      ++line;
-      line_start = i;
-    } else if (is_space(c)) {
+    if (at.skip_line_break(text, i)) continue;
+    if (is_space(c)) {
       ++i;
     } else if (c == '#') {  // the header is a comment too
-      while (i < text.size() && text[i] != '\n' && text[i] != '\r') ++i;
+      skip_to_line_end(text, i);
     } else if (is_punct(c)) {
-      out.tokens.push_back({Token::Kind::Punct, std::string(1, c), line, column(i)});
+      out.tokens.push_back({Token::Kind::Punct, std::string(1, c), at.line, at.column(i)});
       ++i;
     } else if (c == '"') {
-      Token token{Token::Kind::String, "", line, column(i)};
+      Token token{Token::Kind::String, "", at.line, at.column(i)};
       ++i;
       for (;;) {
         if (i == text.size())
           throw SceneError({path, token.line, token.column}, "unterminated string");
         if (text[i] == '"') break;
         if (text[i] == '\\' && i + 1 < text.size()) ++i;  // \" and \\ (§5.3.13)
-        if (text[i] == '\n') ++line, line_start = i + 1;
+        if (text[i] == '\n') ++at.line, at.line_start = i + 1;
         token.text += text[i++];
       }
       ++i;
@@ -85,12 +81,12 @@ LexedFile lex_vrml(std::string_view text, const std::string& path) {
       while (i < text.size() && !is_space(text[i]) && !is_punct(text[i]) && text[i] != '#' &&
              text[i] != '"')
         ++i;
-      out.tokens.push_back(
-          {Token::Kind::Word, std::string(text.substr(begin, i - begin)), line, column(begin)});
+      out.tokens.push_back({Token::Kind::Word, std::string(text.substr(begin, i - begin)), at.line,
+                            at.column(begin)});
     }
   }
-  out.end_line = line;
-  out.end_column = column(text.size());
+  out.end_line = at.line;
+  out.end_column = at.column(text.size());
   return out;
 }
 
