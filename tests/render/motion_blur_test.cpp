@@ -1,6 +1,7 @@
 // Motion blur in rendered pixels (§4.5): a moving emissive sphere covers a pixel for the share
 // of the shutter it spends there; shadow feelers see occluders where the camera ray's time puts
-// them; a zero-length shutter is a still render; the BVH never culls a fast object.
+// them; a zero-length shutter is a still render; the BVH never culls a fast object; a moving
+// child of a boolean object moves within it.
 #include <gtest/gtest.h>
 
 #include "common/loaders/sdl_loader.h"
@@ -98,6 +99,54 @@ TEST(MotionBlur, TheBvhNeverCullsAFastObject) {
   // And the same pixels from 1 thread or 2.
   s.bvh = BvhMode::Sah;
   EXPECT_EQ(render(scene, s, nullptr, 2), with_bvh);
+}
+
+// A red slab whose front face (z = 1) faces the camera, minus a green ball of radius 0.5
+// centred on that face and moving 4 units along x during the frame: the centre pixel looks
+// into the hole, at the ball's far wall, while |4 t| < 0.5.
+Scene slab_with_moving_hole(double distance) {
+  return load_text(
+      "eyePoint 0 0 100 viewPoint 0 0 0 viewAngle 2 background 0 0 0\n"
+      "ambient 0 0 0 diffuse 0 0 0\n"
+      "difference\n"
+      "  push emissive 1 0 0 scale 3 3 1 cube pop\n"
+      "  mbTranslate " +
+      std::to_string(distance) +
+      " 0 0 mbEnable push emissive 0 1 0 translate 0 0 1 scale 0.5 0.5 0.5 sphere pop\n");
+}
+
+TEST(MotionBlur, AMovingChildOfABooleanObjectCutsItsHoleWhereItIsAtEachTime) {
+  const Image image = render(slab_with_moving_hole(4), blur_settings());
+  const Rgb centre = image.get(kCentre, kCentre);
+  // A quarter of the shutter in the hole (the ball's inside, green), the rest on the slab.
+  EXPECT_NEAR(centre.g, 0.25, 2.0 / kTimes);
+  EXPECT_NEAR(centre.r, 0.75, 2.0 / kTimes);
+  EXPECT_NEAR(centre.r + centre.g, 1.0, 1e-6);  // never the background: no hole through the slab
+  EXPECT_EQ(centre.b, 0.0);
+  // Still, the pixel looks into the hole all the time.
+  const Image still = render(slab_with_moving_hole(0), blur_settings());
+  EXPECT_EQ(still.get(kCentre, kCentre).g, 1.0f);
+  EXPECT_EQ(still.get(kCentre, kCentre).r, 0.0f);
+}
+
+TEST(MotionBlur, TheBvhBoundsABooleanObjectOverItsChildsWholeSweep) {
+  // A still ball at the origin united with one that sweeps 12 units along x: pixels far to the
+  // right see only the moving child, at the end of the frame.
+  const Scene scene = load_text(
+      "eyePoint 0 0 40 viewPoint 0 0 0 viewAngle 8.6 background 0 0 0\n"
+      "ambient 0 0 0 diffuse 0 0 0 emissive 1 1 1\n"
+      "union sphere mbTranslate 12 0 0 mbEnable sphere\n"
+      "push translate -8 0 0 sphere pop\n");  // a third object, so that the BVH has a tree
+  RenderSettings s = settings(48, 16);
+  s.time_samples = 8;
+  const Image with_bvh = render(scene, s);
+  // The image spans x in [-9, 9] at the balls' distance; the moving ball reaches x = 6 at the
+  // end of the frame, so the right quarter (x > 4.5) sees it for part of the shutter.
+  double right_side = 0;
+  for (int x = 36; x < 48; ++x) right_side += with_bvh.get(x, 8).r;
+  EXPECT_GT(right_side, 0.0);
+  s.bvh = BvhMode::None;
+  EXPECT_EQ(render(scene, s), with_bvh);
 }
 
 }  // namespace
