@@ -45,6 +45,8 @@ BENCHMARK_CAPTURE(render_scene, image_texture, "features/image_texture.sdl", Bvh
     ->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(render_scene, csg, "features/csg.sdl", BvhMode::Sah, 1)
     ->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(render_scene, torus, "features/torus.sdl", BvhMode::Sah, 1)
+    ->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace tessera

@@ -20,21 +20,13 @@
 #include <vector>
 
 #include "common/geometry/algebraic_surfaces.h"
+#include "common/geometry/root_hits.h"
 #include "common/geometry/shapes.h"
 #include "common/math/float_error.h"
 
 namespace tessera {
 
 namespace {
-
-struct AlgebraicRoots {
-  struct Entry {
-    LocalHit hit;
-    bool touching = false;
-  };
-  Entry entries[kMaxPolynomialDegree];
-  int count = 0;
-};
 
 LocalHit surface_hit(ImplicitPolynomial f, const Vec3& root_point, const Vec3& u) {
   LocalHit hit;
@@ -69,17 +61,18 @@ LocalHit surface_hit(ImplicitPolynomial f, const Vec3& root_point, const Vec3& u
   return hit;
 }
 
-// Every root with t in (t_min, t_max), ascending, as hits.
-AlgebraicRoots algebraic_roots(const AlgebraicSurface& shape, const Ray& ray, double t_min,
-                               double t_max) {
-  AlgebraicRoots out;
+// The roots with t in (t_min, t_max), ascending, as hits handed to take(hit, touching) until it
+// returns false (see visit_torus_hits).
+template <class Take>
+void visit_algebraic_hits(const AlgebraicSurface& shape, const Ray& ray, double t_min, double t_max,
+                          const Take& take) {
   const Vec3& o = ray.origin;
   const Vec3& d = ray.direction;
   const double dd = dot(d, d);
   t_min = std::max(t_min, 0.0);
   if (!is_finite(o) || !is_finite(d) || !(dd > 0) || !std::isfinite(dd) || !(t_min < t_max) ||
       !std::isfinite(t_max))
-    return out;
+    return;
 
   const ImplicitPolynomial f = algebraic_polynomial(shape.kind);
   const double len = std::sqrt(dd);
@@ -88,19 +81,16 @@ AlgebraicRoots algebraic_roots(const AlgebraicSurface& shape, const Ray& ray, do
   const Vec3 near = o + d * t0;
   const Polynomial along = along_line(f, near, u);
 
-  PolynomialRoot roots[kMaxPolynomialDegree];
-  const int n = real_roots(along, (t_min - t0) * len, (t_max - t0) * len, roots);
-  for (int i = 0; i < n; ++i) {
-    const double s = roots[i].x;
-    const double t = t0 + s / len;
-    if (!(t > t_min && t < t_max)) continue;
-    LocalHit hit = surface_hit(f, near + u * s, u);
+  const auto at_root = [&](const PolynomialRoot& root) {
+    const double t = t0 + root.x / len;
+    if (!(t > t_min && t < t_max)) return true;
+    LocalHit hit = surface_hit(f, near + u * root.x, u);
     // Within a few error bounds of the origin: the surface the ray is leaving.
-    if (!(t * len > 4 * length(hit.point_error))) continue;
+    if (!(t * len > 4 * length(hit.point_error))) return true;
     hit.t = t;
-    out.entries[out.count++] = {hit, roots[i].touching};
-  }
-  return out;
+    return take(hit, root.touching);
+  };
+  visit_real_roots(along, (t_min - t0) * len, (t_max - t0) * len, at_root);
 }
 
 }  // namespace
@@ -130,22 +120,14 @@ Bounds3 algebraic_extent(const AlgebraicSurface& shape, const Affine& to_world) 
 
 bool intersect_algebraic(const AlgebraicSurface& shape, const Ray& ray, double t_min, double t_max,
                          LocalHit& hit) {
-  const AlgebraicRoots roots = algebraic_roots(shape, ray, t_min, t_max);
-  if (roots.count == 0) return false;
-  hit = roots.entries[0].hit;
-  return true;
+  return nearest_root_hit(
+      [&](const auto& take) { visit_algebraic_hits(shape, ray, t_min, t_max, take); }, hit);
 }
 
 std::vector<LocalHit> algebraic_crossings(const AlgebraicSurface& shape, const Ray& ray,
                                           double t_min, double t_max) {
-  const AlgebraicRoots roots = algebraic_roots(shape, ray, t_min, t_max);
-  std::vector<LocalHit> crossings;
-  for (int i = 0; i < roots.count; ++i) {
-    crossings.push_back(roots.entries[i].hit);
-    // A touching root enters and leaves at once (see torus_crossings).
-    if (roots.entries[i].touching) crossings.push_back(roots.entries[i].hit);
-  }
-  return crossings;
+  return root_crossings(
+      [&](const auto& take) { visit_algebraic_hits(shape, ray, t_min, t_max, take); });
 }
 
 }  // namespace tessera

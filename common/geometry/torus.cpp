@@ -9,7 +9,7 @@
 //    ((rho - R)^2 + z^2 - r^2) ((rho + R)^2 + z^2 - r^2), which does not cancel near the tube;
 //  - its roots are isolated and polished by bracketing (common/math/polynomial.h) on the
 //    ray's span through the bounding box, so grazing rays get a touching root rather than
-//    nothing or garbage;
+//    nothing or garbage; a ray that needs only the nearest hit stops the search there;
 //  - each hit is re-projected onto the nearest generating circle of its meridian plane (the
 //    circle around +R, or around -R for the inner "lemon" of a spindle torus), whose normal is
 //    the torus' gradient direction; points on the axis (the horn torus' pinch, the spindle's
@@ -20,6 +20,7 @@
 #include <cmath>
 #include <vector>
 
+#include "common/geometry/root_hits.h"
 #include "common/geometry/shapes.h"
 #include "common/math/float_error.h"
 #include "common/math/polynomial.h"
@@ -27,15 +28,6 @@
 namespace tessera {
 
 namespace {
-
-struct TorusRoots {
-  struct Entry {
-    LocalHit hit;
-    bool touching = false;
-  };
-  Entry entries[kMaxPolynomialDegree];
-  int count = 0;
-};
 
 // Entry and exit of the ray through the box [-e, e]^2 x [-h, h]; false when it misses.
 bool box_span(const Vec3& o, const Vec3& d, double e, double h, double& t_enter, double& t_exit) {
@@ -91,21 +83,23 @@ LocalHit surface_hit(double big_r, double r, const Vec3& p, const Vec3& u) {
   return hit;
 }
 
-// Every root of the ray's quartic with t in (0, t_max), ascending, as hits.
-TorusRoots torus_roots(const Torus& torus, const Ray& ray, double t_max) {
-  TorusRoots out;
+// The roots of the ray's quartic with t in (0, t_max), ascending, as hits handed to
+// take(hit, touching) until it returns false: the search stops there, so a caller that needs
+// only the first hit pays only for it.
+template <class Take>
+void visit_torus_hits(const Torus& torus, const Ray& ray, double t_max, const Take& take) {
   const double big_r = torus.torus_radius, r = torus.tube_radius;
   const Vec3& o = ray.origin;
   const Vec3& d = ray.direction;
   const double dd = dot(d, d);
-  if (!is_finite(o) || !is_finite(d) || !(dd > 0) || !std::isfinite(dd) || !(t_max > 0)) return out;
+  if (!is_finite(o) || !is_finite(d) || !(dd > 0) || !std::isfinite(dd) || !(t_max > 0)) return;
 
   // The span through the box, padded so that it certainly holds the rounded surface.
   double t_enter = 0, t_exit = 0;
   const double pad = 1 + 1e-9;
-  if (!box_span(o, d, (big_r + r) * pad, r * pad, t_enter, t_exit)) return out;
+  if (!box_span(o, d, (big_r + r) * pad, r * pad, t_enter, t_exit)) return;
   const double t_lo = std::max(t_enter, 0.0), t_hi = std::min(t_exit, t_max);
-  if (!(t_lo < t_hi)) return out;
+  if (!(t_lo < t_hi)) return;
 
   // The frame: origin at the line's point nearest the centre, unit direction; s = (t - t0) |d|.
   const double len = std::sqrt(dd);
@@ -113,10 +107,27 @@ TorusRoots torus_roots(const Torus& torus, const Ray& ray, double t_max) {
   const double t0 = -dot(o, d) / dd;
   const Vec3 f = o + d * t0;
 
+  const double s_lo = (t_lo - t0) * len, s_hi = (t_hi - t0) * len;
+
+  // The tube lies between the cylinders of radius R - r and R + r about the axis. A ray that
+  // stays outside the outer one, or (ring tori) inside the inner one, over its span through
+  // the box misses; the squared distance from the axis is convex along the ray, so its least
+  // value over the span is at the clamped vertex and its greatest at an end.
+  const double P = u.x * u.x + u.y * u.y, Q = f.x * u.x + f.y * u.y;
+  const auto axis_distance2 = [&](double s) {
+    const double x = f.x + u.x * s, y = f.y + u.y * s;
+    return x * x + y * y;
+  };
+  const double pad2 = pad * pad;
+  const double s_nearest = P > 0 ? std::clamp(-Q / P, s_lo, s_hi) : s_lo;
+  if (axis_distance2(s_nearest) > (big_r + r) * (big_r + r) * pad2) return;
+  if (big_r > r &&
+      std::max(axis_distance2(s_lo), axis_distance2(s_hi)) < (big_r - r) * (big_r - r) / pad2)
+    return;
+
   // F(f + s u) = (A s^2 + B s + C)^2 - 4 R^2 (P s^2 + 2 Q s + S).
   const double big_r2 = big_r * big_r;
   const double A = dot(u, u), B = 2 * dot(f, u), C = dot(f, f) + big_r2 - r * r;
-  const double P = u.x * u.x + u.y * u.y, Q = f.x * u.x + f.y * u.y;
   const double rho = std::hypot(f.x, f.y);
   Polynomial quartic;
   quartic.degree = 4;
@@ -127,40 +138,27 @@ TorusRoots torus_roots(const Torus& torus, const Ray& ray, double t_max) {
   quartic.c[0] = ((rho - big_r) * (rho - big_r) + f.z * f.z - r * r) *
                  ((rho + big_r) * (rho + big_r) + f.z * f.z - r * r);
 
-  PolynomialRoot roots[kMaxPolynomialDegree];
-  const int n = real_roots(quartic, (t_lo - t0) * len, (t_hi - t0) * len, roots);
-  for (int i = 0; i < n; ++i) {
-    const double s = roots[i].x;
-    const double t = t0 + s / len;
-    if (!(t > 0 && t < t_max)) continue;
-    LocalHit hit = surface_hit(big_r, r, f + u * s, u);
+  const auto at_root = [&](const PolynomialRoot& root) {
+    const double t = t0 + root.x / len;
+    if (!(t > 0 && t < t_max)) return true;
+    LocalHit hit = surface_hit(big_r, r, f + u * root.x, u);
     // Within a few error bounds of the origin: the surface the ray is leaving.
-    if (!(t * len > 4 * length(hit.point_error))) continue;
+    if (!(t * len > 4 * length(hit.point_error))) return true;
     hit.t = t;
-    out.entries[out.count++] = {hit, roots[i].touching};
-  }
-  return out;
+    return take(hit, root.touching);
+  };
+  visit_real_roots(quartic, s_lo, s_hi, at_root);
 }
 
 }  // namespace
 
 bool intersect_torus(const Torus& torus, const Ray& ray, double t_max, LocalHit& hit) {
-  const TorusRoots roots = torus_roots(torus, ray, t_max);
-  if (roots.count == 0) return false;
-  hit = roots.entries[0].hit;
-  return true;
+  return nearest_root_hit([&](const auto& take) { visit_torus_hits(torus, ray, t_max, take); },
+                          hit);
 }
 
 std::vector<LocalHit> torus_crossings(const Torus& torus, const Ray& ray, double t_max) {
-  const TorusRoots roots = torus_roots(torus, ray, t_max);
-  std::vector<LocalHit> crossings;
-  for (int i = 0; i < roots.count; ++i) {
-    crossings.push_back(roots.entries[i].hit);
-    // A touching root enters and leaves at once: twice, so that counting crossings still
-    // tells inside from outside.
-    if (roots.entries[i].touching) crossings.push_back(roots.entries[i].hit);
-  }
-  return crossings;
+  return root_crossings([&](const auto& take) { visit_torus_hits(torus, ray, t_max, take); });
 }
 
 }  // namespace tessera

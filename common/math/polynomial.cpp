@@ -118,40 +118,60 @@ double evaluation_error(const Polynomial& p, double x) {
   return gamma_bound(2 * p.degree + 1) * v;
 }
 
-int real_roots(const Polynomial& p_in, double lo, double hi,
-               PolynomialRoot roots[kMaxPolynomialDegree]) {
+bool visit_real_roots(const Polynomial& p_in, double lo, double hi, RootVisitor visit) {
   Polynomial p = p_in;
   p.degree = effective_degree(p_in);
-  if (p.degree == 0 || !(lo < hi)) return 0;
-  if (p.degree <= 2) return low_degree_roots(p, lo, hi, roots);
+  if (p.degree == 0 || !(lo < hi)) return true;
+  if (p.degree <= 2) {
+    PolynomialRoot roots[kMaxPolynomialDegree];
+    const int n = low_degree_roots(p, lo, hi, roots);
+    for (int i = 0; i < n; ++i)
+      if (!visit(roots[i])) return false;
+    return true;
+  }
   const Polynomial dp = derivative(p);
 
-  // The split points: lo, the derivative's roots (p's extrema and inflections), hi.
-  double xs[kMaxPolynomialDegree + 1];
-  double values[kMaxPolynomialDegree + 1];
-  PolynomialRoot critical[kMaxPolynomialDegree];
-  const int n_critical = p.degree >= 2 ? real_roots(dp, lo, hi, critical) : 0;
-  const int n_points = n_critical + 2;
-  xs[0] = lo;
-  for (int i = 0; i < n_critical; ++i) xs[i + 1] = critical[i].x;
-  xs[n_points - 1] = hi;
-  for (int i = 0; i < n_points; ++i) {
-    values[i] = evaluate(p, xs[i]);
-    // An interior split point whose value is lost in rounding is a root: p touches zero there
-    // (or crosses it at an inflection), and its neighbours must not report it a second time.
-    if (i > 0 && i < n_points - 1 && std::fabs(values[i]) <= evaluation_error(p, xs[i]))
-      values[i] = 0;
-  }
+  // The split points, in order: lo, the derivative's roots (p's extrema and inflections) as they
+  // are found, hi. Each piece between two of them is monotone and holds a root when p changes
+  // sign across it. An interior split point whose value is lost in rounding is itself a root: p
+  // touches zero there (or crosses it at an inflection); whether it touches is known once the
+  // next split point's value is, so it is handed on then, before that piece's own root.
+  double x_before = lo, value_before = evaluate(p, lo);
+  bool zero_pending = false;
+  double value_before_zero = 0;
+  const auto split_at = [&](double x, double value, bool interior) {
+    if (zero_pending) {
+      zero_pending = false;
+      if (!visit({x_before, sign(value_before_zero) * sign(value) > 0})) return false;
+    }
+    if (sign(value_before) * sign(value) < 0 &&
+        !visit({bracketed_root(p, dp, x_before, x, value_before), false}))
+      return false;
+    if (interior && value == 0) {
+      zero_pending = true;
+      value_before_zero = value_before;
+    }
+    x_before = x;
+    value_before = value;
+    return true;
+  };
+  const auto at_critical_point = [&](const PolynomialRoot& critical) {
+    double value = evaluate(p, critical.x);
+    if (std::fabs(value) <= evaluation_error(p, critical.x)) value = 0;
+    return split_at(critical.x, value, true);
+  };
+  if (!visit_real_roots(dp, lo, hi, at_critical_point)) return false;
+  return split_at(hi, evaluate(p, hi), false);
+}
 
+int real_roots(const Polynomial& p, double lo, double hi,
+               PolynomialRoot roots[kMaxPolynomialDegree]) {
   int count = 0;
-  for (int i = 0; i < n_points; ++i) {
-    if (i > 0 && i < n_points - 1 && values[i] == 0) {
-      roots[count++] = {xs[i], sign(values[i - 1]) * sign(values[i + 1]) > 0};
-    }
-    if (i + 1 < n_points && sign(values[i]) * sign(values[i + 1]) < 0) {
-      roots[count++] = {bracketed_root(p, dp, xs[i], xs[i + 1], values[i]), false};
-    }
-  }
+  const auto keep = [&](const PolynomialRoot& root) {
+    roots[count++] = root;
+    return true;
+  };
+  visit_real_roots(p, lo, hi, keep);
   return count;
 }
 

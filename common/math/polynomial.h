@@ -36,9 +36,31 @@ struct PolynomialRoot {
   bool touching = false;  // the polynomial does not change sign there (even multiplicity)
 };
 
-// The real roots of p in the open interval (lo, hi), ascending; returns how many (at most
-// p.degree). lo and hi must be finite. A polynomial that is zero everywhere has no isolated
-// roots, and none are reported.
+// Receives roots one at a time; returns false to end the search. (A non-owning reference to a
+// callable, so that the recursion through the derivatives needs no templates or allocation.)
+class RootVisitor {
+ public:
+  template <class F>
+  RootVisitor(const F& f)  // NOLINT(google-explicit-constructor): lambdas convert where passed
+      : context_(&f), call_([](const void* c, const PolynomialRoot& r) {
+          return (*static_cast<const F*>(c))(r);
+        }) {}
+  bool operator()(const PolynomialRoot& root) const { return call_(context_, root); }
+
+ private:
+  const void* context_;
+  bool (*call_)(const void*, const PolynomialRoot&);
+};
+
+// The real roots of p in the open interval (lo, hi), ascending, each handed to `visit` as soon
+// as it is found; returns false when `visit` ended the search. Roots beyond the one that ends
+// it are never computed, nor are the critical points beyond it, so asking for the first root
+// costs less than asking for all. lo and hi must be finite. A polynomial that is zero
+// everywhere has no isolated roots, and none are reported.
+bool visit_real_roots(const Polynomial& p, double lo, double hi, RootVisitor visit);
+
+// Every real root of p in (lo, hi), ascending, as visit_real_roots finds them; returns how many
+// (at most p.degree).
 int real_roots(const Polynomial& p, double lo, double hi,
                PolynomialRoot roots[kMaxPolynomialDegree]);
 

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <initializer_list>
 #include <random>
+#include <vector>
 
 #include "common/math/float_error.h"
 
@@ -107,6 +108,35 @@ TEST(Polynomial, DoubleRootsAreOneTouchingRoot) {
   ASSERT_EQ(real_roots(from_roots({0.5, 0.5, 0.5}), -1, 1, roots), 1);
   EXPECT_NEAR(roots[0].x, 0.5, 1e-5);
   EXPECT_FALSE(roots[0].touching);
+}
+
+// A visitor that ends the search gets no further root, and the roots it does get are the
+// ones real_roots lists, touching flags included, in the same order.
+TEST(Polynomial, VisitingStopsWhereTheVisitorSays) {
+  PolynomialRoot all[kMaxPolynomialDegree];
+  for (const Polynomial& p : {from_roots({-1.5, -0.5, 0.5, 1.5}), from_roots({-2, 0.3, 0.3, 4}),
+                              from_roots({0.25, 0.25, 3}), from_roots({-1, 2, 7})}) {
+    const int n = real_roots(p, -10, 10, all);
+    ASSERT_GT(n, 1);
+    for (int wanted = 1; wanted <= n; ++wanted) {
+      std::vector<PolynomialRoot> seen;
+      const auto take = [&](const PolynomialRoot& root) {
+        seen.push_back(root);
+        return static_cast<int>(seen.size()) < wanted;
+      };
+      EXPECT_EQ(visit_real_roots(p, -10, 10, take), false);
+      ASSERT_EQ(static_cast<int>(seen.size()), wanted);
+      for (int i = 0; i < wanted; ++i) {
+        EXPECT_EQ(seen[i].x, all[i].x);
+        EXPECT_EQ(seen[i].touching, all[i].touching);
+      }
+    }
+    // A visitor that never stops sees them all, and the search says it ran to the end.
+    int count = 0;
+    const auto every = [&](const PolynomialRoot&) { return ++count > 0; };
+    EXPECT_TRUE(visit_real_roots(p, -10, 10, every));
+    EXPECT_EQ(count, n);
+  }
 }
 
 // Close pairs x = c +- w: resolved to their conditioning, about eps / w, down to the point
