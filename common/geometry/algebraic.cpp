@@ -20,7 +20,7 @@
 #include <vector>
 
 #include "common/geometry/algebraic_surfaces.h"
-#include "common/geometry/root_hits.h"
+#include "common/geometry/ordered_hits.h"
 #include "common/geometry/shapes.h"
 #include "common/math/float_error.h"
 
@@ -120,13 +120,13 @@ Bounds3 algebraic_extent(const AlgebraicSurface& shape, const Affine& to_world) 
 
 bool intersect_algebraic(const AlgebraicSurface& shape, const Ray& ray, double t_min, double t_max,
                          LocalHit& hit) {
-  return nearest_root_hit(
+  return nearest_ordered_hit(
       [&](const auto& take) { visit_algebraic_hits(shape, ray, t_min, t_max, take); }, hit);
 }
 
 std::vector<LocalHit> algebraic_crossings(const AlgebraicSurface& shape, const Ray& ray,
                                           double t_min, double t_max) {
-  return root_crossings(
+  return ordered_crossings(
       [&](const auto& take) { visit_algebraic_hits(shape, ray, t_min, t_max, take); });
 }
 

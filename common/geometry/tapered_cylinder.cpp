@@ -13,36 +13,25 @@
 //    beyond its first-order error bound, so a ray leaving the wall never re-hits it at t ~ 0;
 //  - the wall point is re-projected radially onto the wall (its error is then the rounding of
 //    the projection alone), and the apex of a cone gets a finite point and normal;
-//  - cap distances (h - o_z) / d_z have an exact sign, and the cap point's z is exact.
+//  - cap distances (h - o_z) / d_z have an exact sign, and the cap point's z is exact;
+//  - the crossings are the ends of the spans where the ray is both within the wall's radius
+//    (the quadric x^2 + y^2 <= w(z)^2) and between the caps' planes, so where a ray meets a
+//    rim exactly one of wall and cap is reported, never both or neither: crossings come in
+//    pairs and a boolean object counts inside and outside right. The nearest hit is the first
+//    of those crossings, so both come from the same arithmetic.
 // point_error bounds the distance from the point to the surface (pbrt's convention): the
 // position along the surface, which o + t d computes less accurately for a far origin, is not
 // part of it.
 #include <algorithm>
 #include <cmath>
 
+#include "common/geometry/ordered_hits.h"
 #include "common/geometry/shapes.h"
 #include "common/math/float_error.h"
 
 namespace tessera {
 
 namespace {
-
-// Where accepted hits go: the nearest so far, or every one (for CSG).
-struct Candidate {
-  double t = kInfinity;  // hits must be nearer than this
-  LocalHit hit;
-  std::vector<LocalHit>* all = nullptr;  // when set, every hit with t < t is kept here
-
-  // Keeps `h`: as the nearest so far (callers only offer hits nearer than t), or among all.
-  void take(const LocalHit& h) {
-    if (all != nullptr) {
-      all->push_back(h);
-      return;
-    }
-    hit = h;
-    t = h.t;
-  }
-};
 
 // Entry and exit of the ray through [-r, r]^2 x [0, 1]; false when it misses.
 bool box_span(const Vec3& o, const Vec3& d, double r, double& t_enter, double& t_exit) {
@@ -61,16 +50,10 @@ bool box_span(const Vec3& o, const Vec3& d, double r, double& t_enter, double& t
   return t_enter <= t_exit;
 }
 
-// Completes a wall hit at t = shift + t' when it is nearer than `best` and its z is in [0, 1]:
-// the point is re-projected radially onto the wall; the apex of a cone gets a finite point and
-// normal.
-bool accept_wall_hit(double k, const Vec3& o, const Vec3& d, double shift, double t_local,
-                     Candidate& best) {
-  const double t = shift + t_local;
-  if (!(t < best.t)) return false;
-  const double z = o.z + t_local * d.z;
-  if (!(z >= 0 && z <= 1)) return false;
-
+// The wall hit at t = shift + t' of the ray o + t' d: the point re-projected radially onto the
+// wall; the apex of a cone gets a finite point and normal.
+LocalHit wall_hit(double k, const Vec3& o, const Vec3& d, double shift, double t_local) {
+  const double z = std::clamp(o.z + t_local * d.z, 0.0, 1.0);
   const double x = o.x + t_local * d.x, y = o.y + t_local * d.y;
   const double w = 1 + k * z;
   const double h = std::sqrt(x * x + y * y);
@@ -92,31 +75,66 @@ bool accept_wall_hit(double k, const Vec3& o, const Vec3& d, double shift, doubl
     hit.point_error = {radius_error + std::fabs(w), radius_error + std::fabs(w), 0};
     hit.normal = {0, 0, k < 0 ? 1.0 : -1.0};
   }
-  hit.t = t;
+  hit.t = shift + t_local;
   hit.shading_normal = hit.normal;
   hit.part = 0;
-  best.take(hit);
-  return true;
+  return hit;
 }
 
-// The nearest wall hit (or every one) with shift + t' in (0, best.t), for the ray o + t' d.
-void intersect_wall(double k, const Vec3& o, const Vec3& d, double shift, Candidate& best) {
+// The cap hit at t in the plane z = height (part 1 at z = 0, 2 at z = 1).
+LocalHit cap_hit(double height, const Vec3& o, const Vec3& d, double t) {
+  const double x = o.x + t * d.x, y = o.y + t * d.y;
+  LocalHit hit;
+  hit.t = t;
+  hit.point = {x, y, height};
+  hit.point_error = {gamma_bound(3) * std::fabs(x), gamma_bound(3) * std::fabs(y), 0};
+  hit.normal = {0, 0, height > 0 ? 1.0 : -1.0};
+  hit.shading_normal = hit.normal;
+  hit.part = height > 0 ? 2 : 1;
+  return hit;
+}
+
+// One end of a span: where along the ray, whether it may be reported (a wall root within its
+// error bound of the origin is the surface the ray leaves), and which surface it lies on.
+struct SpanEnd {
+  double t = 0;  // in the ray's own parameter
+  bool reportable = false;
+  enum class Surface { Wall, Cap } surface = Surface::Wall;
+};
+
+// Where the ray o + t' d (t = shift + t') is within the wall's radius, x^2 + y^2 <= w(z)^2:
+// the quadric's value a t'^2 + 2 b t' + c is <= 0 on one span, on two half-lines (a < 0: the
+// ray is steeper than the wall, and also meets the mirrored nappe), on the whole line or
+// nowhere. Unbounded ends are infinite.
+struct WallSpans {
+  SpanEnd lo[2], hi[2];
+  int count = 0;
+};
+
+WallSpans wall_spans(double k, const Vec3& o, const Vec3& d, double shift) {
   const double w0 = 1 + k * o.z;
   const double wd = k * d.z;
-  // A t^2 + 2 B t + C = 0.
   const double a = d.x * d.x + d.y * d.y - wd * wd;
   const double b = o.x * d.x + o.y * d.y - w0 * wd;
   const double c = o.x * o.x + o.y * o.y - w0 * w0;
   const double disc = b * b - a * c;
-  if (!(disc >= 0)) return;
+  WallSpans spans;
+  const SpanEnd minus_infinity{-kInfinity, false}, plus_infinity{kInfinity, false};
+  const auto add = [&](const SpanEnd& lo, const SpanEnd& hi) {
+    spans.lo[spans.count] = lo;
+    spans.hi[spans.count++] = hi;
+  };
+  if (!(disc >= 0)) {
+    if (a < 0) add(minus_infinity, plus_infinity);  // always within the radius
+    return spans;
+  }
   const double root = std::sqrt(disc);
   const double q = b < 0 ? root - b : -(b + root);
   if (q == 0) {
-    // b = disc = 0: a double root at t' = 0 when c = 0 and a != 0. With the origin moved to
-    // the box, that is a ray entering exactly at the cone's apex; otherwise the ray starts on
-    // the wall. (a = b = c = 0 is a ray lying in the wall: no single hit point.)
-    if (c == 0 && a != 0 && shift > 0) accept_wall_hit(k, o, d, shift, 0, best);
-    return;
+    // b = disc = 0, so a c = 0: a constant value c (a = 0), or a double root at t' = 0 (c = 0),
+    // within the radius there alone (a > 0: only touching, no span) or everywhere (a < 0).
+    if ((a == 0 && c <= 0) || a < 0) add(minus_infinity, plus_infinity);
+    return spans;
   }
 
   // First-order error bounds of the coefficients and of the two roots.
@@ -133,6 +151,7 @@ void intersect_wall(double k, const Vec3& o, const Vec3& d, double shift, Candid
       std::min(std::sqrt(disc_error), disc > 0 ? disc_error / root : kInfinity);
   const double q_rel = (b_error + root_error) / std::fabs(q) + gamma_bound(1);
 
+  // c / q is always finite; q / a is infinite for a = 0 (the quadric is then linear in t').
   double roots[2] = {c / q, q / a};
   double errors[2] = {c_error / std::fabs(q) + std::fabs(roots[0]) * (q_rel + gamma_bound(1)),
                       std::fabs(roots[1]) * (q_rel + a_error / std::fabs(a) + gamma_bound(1))};
@@ -140,76 +159,92 @@ void intersect_wall(double k, const Vec3& o, const Vec3& d, double shift, Candid
     std::swap(roots[0], roots[1]);
     std::swap(errors[0], errors[1]);
   }
+  SpanEnd ends[2];
   for (int i = 0; i < 2; ++i) {
-    const double t_local = roots[i];
-    if (!std::isfinite(t_local)) continue;
-    const double t = shift + t_local;
-    if (!(t > errors[i] + gamma_bound(1) * shift)) continue;
-    if (!(t < best.t)) return;
-    if (accept_wall_hit(k, o, d, shift, t_local, best) && best.all == nullptr) return;
+    const double t = shift + roots[i];
+    ends[i] = {t, std::isfinite(t) && t > errors[i] + gamma_bound(1) * shift};
   }
+  if (a > 0) {
+    add(ends[0], ends[1]);
+  } else if (a < 0) {
+    add(minus_infinity, ends[0]);
+    add(ends[1], plus_infinity);
+  } else if (std::isfinite(ends[0].t)) {  // linear: within the radius on one side of its root
+    const SpanEnd& at = ends[0];
+    if (b > 0)
+      add(minus_infinity, at);
+    else
+      add(at, plus_infinity);
+  }
+  return spans;
 }
 
-// A cap: the disc x^2 + y^2 <= radius^2 in the plane z = height.
-void intersect_cap(double height, double radius, std::uint32_t part, const Vec3& o, const Vec3& d,
-                   Candidate& best) {
-  if (d.z == 0) return;
-  const double t = (height - o.z) / d.z;
-  if (!(t > 0 && t < best.t)) return;
-  const double x = o.x + t * d.x, y = o.y + t * d.y;
-  if (!(x * x + y * y <= radius * radius)) return;
-  LocalHit hit;
-  hit.t = t;
-  hit.point = {x, y, height};
-  hit.point_error = {gamma_bound(3) * std::fabs(x), gamma_bound(3) * std::fabs(y), 0};
-  hit.normal = {0, 0, height > 0 ? 1.0 : -1.0};
-  hit.shading_normal = hit.normal;
-  hit.part = part;
-  best.take(hit);
-}
-
-// The wall's and caps' hits with t in (0, best.t): the nearest, or every one.
-void tapered_cylinder_hits(const TaperedCylinder& shape, const Ray& ray, Candidate& best) {
+// The crossings of the solid with t in (0, t_max), ascending, handed to take(hit, touching)
+// until it returns false: the ends of each wall span clipped to the slab between the caps.
+template <class Take>
+void visit_tapered_cylinder_hits(const TaperedCylinder& shape, const Ray& ray, double t_max,
+                                 const Take& take) {
   const double k = shape.top_radius - 1;
   const double top = 1 + k;
   const double r = std::max(1.0, std::fabs(top));
   const Vec3& o = ray.origin;
   const Vec3& d = ray.direction;
-  if (!is_finite(o) || !is_finite(d) || !(best.t > 0)) return;
+  if (!is_finite(o) || !is_finite(d) || !(t_max > 0)) return;
 
   // The box is padded by a few ulps so that it certainly holds the rounded surface.
   double t_enter = 0, t_exit = 0;
   if (!box_span(o, d, r * (1 + gamma_bound(4)), t_enter, t_exit)) return;
-  if (!(t_exit > 0) || !(t_enter < best.t)) return;
+  if (!(t_exit > 0) || !(t_enter < t_max)) return;
   const double shift = std::max(t_enter, 0.0);
+  const Vec3 o_near = shift > 0 ? o + d * shift : o;
 
-  intersect_wall(k, shift > 0 ? o + d * shift : o, d, shift, best);
-  intersect_cap(0, 1, 1, o, d, best);
-  if (top != 0) intersect_cap(1, std::fabs(top), 2, o, d, best);
+  // The slab 0 <= z <= 1: the caps' distances have an exact sign.
+  SpanEnd slab_lo{-kInfinity, false, SpanEnd::Surface::Cap};
+  SpanEnd slab_hi{kInfinity, false, SpanEnd::Surface::Cap};
+  if (d.z != 0) {
+    const double t0 = (0 - o.z) / d.z, t1 = (1 - o.z) / d.z;
+    slab_lo.t = std::min(t0, t1);
+    slab_hi.t = std::max(t0, t1);
+    slab_lo.reportable = slab_lo.t > 0;
+    slab_hi.reportable = slab_hi.t > 0;
+  } else if (!(o.z >= 0 && o.z <= 1)) {
+    return;
+  }
+
+  const auto hit_at = [&](const SpanEnd& end) {
+    if (end.surface == SpanEnd::Surface::Wall) return wall_hit(k, o_near, d, shift, end.t - shift);
+    // Entering the slab upwards, or leaving it downwards, is at z = 0.
+    const double height = (end.t == slab_lo.t) == (d.z > 0) ? 0.0 : 1.0;
+    // A cone has no top cap: its top plane meets the wall only at the apex.
+    if (height == 1 && top == 0) return wall_hit(k, o_near, d, shift, end.t - shift);
+    return cap_hit(height, o, d, end.t);
+  };
+  const WallSpans spans = wall_spans(k, o_near, d, shift);
+  for (int i = 0; i < spans.count; ++i) {
+    // The span within the slab: its ends are the later start and the earlier end, on the
+    // surface that gives them (the wall on a tie).
+    const SpanEnd& lo = slab_lo.t > spans.lo[i].t ? slab_lo : spans.lo[i];
+    const SpanEnd& hi = slab_hi.t < spans.hi[i].t ? slab_hi : spans.hi[i];
+    if (!(lo.t < hi.t)) continue;
+    for (const SpanEnd* end : {&lo, &hi}) {
+      if (!(end->t < t_max)) return;
+      if (end->reportable && !take(hit_at(*end), false)) return;
+    }
+  }
 }
 
 }  // namespace
 
 bool intersect_tapered_cylinder(const TaperedCylinder& shape, const Ray& ray, double t_max,
                                 LocalHit& hit) {
-  Candidate best;
-  best.t = t_max;
-  tapered_cylinder_hits(shape, ray, best);
-  if (!(best.t < t_max)) return false;
-  hit = best.hit;
-  return true;
+  return nearest_ordered_hit(
+      [&](const auto& take) { visit_tapered_cylinder_hits(shape, ray, t_max, take); }, hit);
 }
 
 std::vector<LocalHit> tapered_cylinder_crossings(const TaperedCylinder& shape, const Ray& ray,
                                                  double t_max) {
-  std::vector<LocalHit> crossings;
-  Candidate every;
-  every.t = t_max;
-  every.all = &crossings;
-  tapered_cylinder_hits(shape, ray, every);
-  std::sort(crossings.begin(), crossings.end(),
-            [](const LocalHit& a, const LocalHit& b) { return a.t < b.t; });
-  return crossings;
+  return ordered_crossings(
+      [&](const auto& take) { visit_tapered_cylinder_hits(shape, ray, t_max, take); });
 }
 
 }  // namespace tessera

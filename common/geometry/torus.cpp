@@ -20,7 +20,7 @@
 #include <cmath>
 #include <vector>
 
-#include "common/geometry/root_hits.h"
+#include "common/geometry/ordered_hits.h"
 #include "common/geometry/shapes.h"
 #include "common/math/float_error.h"
 #include "common/math/polynomial.h"
@@ -153,12 +153,12 @@ void visit_torus_hits(const Torus& torus, const Ray& ray, double t_max, const Ta
 }  // namespace
 
 bool intersect_torus(const Torus& torus, const Ray& ray, double t_max, LocalHit& hit) {
-  return nearest_root_hit([&](const auto& take) { visit_torus_hits(torus, ray, t_max, take); },
+  return nearest_ordered_hit([&](const auto& take) { visit_torus_hits(torus, ray, t_max, take); },
                           hit);
 }
 
 std::vector<LocalHit> torus_crossings(const Torus& torus, const Ray& ray, double t_max) {
-  return root_crossings([&](const auto& take) { visit_torus_hits(torus, ray, t_max, take); });
+  return ordered_crossings([&](const auto& take) { visit_torus_hits(torus, ray, t_max, take); });
 }
 
 }  // namespace tessera
