@@ -1,10 +1,18 @@
 #!/usr/bin/env bash
-# Renders the demo scene with Tessera (scenes/demo.sdl) and with POV-Ray 3.7 (its translation,
-# bench/povray/demo.pov) at the same size, anti-aliasing regime and thread count, repeats every
-# render, interleaving the two renderers so that the load of a noisy machine falls on both, and
-# prints the median wall times and their ratio.
+# Renders scenes with Tessera and with POV-Ray 3.7 (their translations in bench/povray/) at the
+# same size, anti-aliasing regime and thread count, repeats every render, interleaving the two
+# renderers so that the load of a noisy machine falls on both, and prints the median wall times
+# and their ratio.
 #
-# Usage: scripts/compare-povray.sh [--width W] [--height H] [--repeats N] [--threads "1 2"]
+# Usage: scripts/compare-povray.sh [--scenes "demo torus teapot100k"] [--width W] [--height H]
+#                                  [--repeats N] [--threads "1 2"]
+#
+# Scenes (SDL file, POV-Ray file):
+#   demo        scenes/demo.sdl, bench/povray/demo.pov: glass, mirror, spotlight, reflections.
+#   torus       scenes/features/torus.sdl, bench/povray/torus.pov: ring, horn and spindle tori.
+#   teapot100k  bench/povray/teapot100k.{sdl,pov}: a 102,080-triangle Utah teapot, Phong
+#               normals. The mesh is generated into out/povray/teapot100k/ on first use
+#               (scripts/make_teapot.py --segments 40, then bench/povray/obj_to_mesh2.py).
 #
 # Regimes (the same number of camera rays per pixel, near enough, for both):
 #   aa1: Tessera --aa 1 (one ray through the pixel centre)  vs  POV-Ray -A (no anti-aliasing,
@@ -26,12 +34,14 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
+scenes="demo torus teapot100k"
 width=800
 height=600
 repeats=3
 threads="1 2"
 while (($#)); do
   case "$1" in
+    --scenes) scenes=$2; shift 2 ;;
     --width) width=$2; shift 2 ;;
     --height) height=$2; shift 2 ;;
     --repeats) repeats=$2; shift 2 ;;
@@ -42,9 +52,7 @@ while (($#)); do
 done
 
 tessera=build/worker/tessera-render
-scene=scenes/demo.sdl
-pov_scene=bench/povray/demo.pov
-out=out/povray
+out_root=out/povray
 
 missing=0
 if [[ ! -x $tessera ]]; then
@@ -57,9 +65,28 @@ if ! povray=$(command -v povray); then
 fi
 ((missing == 0)) || exit 1
 
-mkdir -p "$out/logs"
-times=$out/times.tsv
-printf 'renderer\taa\tthreads\trepeat\twall_s\trender_s\n' >"$times"
+# use_scene NAME: sets scene, pov_scene and out (this scene's folder of results), and writes
+# generated inputs.
+use_scene() {
+  out=$out_root/$1
+  mkdir -p "$out/logs"
+  case "$1" in
+    demo) scene=scenes/demo.sdl; pov_scene=bench/povray/demo.pov ;;
+    torus) scene=scenes/features/torus.sdl; pov_scene=bench/povray/torus.pov ;;
+    teapot100k)
+      scene=$out/teapot100k.sdl
+      pov_scene=$out/teapot100k.pov
+      cp bench/povray/teapot100k.sdl bench/povray/teapot100k.pov "$out/"
+      if [[ ! -s $out/teapot100k.inc ]]; then
+        echo "writing the 102,080-triangle teapot to $out/ (about 15 s)"
+        python3 scripts/make_teapot.py --segments 40 >"$out/teapot100k.obj"
+        python3 bench/povray/obj_to_mesh2.py "$out/teapot100k.obj" Teapot >"$out/teapot100k.inc.tmp"
+        mv "$out/teapot100k.inc.tmp" "$out/teapot100k.inc"
+      fi
+      ;;
+    *) echo "compare-povray.sh: unknown scene $1 (demo, torus or teapot100k)" >&2; exit 2 ;;
+  esac
+}
 
 now() { date +%s.%N; }
 elapsed() { awk -v a="$1" -v b="$2" 'BEGIN { printf "%.3f", b - a }'; }
@@ -85,37 +112,13 @@ run_povray() {
   start=$(now)
   # File_Gamma=1.0 with the scene's assumed_gamma 1: linear values in the PNG, as Tessera's.
   # -D no display, -P no pause, -V no progress lines.
-  "$povray" +I"$pov_scene" +O"$out/povray-aa$aa-t$t.png" +W"$width" +H"$height" +FN \
-    File_Gamma=1.0 -D -P -V +WT"$t" "${aa_options[@]}" >"$log" 2>&1 || { cat "$log" >&2; exit 1; }
+  # +L: includes are found beside the scene (teapot100k.inc).
+  "$povray" +I"$pov_scene" +L"$(dirname "$pov_scene")" +O"$out/povray-aa$aa-t$t.png" \
+    +W"$width" +H"$height" +FN File_Gamma=1.0 -D -P -V +WT"$t" "${aa_options[@]}" >"$log" 2>&1 || { cat "$log" >&2; exit 1; }
   end=$(now)
   printf 'povray\t%s\t%s\t%s\t%s\t%s\n' "$aa" "$t" "$rep" "$(elapsed "$start" "$end")" \
     "$(sed -n 's/^ *Trace Time:.*(\([0-9.]*\) seconds)$/\1/p' "$log")" >>"$times"
 }
-
-echo "Tessera ($tessera) vs POV-Ray ($("$povray" --version 2>&1 | sed -n 's/^\(POV-Ray [^ ]*\).*/\1/p'))," \
-  "${width}x$height, $repeats repeats, threads: $threads, $(nproc) cores"
-echo "load average before: $(cut -d' ' -f1-3 /proc/loadavg)"
-
-# One untimed warm-up of each, so that neither pays for a cold page cache.
-"$tessera" "$scene" -o "$out/warmup.png" --width 64 --height 48 --quiet
-"$povray" +I"$pov_scene" +O"$out/warmup.png" +W64 +H48 +FN -D -P -V +WT1 -A >/dev/null 2>&1
-rm -f "$out/warmup.png"
-
-for ((rep = 1; rep <= repeats; rep++)); do
-  for aa in 1 9; do
-    for t in $threads; do
-      # Alternate which renderer goes first, so that neither always follows the other.
-      if ((rep % 2)); then
-        run_tessera "$aa" "$t" "$rep"; run_povray "$aa" "$t" "$rep"
-      else
-        run_povray "$aa" "$t" "$rep"; run_tessera "$aa" "$t" "$rep"
-      fi
-      printf '.'
-    done
-  done
-done
-echo
-echo "load average after:  $(cut -d' ' -f1-3 /proc/loadavg)"
 
 # median COLUMN RENDERER AA THREADS
 median() {
@@ -143,18 +146,18 @@ table() {
   done
 }
 
-table 5 "Wall time of the whole process"
-table 6 "Render time as each renderer reports it (Tessera 'time:', POV-Ray 'Trace Time')"
 
-# How far apart the pictures are (python3's standard library only; skipped without python3).
-first_t=${threads%% *}
-if command -v python3 >/dev/null; then
-  echo
-  echo "Image difference, Tessera vs POV-Ray (8-bit values; diff-aa*.png shows |difference| x 4)"
-  for aa in 1 9; do
-    printf '%-28s ' "$( ((aa == 1)) && echo "none" || echo "3x3")"
-    python3 - "$out/tessera-aa$aa-t$first_t.png" "$out/povray-aa$aa-t$first_t.png" \
-      "$out/diff-aa$aa.png" <<'PY'
+# image_difference: how far apart the pictures of the current scene are (python3's standard
+# library only; skipped without python3).
+image_difference() {
+  local first_t=${threads%% *}
+  if command -v python3 >/dev/null; then
+    echo
+    echo "Image difference, Tessera vs POV-Ray (8-bit values; diff-aa*.png shows |difference| x 4)"
+    for aa in 1 9; do
+      printf '%-28s ' "$( ((aa == 1)) && echo "none" || echo "3x3")"
+      python3 - "$out/tessera-aa$aa-t$first_t.png" "$out/povray-aa$aa-t$first_t.png" \
+        "$out/diff-aa$aa.png" <<'PY'
 import struct, sys, zlib
 
 def chunks(data):
@@ -213,8 +216,49 @@ with open(sys.argv[3], 'wb') as f:
     f.write(b'\x89PNG\r\n\x1a\n' + chunk(b'IHDR', struct.pack('>IIBBBBB', w, h, 8, 2, 0, 0, 0)) +
             chunk(b'IDAT', zlib.compress(b''.join(diff_rows))) + chunk(b'IEND', b''))
 PY
-  done
-fi
+    done
+  fi
+}
 
-echo
-echo "Every run: $times; images: $out/{tessera,povray}-aa{1,9}-t*.png; logs: $out/logs/"
+# compare NAME: every render of one scene, its tables and its image difference.
+compare() {
+  use_scene "$1"
+  times=$out/times.tsv
+  printf 'renderer\taa\tthreads\trepeat\twall_s\trender_s\n' >"$times"
+  echo
+  echo "== $1: $scene vs $pov_scene"
+  # One untimed warm-up of each, so that neither pays for a cold page cache.
+  "$tessera" "$scene" -o "$out/warmup.png" --width 64 --height 48 --quiet
+  "$povray" +I"$pov_scene" +L"$(dirname "$pov_scene")" +O"$out/warmup.png" +W64 +H48 +FN \
+    -D -P -V +WT1 -A >"$out/logs/povray-warmup.log" 2>&1 || { cat "$out/logs/povray-warmup.log" >&2; exit 1; }
+  rm -f "$out/warmup.png"
+
+  for ((rep = 1; rep <= repeats; rep++)); do
+    for aa in 1 9; do
+      for t in $threads; do
+        # Alternate which renderer goes first, so that neither always follows the other.
+        if ((rep % 2)); then
+          run_tessera "$aa" "$t" "$rep"; run_povray "$aa" "$t" "$rep"
+        else
+          run_povray "$aa" "$t" "$rep"; run_tessera "$aa" "$t" "$rep"
+        fi
+        printf '.'
+      done
+    done
+  done
+  echo
+  echo "load average after:  $(cut -d' ' -f1-3 /proc/loadavg)"
+
+  table 5 "Wall time of the whole process"
+  table 6 "Render time as each renderer reports it (Tessera 'time:', POV-Ray 'Trace Time')"
+
+  image_difference
+  echo
+  echo "Every run: $times; images: $out/{tessera,povray}-aa{1,9}-t*.png; logs: $out/logs/"
+}
+
+echo "Tessera ($tessera) vs POV-Ray ($("$povray" --version 2>&1 | sed -n 's/^\(POV-Ray [^ ]*\).*/\1/p'))," \
+  "${width}x$height, $repeats repeats, threads: $threads, $(nproc) cores"
+echo "load average before: $(cut -d' ' -f1-3 /proc/loadavg)"
+
+for name in $scenes; do compare "$name"; done
