@@ -34,11 +34,16 @@ double bracketed_root(const Polynomial& p, const Polynomial& dp, double a, doubl
       b = x;
     }
     const double dfx = evaluate(dp, x);
+    // Converged: Newton's step is below the rounding of x. Tested before the step is kept in
+    // the bracket: x may have just become an end of it, and a step smaller than its ulp, taken
+    // for leaving the bracket, would otherwise restart a bisection that crawls back to x.
+    if (dfx != 0 && std::fabs(fx / dfx) <= 2 * kMachineEpsilon * std::fabs(x)) {
+      const double next = x - fx / dfx;
+      return next > a && next < b ? next : x;
+    }
     double next = dfx != 0 ? x - fx / dfx : a + (b - a) / 2;
     if (!(next > a && next < b)) next = a + (b - a) / 2;
-    // Converged: the step is below the rounding of x, or the bracket holds no double between.
-    if (std::fabs(next - x) <= 2 * kMachineEpsilon * std::fabs(x) || !(next > a && next < b))
-      return next > a && next < b ? next : x;
+    if (!(next > a && next < b)) return x;  // the bracket holds no double between its ends
     x = next;
   }
   return x;
