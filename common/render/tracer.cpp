@@ -94,13 +94,14 @@ std::optional<WorldHit> Tracer::first_hit(const Ray& ray) {
   return hit.world;
 }
 
-double Tracer::shadow_factor(const Ray& ray, double t_max) {
+double Tracer::shadow_factor(const Feeler& feeler) {
   ++stats_.shadow_rays;
+  const Ray& ray = feeler.ray;
   const std::vector<Instance>& instances = scene_.instances();
   const std::vector<SceneObject>& objects = scene_.scene().objects;
   double factor = 1;
   // Each object counts once, however often the feeler crosses its surface (eq. 4.24).
-  traverse_bvh(scene_.bvh(), ray, t_max, stats_.intersections.bvh_nodes,
+  traverse_bvh(scene_.bvh(), ray, feeler.t_max, stats_.intersections.bvh_nodes,
                [&](std::uint32_t index, double t_limit) {
                  WorldHit h;
                  if (!intersect_instance(instances[index], ray, t_limit, h, stats_.intersections))
@@ -174,22 +175,19 @@ Tracer::Crossing Tracer::cross_interface(const Ray& ray, Hit& hit, const MediumS
   return crossing;
 }
 
-double Tracer::light_visibility(const Hit& hit, const Light& light, const Vec3& l, double distance,
-                                SampleStream& rng) {
-  const double epsilon = scene_.scene().globals.shadow_feeler_epsilon;
-  // A feeler along unit `d` to the light `distance` away (a point light's feeler ends at
-  // t = 1; a directional light's never ends), at the hit's time.
-  const auto feeler = [&](const Vec3& d, const Vec3& target) {
-    const Vec3 origin = spawn_origin(hit, d, epsilon);
-    if (light.is_directional) return shadow_factor(Ray{origin, d, hit.time}, kInfinity);
-    return shadow_factor(Ray{origin, target - origin, hit.time}, 1.0);
-  };
-  if (effects_.has(Effect::SoftShadows))
-    return Cone(l, shadow_cone_radius_).mean<double>(cone_samples_, rng, [&](const Vec3& d) {
-      return feeler(d, hit.world.point + d * distance);
-    });
-  if (effects_.has(Effect::HardShadows)) return feeler(l, light.position);
-  return 1;
+inline Tracer::Feeler Tracer::feeler(const Hit& hit, const Light& light, const Vec3& d,
+                                     const Vec3& target) const {
+  const Vec3 origin = spawn_origin(hit, d, scene_.scene().globals.shadow_feeler_epsilon);
+  // A point light's feeler ends at t = 1, on the light; a directional light's never ends.
+  if (light.is_directional) return {Ray{origin, d, hit.time}, kInfinity};
+  return {Ray{origin, target - origin, hit.time}, 1.0};
+}
+
+double Tracer::soft_visibility(const Hit& hit, const Light& light, const Vec3& l, double distance,
+                               SampleStream& rng) {
+  return Cone(l, shadow_cone_radius_).mean<double>(cone_samples_, rng, [&](const Vec3& d) {
+    return shadow_factor(feeler(hit, light, d, hit.world.point + d * distance));
+  });
 }
 
 Rgb Tracer::local_illumination(const Hit& hit, const Material& m, const SurfaceColours& colours,
@@ -236,7 +234,14 @@ Rgb Tracer::local_illumination(const Hit& hit, const Material& m, const SurfaceC
       if (denominator > 1) attenuation = 1 / denominator;
     }
 
-    const double shadow = light_visibility(hit, light, l, distance, rng);
+    // Eq. 4.24-4.26: the share of the light that reaches the hit. Hard shadows call
+    // shadow_factor here, in this loop's body, and soft ones out of line, so that a scene
+    // without soft shadows pays one branch per light for them.
+    double shadow = 1;
+    if (effects_.has(Effect::HardShadows))
+      shadow = shadow_factor(feeler(hit, light, l, light.position));
+    else if (effects_.has(Effect::SoftShadows))
+      shadow = soft_visibility(hit, light, l, distance, rng);
     if (shadow <= 0) continue;
 
     Rgb contribution = colours.diffuse * light.color * (n_dot_l * diffuse_scale);  // eq. 4.8
