@@ -81,7 +81,7 @@ struct LocalIntersect {
 
 // The bodies of object_ray and to_world_hit, forced inline so that the nearest-hit path below
 // (every shape test of every render) keeps them in its own body, as before CSG shared them:
-// called out of line they cost a scene without boolean objects about 0.6 % more instructions
+// called out of line they cost a scene without boolean objects some 0.5 % more instructions
 // (docs/PERFORMANCE.md, "Scenes that use none of the new effects").
 [[gnu::always_inline]] inline Ray object_ray_inline(const Instance& instance,
                                                     const Ray& world_ray) {
