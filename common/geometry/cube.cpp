@@ -29,7 +29,9 @@ struct SlabSpan {
   int enter_axis = -1, exit_axis = -1;
 };
 
-bool slab_span(const Vec3& o, const Vec3& d, SlabSpan& span) {
+// slab_span and face_hit are inline, as they were inside intersect_cube before cube_crossings
+// shared them: every cube test pays for the calls otherwise.
+[[gnu::always_inline]] inline bool slab_span(const Vec3& o, const Vec3& d, SlabSpan& span) {
   if (!is_finite(o) || !is_finite(d)) return false;
   for (int a = 0; a < 3; ++a) {
     if (d[a] == 0) {
@@ -47,7 +49,8 @@ bool slab_span(const Vec3& o, const Vec3& d, SlabSpan& span) {
 }
 
 // The hit at t on the face of `axis` that faces +axis when `positive_face`.
-LocalHit face_hit(const Vec3& o, const Vec3& d, double t, int axis, bool positive_face) {
+[[gnu::always_inline]] inline LocalHit face_hit(const Vec3& o, const Vec3& d, double t, int axis,
+                                                bool positive_face) {
   Vec3 p;
   Vec3 error;
   for (int a = 0; a < 3; ++a) {

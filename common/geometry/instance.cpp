@@ -40,7 +40,7 @@ Vec3 abs_translation(const Affine& a) {
 }
 
 // Part 3 above, for a world point of magnitude `magnitude` (componentwise |p| plus its error).
-Vec3 round_trip_error(const Instance& instance, const Vec3& magnitude) {
+inline Vec3 round_trip_error(const Instance& instance, const Vec3& magnitude) {
   // |M^-1| |p| + |t^-1|: the size of the terms to_object adds up for this point.
   const Vec3 object_terms =
       abs_linear(instance.to_object, magnitude) + abs_translation(instance.to_object);
@@ -79,6 +79,34 @@ struct LocalIntersect {
   bool operator()(const CsgShape&) const { return false; }
 };
 
+// The bodies of object_ray and to_world_hit, forced inline so that the nearest-hit path below
+// (every shape test of every render) keeps them in its own body, as before CSG shared them:
+// called out of line they cost a scene without boolean objects some 0.5 % more instructions
+// (docs/PERFORMANCE.md, "Scenes that use none of the new effects").
+[[gnu::always_inline]] inline Ray object_ray_inline(const Instance& instance,
+                                                    const Ray& world_ray) {
+  // The direction is not renormalized, so t means the same in both spaces.
+  return {instance.to_object.apply_point(world_ray.origin),
+          instance.to_object.apply_vector(world_ray.direction), world_ray.time};
+}
+
+[[gnu::always_inline]] inline void to_world_hit_inline(const Instance& instance,
+                                                       const LocalHit& local, WorldHit& hit) {
+  hit.t = local.t;
+  hit.point = instance.to_world.apply_point(local.point);
+  hit.point_error = instance.to_world.point_error(local.point, local.point_error);
+  hit.point_error += round_trip_error(instance, abs(hit.point) + hit.point_error);
+  // Normals go through the inverse transpose; a degenerate normal falls back to a finite
+  // unit vector rather than NaN.
+  hit.normal = normalize_or(instance.to_object.apply_transpose(local.normal), Vec3{});
+  if (hit.normal == Vec3{}) hit.normal = Vec3{0, 0, 1};
+  hit.shading_normal =
+      normalize_or(instance.to_object.apply_transpose(local.shading_normal), hit.normal);
+  hit.object_point = local.point;
+  hit.part = local.part;
+  hit.object = instance.object;
+}
+
 }  // namespace
 
 std::optional<Instance> make_instance(const ShapeGeometry& geometry, const Affine& to_world,
@@ -111,25 +139,11 @@ std::optional<Instance> make_instance(const ShapeGeometry& geometry, const Affin
 }
 
 Ray object_ray(const Instance& instance, const Ray& world_ray) {
-  // The direction is not renormalized, so t means the same in both spaces.
-  return {instance.to_object.apply_point(world_ray.origin),
-          instance.to_object.apply_vector(world_ray.direction), world_ray.time};
+  return object_ray_inline(instance, world_ray);
 }
 
 void to_world_hit(const Instance& instance, const LocalHit& local, WorldHit& hit) {
-  hit.t = local.t;
-  hit.point = instance.to_world.apply_point(local.point);
-  hit.point_error = instance.to_world.point_error(local.point, local.point_error);
-  hit.point_error += round_trip_error(instance, abs(hit.point) + hit.point_error);
-  // Normals go through the inverse transpose; a degenerate normal falls back to a finite
-  // unit vector rather than NaN.
-  hit.normal = normalize_or(instance.to_object.apply_transpose(local.normal), Vec3{});
-  if (hit.normal == Vec3{}) hit.normal = Vec3{0, 0, 1};
-  hit.shading_normal =
-      normalize_or(instance.to_object.apply_transpose(local.shading_normal), hit.normal);
-  hit.object_point = local.point;
-  hit.part = local.part;
-  hit.object = instance.object;
+  to_world_hit_inline(instance, local, hit);
 }
 
 bool intersect_instance(const Instance& instance, const Ray& world_ray, double t_max, WorldHit& hit,
@@ -141,12 +155,12 @@ bool intersect_instance(const Instance& instance, const Ray& world_ray, double t
     return posed && intersect_instance(*posed, world_ray, t_max, hit, counters);
   }
   ++counters.shape_tests;
-  const Ray ray = object_ray(instance, world_ray);
+  const Ray ray = object_ray_inline(instance, world_ray);
   LocalHit local;
   if (!std::visit(LocalIntersect{instance, world_ray, ray, t_max, local, counters},
                   instance.geometry))
     return false;
-  to_world_hit(instance, local, hit);
+  to_world_hit_inline(instance, local, hit);
   return true;
 }
 

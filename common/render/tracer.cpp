@@ -48,9 +48,11 @@ Rgb blurred(const Vec3& axis, double strength, int count, const Vec3& surface_no
 }
 
 // The unit vector `l` from `point` towards `light` and the distance to it, infinite for a
-// directional light; false when the point is at the light.
-bool towards_light(const Light& light, const Vec3& point, Vec3& l, double& distance) {
-  if (light.is_directional) {
+// directional light; false when the point is at the light. `directional` is the light's
+// is_directional, or a constant false where the scene has no directional lights.
+[[gnu::always_inline]] inline bool towards_light(const Light& light, bool directional,
+                                                 const Vec3& point, Vec3& l, double& distance) {
+  if (directional) {
     l = -light.direction;
     distance = kInfinity;
     return true;
@@ -69,7 +71,22 @@ Tracer::Tracer(const PreparedScene& scene, const RenderSettings& settings, Rende
       stats_(stats),
       effects_(render_effects(scene, settings)),
       cone_samples_(settings.cone_samples),
-      shadow_cone_radius_(settings.shadow_jitter / 2) {}
+      shadow_cone_radius_(settings.shadow_jitter / 2),
+      illuminate_(lighting_for(effects_)) {}
+
+// The local_illumination compiled for the render's shadow mode and lights, chosen once per
+// tracer and called through a pointer: a branch per hit for each would cost more.
+Tracer::Illumination Tracer::lighting_for(const EffectSet& effects) {
+  const bool directional = effects.has(Effect::DirectionalLight);
+  if (effects.has(Effect::SoftShadows))
+    return directional ? &Tracer::local_illumination<ShadowMode::Soft, true>
+                       : &Tracer::local_illumination<ShadowMode::Soft, false>;
+  if (effects.has(Effect::HardShadows))
+    return directional ? &Tracer::local_illumination<ShadowMode::Hard, true>
+                       : &Tracer::local_illumination<ShadowMode::Hard, false>;
+  return directional ? &Tracer::local_illumination<ShadowMode::None, true>
+                     : &Tracer::local_illumination<ShadowMode::None, false>;
+}
 
 bool Tracer::closest_hit(const Ray& ray, Hit& hit) {
   const std::vector<Instance>& instances = scene_.instances();
@@ -94,13 +111,14 @@ std::optional<WorldHit> Tracer::first_hit(const Ray& ray) {
   return hit.world;
 }
 
-double Tracer::shadow_factor(const Ray& ray, double t_max) {
+double Tracer::shadow_factor(const Feeler& feeler) {
   ++stats_.shadow_rays;
+  const Ray& ray = feeler.ray;
   const std::vector<Instance>& instances = scene_.instances();
   const std::vector<SceneObject>& objects = scene_.scene().objects;
   double factor = 1;
   // Each object counts once, however often the feeler crosses its surface (eq. 4.24).
-  traverse_bvh(scene_.bvh(), ray, t_max, stats_.intersections.bvh_nodes,
+  traverse_bvh(scene_.bvh(), ray, feeler.t_max, stats_.intersections.bvh_nodes,
                [&](std::uint32_t index, double t_limit) {
                  WorldHit h;
                  if (!intersect_instance(instances[index], ray, t_limit, h, stats_.intersections))
@@ -174,24 +192,22 @@ Tracer::Crossing Tracer::cross_interface(const Ray& ray, Hit& hit, const MediumS
   return crossing;
 }
 
-double Tracer::light_visibility(const Hit& hit, const Light& light, const Vec3& l, double distance,
-                                SampleStream& rng) {
-  const double epsilon = scene_.scene().globals.shadow_feeler_epsilon;
-  // A feeler along unit `d` to the light `distance` away (a point light's feeler ends at
-  // t = 1; a directional light's never ends), at the hit's time.
-  const auto feeler = [&](const Vec3& d, const Vec3& target) {
-    const Vec3 origin = spawn_origin(hit, d, epsilon);
-    if (light.is_directional) return shadow_factor(Ray{origin, d, hit.time}, kInfinity);
-    return shadow_factor(Ray{origin, target - origin, hit.time}, 1.0);
-  };
-  if (effects_.has(Effect::SoftShadows))
-    return Cone(l, shadow_cone_radius_).mean<double>(cone_samples_, rng, [&](const Vec3& d) {
-      return feeler(d, hit.world.point + d * distance);
-    });
-  if (effects_.has(Effect::HardShadows)) return feeler(l, light.position);
-  return 1;
+inline Tracer::Feeler Tracer::feeler(const Hit& hit, bool directional, const Vec3& d,
+                                     const Vec3& target) const {
+  const Vec3 origin = spawn_origin(hit, d, scene_.scene().globals.shadow_feeler_epsilon);
+  // A point light's feeler ends at t = 1, on the light; a directional light's never ends.
+  if (directional) return {Ray{origin, d, hit.time}, kInfinity};
+  return {Ray{origin, target - origin, hit.time}, 1.0};
 }
 
+double Tracer::soft_visibility(const Hit& hit, const Light& light, const Vec3& l, double distance,
+                               SampleStream& rng) {
+  return Cone(l, shadow_cone_radius_).mean<double>(cone_samples_, rng, [&](const Vec3& d) {
+    return shadow_factor(feeler(hit, light.is_directional, d, hit.world.point + d * distance));
+  });
+}
+
+template <ShadowMode kShadows, bool kDirectionalLights>
 Rgb Tracer::local_illumination(const Hit& hit, const Material& m, const SurfaceColours& colours,
                                const Vec3& normal, const Vec3& view_dir, SampleStream& rng) {
   const Scene& scene = scene_.scene();
@@ -208,9 +224,10 @@ Rgb Tracer::local_illumination(const Hit& hit, const Material& m, const SurfaceC
   const double specular_scale = m.retain_specular_reflection ? 1 : opacity;
   const bool has_specular = !m.specular.is_zero() && specular_scale > 0;
   for (const Light& light : scene.lights) {
+    const bool directional = kDirectionalLights && light.is_directional;
     Vec3 l;
     double distance = 0;
-    if (!towards_light(light, hit.world.point, l, distance)) continue;
+    if (!towards_light(light, directional, hit.world.point, l, distance)) continue;
 
     double cone = 1;  // spotlight: zero outside the cut-off, cos^exponent inside (§4.1.3)
     if (light.is_spot) {
@@ -229,14 +246,18 @@ Rgb Tracer::local_illumination(const Hit& hit, const Material& m, const SurfaceC
     if (n_dot_l <= 0 && n_dot_h <= 0) continue;
 
     double attenuation = 1;  // eq. 4.12
-    if (effects_.has(Effect::LightAttenuation) && !light.is_directional) {
+    if (effects_.has(Effect::LightAttenuation) && !directional) {
       const LightAttenuation& a = g.light_attenuation;
       const double denominator =
           a.constant + a.linear * distance + a.quadratic * distance * distance;
       if (denominator > 1) attenuation = 1 / denominator;
     }
 
-    const double shadow = light_visibility(hit, light, l, distance, rng);
+    double shadow = 1;  // eq. 4.24-4.26: the share of the light that reaches the hit
+    if constexpr (kShadows == ShadowMode::Hard)
+      shadow = shadow_factor(feeler(hit, directional, l, light.position));
+    else if constexpr (kShadows == ShadowMode::Soft)
+      shadow = soft_visibility(hit, light, l, distance, rng);
     if (shadow <= 0) continue;
 
     Rgb contribution = colours.diffuse * light.color * (n_dot_l * diffuse_scale);  // eq. 4.8
@@ -359,7 +380,7 @@ Rgb Tracer::trace(const Ray& ray_in, RayKind kind, int depth, double weight,
     if (!texture.empty())
       colours = textured_colours(texture, scene_.instances()[hit.world.object], hit.world, colours);
   }
-  Rgb color = local_illumination(hit, *m, colours, normal, ray.direction, rng);
+  Rgb color = (this->*illuminate_)(hit, *m, colours, normal, ray.direction, rng);
   if (depth < g.max_recursion_depth) {
     if (effects.has(Effect::Reflection) && weight * m->reflectivity > g.min_reflectivity)
       color += reflection(ray, hit, *m, normal, depth, weight, media, rng);
