@@ -2,6 +2,7 @@
 // the node holds only what the file gave, and types were checked when it was parsed.
 #pragma once
 
+#include <array>
 #include <numbers>
 #include <vector>
 
@@ -17,6 +18,12 @@ inline double sf_float(const Node& n, const char* name, double fallback) {
 }
 inline bool sf_bool(const Node& n, const char* name, bool fallback) {
   return sf_float(n, name, fallback ? 1 : 0) != 0;
+}
+inline std::array<double, 2> sf_vec2(const Node& n, const char* name,
+                                     const std::array<double, 2>& fallback) {
+  const FieldValue* v = n.field(name);
+  if (!v || v->numbers.size() < 2) return fallback;
+  return {v->numbers[0], v->numbers[1]};
 }
 inline Vec3 sf_vec3(const Node& n, const char* name, const Vec3& fallback) {
   const FieldValue* v = n.field(name);

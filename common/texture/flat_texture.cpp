@@ -61,10 +61,13 @@ std::optional<PreparedFlatTexture> make_flat_texture(const FlatTexture& texture,
   out.tile_t = texture.tile_t;
   out.offset_s = texture.offset_s;
   out.offset_t = texture.offset_t;
+  out.transform = texture.transform;
   return out;
 }
 
 TexCoord place_on_texture(const PreparedFlatTexture& texture, TexCoord st) {
+  if (const auto& m = texture.transform)
+    return {(*m)[0] * st.s + (*m)[1] * st.t + (*m)[2], (*m)[3] * st.s + (*m)[4] * st.t + (*m)[5]};
   return {offset_and_clip(st.s, texture.offset_s) * texture.tile_s,
           offset_and_clip(st.t, texture.offset_t) * texture.tile_t};
 }
