@@ -52,7 +52,8 @@ inline const std::vector<NodePtr>& mf_nodes(const Node& n, const char* name) {
   const FieldValue* v = n.field(name);
   return v ? v->nodes : none;
 }
-// The node of an SFNode field, or null (NULL, absent, or a node that is not drawn).
+// The node of an SFNode field, or null (NULL, absent, or a node that is not drawn). MFNode
+// lists hold null for nodes that are not drawn (FieldValue::nodes).
 inline const Node* sf_node(const Node& n, const char* name) {
   const std::vector<NodePtr>& nodes = mf_nodes(n, name);
   return nodes.empty() ? nullptr : nodes.front().get();

@@ -82,7 +82,8 @@ class Converter {
 
   // ---- Children of grouping nodes
   void children(const Node& n, const char* field, const Affine& ct, int depth) {
-    for (const NodePtr& c : mf_nodes(n, field)) child(*c, ct, depth);
+    for (const NodePtr& c : mf_nodes(n, field))
+      if (c) child(*c, ct, depth);  // null: a node that is not drawn
   }
 
   void child(const Node& n, const Affine& ct, int depth) {
@@ -96,11 +97,14 @@ class Converter {
     } else if (t == "Switch") {
       const std::vector<NodePtr>& choice = mf_nodes(n, "choice");
       const double which = sf_float(n, "whichChoice", -1);
-      if (which >= 0 && which < static_cast<double>(choice.size()))
+      // The index counts every child, also those that are not drawn (null).
+      if (which >= 0 && which < static_cast<double>(choice.size()) &&
+          choice[static_cast<std::size_t>(which)])
         child(*choice[static_cast<std::size_t>(which)], ct, depth);
     } else if (t == "LOD") {
       const std::vector<NodePtr>& levels = mf_nodes(n, "level");
-      if (!levels.empty()) child(*levels.front(), ct, depth);  // the most detailed level
+      if (!levels.empty() && levels.front())
+        child(*levels.front(), ct, depth);  // the most detailed level
     } else if (t == "Inline") {
       inline_world(n, ct, depth);
     } else if (t == "Shape") {

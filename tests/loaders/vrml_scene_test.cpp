@@ -313,6 +313,15 @@ TEST(VrmlScene, SwitchAndLodChooseOneChild) {
   ASSERT_EQ(scene.objects.size(), 2u);
   EXPECT_TRUE(std::holds_alternative<Sphere>(scene.objects[0].geometry));
   EXPECT_TRUE(std::holds_alternative<Sphere>(scene.objects[1].geometry));
+  // whichChoice counts every child, also those that are not drawn (§6.46).
+  const Scene counted = load_world(
+      "DEF T TimeSensor {}\n"
+      "Switch { whichChoice 2 choice [ USE T Text {} Shape { geometry Sphere {} } ] }\n"
+      "Switch { whichChoice 0 choice [ WorldInfo {} Shape { geometry Box {} } ] }\n"
+      "LOD { level [ Transform { children [ Script {} Shape { geometry Sphere {} } ] } ] }\n");
+  ASSERT_EQ(counted.objects.size(), 2u);
+  EXPECT_TRUE(std::holds_alternative<Sphere>(counted.objects[0].geometry));
+  EXPECT_TRUE(std::holds_alternative<Sphere>(counted.objects[1].geometry));
 }
 
 TEST(VrmlScene, InlineReadsAFileOfTheSourceUnderTheTransform) {
