@@ -252,23 +252,42 @@ NodePtr extrusion_face_set(const Node& extrusion) {
   if (n < 2 || m < 2) return face_set(extrusion, {}, {});
 
   // The spine-aligned cross-section plane at each spine point (§6.18.2): Y along the spine,
-  // Z across the bend; where the spine is straight, the rotation taking +y to Y.
+  // Z across the bend. An open spine's end points take their neighbours' Z; where the spine
+  // runs straight, a point takes the Z of the nearest point before it that has one (at the
+  // start, after it); a spine straight throughout takes the rotation of +y to Y.
   const bool closed = spine.front() == spine.back();
-  Vec3 last_z{0, 0, 1};
+  std::vector<Vec3> ys(n), zs(n);
   for (std::size_t i = 0; i < n; ++i) {
     const Vec3 prev = i > 0 ? spine[i - 1] : (closed ? spine[n - 2] : spine[0]);
     const Vec3 next = i + 1 < n ? spine[i + 1] : (closed ? spine[1] : spine[n - 1]);
-    const Vec3 y = unit_or_zero(next - prev);
-    Vec3 z = unit_or_zero(cross(next - spine[i], prev - spine[i]));
-    if (z == Vec3{}) {
-      z = last_z;
-      if (const auto r = Affine::rotation(
-              std::acos(std::clamp(y.y, -1.0, 1.0)) * 180 / std::numbers::pi, cross({0, 1, 0}, y)))
+    ys[i] = unit_or_zero(next - prev);
+    zs[i] = unit_or_zero(cross(next - spine[i], prev - spine[i]));
+  }
+  if (!closed && n > 2) {
+    zs[0] = zs[1];
+    zs[n - 1] = zs[n - 2];
+  }
+  const auto bent = std::find_if(zs.begin(), zs.end(), [](const Vec3& z) { return z != Vec3{}; });
+  Vec3 last_z = bent == zs.end() ? Vec3{0, 0, 1} : *bent;
+  for (std::size_t i = 0; i < n; ++i) {
+    Vec3& z = zs[i];
+    if (bent == zs.end()) {
+      if (const auto r =
+              Affine::rotation(std::acos(std::clamp(ys[i].y, -1.0, 1.0)) * 180 / std::numbers::pi,
+                               cross({0, 1, 0}, ys[i])))
         z = r->apply_vector({0, 0, 1});
-    } else if (i > 0 && dot(z, last_z) < 0) {
+      else
+        z = last_z;
+    } else if (z == Vec3{}) {
+      z = last_z;
+    } else if (dot(z, last_z) < 0) {
       z = -z;  // keep the plane from flipping at an inflection
     }
     last_z = z;
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec3& y = ys[i];
+    const Vec3& z = zs[i];
     const Vec3 x = cross(y, z);
     const Affine plane = Affine::from_columns(x, y == Vec3{} ? Vec3{0, 1, 0} : y, z);
     Affine turn = Affine::identity();

@@ -165,19 +165,16 @@ class Converter {
     } else if (t == "Box") {
       add(Cube{}, ct * Affine::scaling(sf_vec3(*geometry, "size", {2, 2, 2}) * 0.5), material,
           *geometry);
-    } else if (t == "Cone") {
-      if (!sf_bool(*geometry, "side", true) || !sf_bool(*geometry, "bottom", true))
-        ++unsupported_["Cone side or bottom FALSE (drawn whole)"];
-      const double r = sf_float(*geometry, "bottomRadius", 1);
-      add(TaperedCylinder{0, false}, ct * along_y(r, sf_float(*geometry, "height", 2)), material,
-          *geometry);
-    } else if (t == "Cylinder") {
-      if (!sf_bool(*geometry, "side", true) || !sf_bool(*geometry, "top", true) ||
-          !sf_bool(*geometry, "bottom", true))
-        ++unsupported_["Cylinder side, top or bottom FALSE (drawn whole)"];
-      const double r = sf_float(*geometry, "radius", 1);
-      add(TaperedCylinder{1, false}, ct * along_y(r, sf_float(*geometry, "height", 2)), material,
-          *geometry);
+    } else if (t == "Cone" || t == "Cylinder") {
+      const bool cone = t == "Cone";
+      TaperedCylinder shape{cone ? 0.0 : 1.0, false, sf_bool(*geometry, "side", true),
+                            sf_bool(*geometry, "bottom", true),
+                            !cone && sf_bool(*geometry, "top", true)};
+      // With a part left out the inside shows: light it as well.
+      Material m = material;
+      if (!shape.wall || !shape.base_cap || (!cone && !shape.top_cap)) m.light_back_faces = true;
+      const double r = sf_float(*geometry, cone ? "bottomRadius" : "radius", 1);
+      add(shape, ct * along_y(r, sf_float(*geometry, "height", 2)), m, *geometry);
     } else if (t == "IndexedFaceSet" || t == "ElevationGrid" || t == "Extrusion") {
       face_set(*geometry, ct, material, look ? sf_node(*look, "material") : nullptr);
     } else {
