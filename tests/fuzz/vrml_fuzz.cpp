@@ -10,8 +10,7 @@
 #include "common/loaders/vrml_lexer.h"
 #include "common/loaders/vrml_loader.h"
 #include "common/loaders/vrml_parser.h"
-#include "common/render/prepared_scene.h"
-#include "common/render/render.h"
+#include "tests/fuzz/fuzz_render.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace tessera;
@@ -24,13 +23,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   try {
     vrml::parse_vrml(vrml::lex_vrml(vrml::vrml_text(bytes, "world.wrl", 1u << 20), "world.wrl"),
                      limits);
-    const Scene scene = load_vrml(source, "world.wrl");
-    const PreparedScene prepared(scene, BvhMode::Sah);
-    RenderSettings settings;
-    settings.width = 3;
-    settings.height = 2;
-    RenderStats stats;
-    render_image(prepared, settings, 1, stats);
+    fuzz::prepare_and_render(load_vrml(source, "world.wrl"));
   } catch (const SceneError&) {
   }
   return 0;
