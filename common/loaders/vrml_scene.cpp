@@ -302,8 +302,8 @@ class Converter {
       flat.image_file = *path;
       flat.decal = !material;
       replace_diffuse(material, out);
-      if (!sf_bool(t, "repeatS", true) || !sf_bool(t, "repeatT", true))
-        ++unsupported_["ImageTexture repeatS or repeatT FALSE (repeated)"];
+      flat.clamp_s = !sf_bool(t, "repeatS", true);
+      flat.clamp_t = !sf_bool(t, "repeatT", true);
       return;
     }
     throw SceneError(t.where,

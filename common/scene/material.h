@@ -32,6 +32,7 @@ struct FlatTexture {
   // tiles: (s, t) becomes (m[0] s + m[1] t + m[2], m[3] s + m[4] t + m[5]), and the texture
   // repeats beyond the square instead of being clipped to it.
   std::optional<std::array<double, 6>> transform;
+  bool clamp_s = false, clamp_t = false;  // VRML's repeatS, repeatT FALSE: an image's edges go on
   friend bool operator==(const FlatTexture&, const FlatTexture&) = default;
 };
 

@@ -32,6 +32,7 @@ struct PreparedFlatTexture {
   double tile_s = 1, tile_t = 1;
   double offset_s = 0, offset_t = 0;
   std::optional<std::array<double, 6>> transform;  // FlatTexture::transform (VRML)
+  bool clamp_s = false, clamp_t = false;           // FlatTexture::clamp_s, clamp_t (VRML)
 };
 
 // The prepared form of a loaded flat texture, with `image` its decoded file (for an image

@@ -145,6 +145,22 @@ TEST(VrmlColourRender, DefaultTextureCoordinatesSpanTheBoundingBox) {
   expect_rgb(image.get(30, 30), kBottomRight);
 }
 
+TEST(VrmlColourRender, RepeatFalseStretchesTheImagesEdge) {
+  // s runs from 0 to 2 across the quad: the right half repeats the image, unless repeatS is
+  // FALSE, when its right column goes on.
+  const std::string fields =
+      "coordIndex [0 1 2 3] texCoord TextureCoordinate { point [0 0, 2 0, 2 1, 0 1] }";
+  const auto image = [&](const std::string& repeat) {
+    const std::string look =
+        "material Material {} texture ImageTexture { url \"quadrants.png\" " + repeat + " }";
+    return render(world(kView + quad(look, fields), {{"quadrants.png", quadrant_png()}}),
+                  settings(kSize, kSize));
+  };
+  expect_rgb(image("").get(24, 10), kTopLeft);  // s = 1.225, t = 0.7375
+  expect_rgb(image("repeatS FALSE").get(24, 10), kTopRight);
+  expect_rgb(image("repeatS FALSE").get(4, 30), kBottomLeft);  // inside the square: as ever
+}
+
 TEST(VrmlColourRender, TextureTransformScalesAndTranslatesTheCoordinates) {
   // Scale 2: the image twice across the quad. Row 4 has t = 0.8875, 2t = 1.775: the top row.
   const Image tiled =
