@@ -3,8 +3,8 @@
 // The wall is x^2 + y^2 = w(z)^2 with w(z) = 1 + k z, k = top_radius - 1, for z in [0, 1]; the
 // caps are the disc of radius 1 at z = 0 and the disc of radius |w(1)| at z = 1 (absent for a
 // cone, w(1) = 0), each unless the shape leaves it out (then its hits are not reported). The
-// shape is defined with the rounded k and w(1), and every test below uses
-// those same values, so wall and caps meet.
+// shape is defined with the rounded k and w(1), and every test below uses those same values,
+// so wall and caps meet.
 //
 // Robustness:
 //  - a ray starting outside the bounding box is first moved to where it enters the box, so the
