@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
-# Fuzzes the SDL loader and the mesh loaders with libFuzzer (clang, from Debian), seeded with
-# the sample scenes and meshes, after replaying every regression input in tests/fuzz/regressions.
+# Fuzzes the SDL loader, the mesh loaders and the VRML loader with libFuzzer (clang, from
+# Debian), seeded with the sample scenes, meshes and worlds, after replaying every regression
+# input in tests/fuzz/regressions.
 #   scripts/fuzz.sh [SECONDS]   run each target for SECONDS (default 20; scripts/test.sh uses
 #                               that); longer runs: scripts/fuzz.sh 3600
 # Crashes are written to build-fuzz/artifacts/; each one found becomes a file in
@@ -10,11 +11,12 @@ cd "$(dirname "$0")/.."
 seconds=${1:-20}
 cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ \
   -DTESSERA_FUZZ=ON >/dev/null
-cmake --build build-fuzz -j"$(nproc)" --target fuzz_sdl fuzz_mesh
+cmake --build build-fuzz -j"$(nproc)" --target fuzz_sdl fuzz_mesh fuzz_vrml
 
 corpus=build-fuzz/corpus
-mkdir -p "$corpus/sdl" "$corpus/mesh" build-fuzz/artifacts
+mkdir -p "$corpus/sdl" "$corpus/mesh" "$corpus/vrml" build-fuzz/artifacts
 find scenes -name '*.sdl' -exec cp {} "$corpus/sdl/" \;
+find scenes -name '*.wrl' -exec cp {} "$corpus/vrml/" \;
 # The mesh target's first byte picks the format: 0 OBJ, 1 3VN, 2 3DV, 3 3DM.
 for f in $(find scenes -path '*meshes/*' -type f); do
   case "$f" in
@@ -25,7 +27,7 @@ for f in $(find scenes -path '*meshes/*' -type f); do
 done
 
 export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1
-for target in sdl mesh; do
+for target in sdl mesh vrml; do
   regressions=tests/fuzz/regressions/$target
   if [ -d "$regressions" ] && [ -n "$(ls -A "$regressions")" ]; then
     echo "== fuzz_$target: regression inputs"

@@ -2,7 +2,7 @@
 # The test command: installs what is needed, builds, and runs every test. Three builds:
 #   build/       optimized: unit, image and integration tests
 #   build-asan/  AddressSanitizer + UndefinedBehaviorSanitizer: the unit tests
-#   build-fuzz/  clang + libFuzzer: a short fuzz run of the SDL and mesh loaders (fuzz.sh)
+#   build-fuzz/  clang + libFuzzer: a short fuzz run of the SDL, mesh and VRML loaders (fuzz.sh)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 scripts/install-deps.sh

@@ -2,8 +2,9 @@
 //
 // The wall is x^2 + y^2 = w(z)^2 with w(z) = 1 + k z, k = top_radius - 1, for z in [0, 1]; the
 // caps are the disc of radius 1 at z = 0 and the disc of radius |w(1)| at z = 1 (absent for a
-// cone, w(1) = 0). The shape is defined with the rounded k and w(1), and every test below uses
-// those same values, so wall and caps meet.
+// cone, w(1) = 0), each unless the shape leaves it out (then its hits are not reported). The
+// shape is defined with the rounded k and w(1), and every test below uses those same values,
+// so wall and caps meet.
 //
 // Robustness:
 //  - a ray starting outside the bounding box is first moved to where it enters the box, so the
@@ -179,6 +180,12 @@ WallSpans wall_spans(double k, const Vec3& o, const Vec3& d, double shift) {
   return spans;
 }
 
+// Whether the shape draws the part a hit is on (a VRML Cylinder or Cone may leave some out:
+// then the ray passes where the part would be).
+bool drawn(const TaperedCylinder& shape, std::uint32_t part) {
+  return part == 0 ? shape.wall : part == 1 ? shape.base_cap : shape.top_cap;
+}
+
 // The crossings of the solid with t in (0, t_max), ascending, handed to take(hit, touching)
 // until it returns false: the ends of each wall span clipped to the slab between the caps.
 template <class Take>
@@ -228,7 +235,9 @@ void visit_tapered_cylinder_hits(const TaperedCylinder& shape, const Ray& ray, d
     if (!(lo.t < hi.t)) continue;
     for (const SpanEnd* end : {&lo, &hi}) {
       if (!(end->t < t_max)) return;
-      if (end->reportable && !take(hit_at(*end), false)) return;
+      if (!end->reportable) continue;
+      const LocalHit hit = hit_at(*end);
+      if (drawn(shape, hit.part) && !take(hit, false)) return;
     }
   }
 }

@@ -2,6 +2,7 @@
 // the node holds only what the file gave, and types were checked when it was parsed.
 #pragma once
 
+#include <array>
 #include <numbers>
 #include <vector>
 
@@ -17,6 +18,12 @@ inline double sf_float(const Node& n, const char* name, double fallback) {
 }
 inline bool sf_bool(const Node& n, const char* name, bool fallback) {
   return sf_float(n, name, fallback ? 1 : 0) != 0;
+}
+inline std::array<double, 2> sf_vec2(const Node& n, const char* name,
+                                     const std::array<double, 2>& fallback) {
+  const FieldValue* v = n.field(name);
+  if (!v || v->numbers.size() < 2) return fallback;
+  return {v->numbers[0], v->numbers[1]};
 }
 inline Vec3 sf_vec3(const Node& n, const char* name, const Vec3& fallback) {
   const FieldValue* v = n.field(name);
@@ -45,7 +52,8 @@ inline const std::vector<NodePtr>& mf_nodes(const Node& n, const char* name) {
   const FieldValue* v = n.field(name);
   return v ? v->nodes : none;
 }
-// The node of an SFNode field, or null (NULL, absent, or a node that is not drawn).
+// The node of an SFNode field, or null (NULL, absent, or a node that is not drawn). MFNode
+// lists hold null for nodes that are not drawn (FieldValue::nodes).
 inline const Node* sf_node(const Node& n, const char* name) {
   const std::vector<NodePtr>& nodes = mf_nodes(n, name);
   return nodes.empty() ? nullptr : nodes.front().get();

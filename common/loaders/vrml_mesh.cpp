@@ -39,10 +39,13 @@ double cross2(const Point2& a, const Point2& b, const Point2& c) {
   return (b.u - a.u) * (c.v - a.v) - (b.v - a.v) * (c.u - a.u);
 }
 
-// A polygon: its corners' position indices and the normal index of each corner (or none).
+// A polygon: its corners' position indices and each corner's normal index, colour and
+// texture coordinate (each list empty when the mesh has none).
 struct Polygon {
   std::vector<std::uint32_t> positions;
   std::vector<std::uint32_t> normals;
+  std::vector<Rgb> colours;
+  std::vector<TexCoord> tex_coords;
 };
 
 [[noreturn]] void index_out_of_range(const FieldValue& field, const char* name, double index,
@@ -53,8 +56,80 @@ struct Polygon {
                                     std::to_string(count) + " entries");
 }
 
-// A face set node with the given points and polygons and `from`'s shared flags.
-NodePtr face_set(const Node& from, std::vector<double> points, std::vector<double> indices) {
+// Where a corner finds its entry in a list of normals, colours or texture coordinates
+// (§6.23): through the list's own index field (normalIndex, ...) when it is not empty, laid
+// out like coordIndex per vertex or one entry per face; otherwise by the corner's coordinate
+// index per vertex, or the face's number per face.
+class AttributeIndex {
+ public:
+  AttributeIndex(const Node& face_set, const char* index_field, const FieldValue& coord_index,
+                 bool per_vertex, std::size_t count, const char* list)
+      : index_(face_set.field(index_field)),
+        coord_index_(coord_index),
+        name_(index_field),
+        list_(list),
+        per_vertex_(per_vertex),
+        count_(count) {}
+
+  // The entry of the corner at `slot` of coordIndex, which names `vertex`, on face `face`.
+  std::uint32_t at(std::size_t slot, std::size_t face, std::uint32_t vertex) const {
+    const std::size_t key = per_vertex_ ? slot : face;
+    double index = per_vertex_ ? vertex : static_cast<double>(face);
+    if (index_ && key < index_->numbers.size()) index = index_->numbers[key];
+    if (index < 0 || index >= static_cast<double>(count_))
+      index_out_of_range(index_ ? *index_ : coord_index_, name_, index, count_, list_);
+    return static_cast<std::uint32_t>(index);
+  }
+
+ private:
+  const FieldValue* index_;
+  const FieldValue& coord_index_;
+  const char* name_;
+  const char* list_;
+  bool per_vertex_;
+  std::size_t count_;
+};
+
+std::vector<TexCoord> tex_coords(const std::vector<double>& numbers) {
+  std::vector<TexCoord> out(numbers.size() / 2);
+  for (std::size_t i = 0; i < out.size(); ++i) out[i] = {numbers[2 * i], numbers[2 * i + 1]};
+  return out;
+}
+
+// §6.23's default texture mapping: s from 0 to 1 along the bounding box's longest side, t
+// from 0 along the second longest, at the same scale (ties go to x, then y, then z).
+std::vector<TexCoord> default_tex_coords(const std::vector<Vec3>& positions) {
+  if (positions.empty()) return {};
+  Vec3 lo = positions.front(), hi = lo;
+  for (const Vec3& p : positions) {
+    lo = min(lo, p);
+    hi = max(hi, p);
+  }
+  const Vec3 size = hi - lo;
+  std::array<int, 3> axes{0, 1, 2};
+  std::stable_sort(axes.begin(), axes.end(), [&](int a, int b) { return size[a] > size[b]; });
+  const int s = axes[0], t = axes[1];
+  const double scale = size[s] > 0 ? 1 / size[s] : 0;
+  std::vector<TexCoord> out;
+  out.reserve(positions.size());
+  for (const Vec3& p : positions) out.push_back({(p[s] - lo[s]) * scale, (p[t] - lo[t]) * scale});
+  return out;
+}
+
+// A TextureCoordinate node holding `points` (s t pairs).
+NodePtr tex_coord_node(const Node& from, std::vector<double> points) {
+  auto out = std::make_shared<Node>();
+  out->type = "TextureCoordinate";
+  out->where = from.where;
+  out->fields["point"] = {FieldType::MFVec2f, std::move(points), {}, {}, from.where};
+  return out;
+}
+
+// A face set node with the given points and polygons and the fields `from` shares with face
+// sets (an ElevationGrid's normals, colours and texture coordinates are indexed like the
+// face set's vertices and faces).
+std::shared_ptr<Node> face_set(const Node& from, std::vector<double> points,
+                               std::vector<double> indices) {
   auto coord = std::make_shared<Node>();
   coord->type = "Coordinate";
   coord->where = from.where;
@@ -64,9 +139,57 @@ NodePtr face_set(const Node& from, std::vector<double> points, std::vector<doubl
   out->where = from.where;
   out->fields["coord"] = {FieldType::SFNode, {}, {}, {coord}, from.where};
   out->fields["coordIndex"] = {FieldType::MFInt32, std::move(indices), {}, {}, from.where};
-  for (const char* flag : {"ccw", "solid", "creaseAngle"})
+  for (const char* flag : {"ccw", "solid", "creaseAngle", "normal", "normalPerVertex", "color",
+                           "colorPerVertex", "texCoord"})
     if (const FieldValue* v = from.field(flag)) out->fields[flag] = *v;
   return out;
+}
+
+// The fractions of a polyline's length at each of its points, from 0 to 1 (all 0 when it has
+// no length).
+template <typename Distance>
+std::vector<double> length_fractions(std::size_t count, Distance&& distance) {
+  std::vector<double> out(count, 0);
+  for (std::size_t i = 1; i < count; ++i) out[i] = out[i - 1] + distance(i - 1, i);
+  const double total = count > 0 ? out.back() : 0;
+  for (double& f : out) f = total > 0 ? f / total : 0;
+  return out;
+}
+
+// An Extrusion's default texture coordinates (§6.18.1): for the n x m points of the sides, s
+// along the cross-section and t along the spine by length, then for the caps, the
+// cross-section's points with its larger side (x or z) scaled to [0, 1].
+std::vector<double> extrusion_tex_coords(const std::vector<std::array<double, 2>>& section,
+                                         const std::vector<Vec3>& spine) {
+  const std::vector<double> s = length_fractions(section.size(), [&](std::size_t a, std::size_t b) {
+    return std::hypot(section[b][0] - section[a][0], section[b][1] - section[a][1]);
+  });
+  const std::vector<double> t = length_fractions(
+      spine.size(), [&](std::size_t a, std::size_t b) { return length(spine[b] - spine[a]); });
+  std::vector<double> out;
+  for (const double ti : t)
+    for (const double sk : s) out.insert(out.end(), {sk, ti});
+  std::array<double, 2> lo = section.front(), hi = lo;
+  for (const auto& p : section)
+    for (int a = 0; a < 2; ++a) {
+      lo[a] = std::min(lo[a], p[a]);
+      hi[a] = std::max(hi[a], p[a]);
+    }
+  const double side = std::max(hi[0] - lo[0], hi[1] - lo[1]);
+  const double scale = side > 0 ? 1 / side : 0;
+  for (const auto& [x, z] : section)
+    out.insert(out.end(), {(x - lo[0]) * scale, (z - lo[1]) * scale});
+  return out;
+}
+
+// The Extrusion's texCoordIndex: its sides' corners (before `side_indices`) index the side
+// coordinates like coordIndex; a cap's corner k takes the caps' coordinate n m + k.
+std::vector<double> extrusion_tex_indices(std::vector<double> indices, std::size_t side_indices,
+                                          std::size_t n, std::size_t m) {
+  for (std::size_t q = side_indices; q < indices.size(); ++q)
+    if (indices[q] >= 0)
+      indices[q] = static_cast<double>(n * m) + std::fmod(indices[q], static_cast<double>(m));
+  return indices;
 }
 
 void add_quad(std::vector<double>& indices, std::size_t a, std::size_t b, std::size_t c,
@@ -95,7 +218,19 @@ NodePtr elevation_grid_face_set(const Node& grid) {
   for (std::size_t j = 0; j + 1 < nz; ++j)
     for (std::size_t i = 0; i + 1 < nx; ++i)
       add_quad(indices, i + j * nx, i + (j + 1) * nx, i + 1 + (j + 1) * nx, i + 1 + j * nx);
-  return face_set(grid, std::move(points), std::move(indices));
+  std::shared_ptr<Node> out = face_set(grid, std::move(points), std::move(indices));
+  if (!sf_node(grid, "texCoord") && nx >= 2 && nz >= 2) {
+    // The default texture coordinates: (0, 0) at the first point, (1, 1) at the last, s along
+    // +x and t along +z.
+    std::vector<double> st;
+    for (std::size_t j = 0; j < nz; ++j)
+      for (std::size_t i = 0; i < nx; ++i)
+        st.insert(st.end(), {static_cast<double>(i) / static_cast<double>(nx - 1),
+                             static_cast<double>(j) / static_cast<double>(nz - 1)});
+    out->fields["texCoord"] = {
+        FieldType::SFNode, {}, {}, {tex_coord_node(grid, std::move(st))}, grid.where};
+  }
+  return out;
 }
 
 NodePtr extrusion_face_set(const Node& extrusion) {
@@ -117,23 +252,42 @@ NodePtr extrusion_face_set(const Node& extrusion) {
   if (n < 2 || m < 2) return face_set(extrusion, {}, {});
 
   // The spine-aligned cross-section plane at each spine point (§6.18.2): Y along the spine,
-  // Z across the bend; where the spine is straight, the rotation taking +y to Y.
+  // Z across the bend. An open spine's end points take their neighbours' Z; where the spine
+  // runs straight, a point takes the Z of the nearest point before it that has one (at the
+  // start, after it); a spine straight throughout takes the rotation of +y to Y.
   const bool closed = spine.front() == spine.back();
-  Vec3 last_z{0, 0, 1};
+  std::vector<Vec3> ys(n), zs(n);
   for (std::size_t i = 0; i < n; ++i) {
     const Vec3 prev = i > 0 ? spine[i - 1] : (closed ? spine[n - 2] : spine[0]);
     const Vec3 next = i + 1 < n ? spine[i + 1] : (closed ? spine[1] : spine[n - 1]);
-    const Vec3 y = unit_or_zero(next - prev);
-    Vec3 z = unit_or_zero(cross(next - spine[i], prev - spine[i]));
-    if (z == Vec3{}) {
-      z = last_z;
-      if (const auto r = Affine::rotation(
-              std::acos(std::clamp(y.y, -1.0, 1.0)) * 180 / std::numbers::pi, cross({0, 1, 0}, y)))
+    ys[i] = unit_or_zero(next - prev);
+    zs[i] = unit_or_zero(cross(next - spine[i], prev - spine[i]));
+  }
+  if (!closed && n > 2) {
+    zs[0] = zs[1];
+    zs[n - 1] = zs[n - 2];
+  }
+  const auto bent = std::find_if(zs.begin(), zs.end(), [](const Vec3& z) { return z != Vec3{}; });
+  Vec3 last_z = bent == zs.end() ? Vec3{0, 0, 1} : *bent;
+  for (std::size_t i = 0; i < n; ++i) {
+    Vec3& z = zs[i];
+    if (bent == zs.end()) {
+      if (const auto r =
+              Affine::rotation(std::acos(std::clamp(ys[i].y, -1.0, 1.0)) * 180 / std::numbers::pi,
+                               cross({0, 1, 0}, ys[i])))
         z = r->apply_vector({0, 0, 1});
-    } else if (i > 0 && dot(z, last_z) < 0) {
+      else
+        z = last_z;
+    } else if (z == Vec3{}) {
+      z = last_z;
+    } else if (dot(z, last_z) < 0) {
       z = -z;  // keep the plane from flipping at an inflection
     }
     last_z = z;
+  }
+  for (std::size_t i = 0; i < n; ++i) {
+    const Vec3& y = ys[i];
+    const Vec3& z = zs[i];
     const Vec3 x = cross(y, z);
     const Affine plane = Affine::from_columns(x, y == Vec3{} ? Vec3{0, 1, 0} : y, z);
     Affine turn = Affine::identity();
@@ -152,6 +306,7 @@ NodePtr extrusion_face_set(const Node& extrusion) {
   for (std::size_t i = 0; i + 1 < n; ++i)
     for (std::size_t k = 0; k + 1 < m; ++k)
       add_quad(indices, i * m + k, i * m + k + 1, (i + 1) * m + k + 1, (i + 1) * m + k);
+  const std::size_t side_indices = indices.size();
   // Caps: the cross-section without its closing point; the begin cap faces back.
   const std::size_t corners = section.front() == section.back() ? m - 1 : m;
   if (corners >= 3 && sf_bool(extrusion, "beginCap", true)) {
@@ -163,7 +318,16 @@ NodePtr extrusion_face_set(const Node& extrusion) {
       indices.push_back(static_cast<double>((n - 1) * m + k));
     indices.push_back(-1);
   }
-  return face_set(extrusion, std::move(points), std::move(indices));
+  std::vector<double> tex_indices = extrusion_tex_indices(indices, side_indices, n, m);
+  std::shared_ptr<Node> out = face_set(extrusion, std::move(points), std::move(indices));
+  out->fields["texCoord"] = {FieldType::SFNode,
+                             {},
+                             {},
+                             {tex_coord_node(extrusion, extrusion_tex_coords(section, spine))},
+                             extrusion.where};
+  out->fields["texCoordIndex"] = {
+      FieldType::MFInt32, std::move(tex_indices), {}, {}, extrusion.where};
+  return out;
 }
 
 std::vector<std::array<std::uint32_t, 3>> triangulate_polygon(const std::vector<Vec3>& polygon) {
@@ -212,7 +376,7 @@ std::vector<std::array<std::uint32_t, 3>> triangulate_polygon(const std::vector<
   return out;
 }
 
-FaceSetMesh face_set_mesh(const Node& face_set) {
+FaceSetMesh face_set_mesh(const Node& face_set, CornerAttributes wanted) {
   FaceSetMesh out;
   Mesh& mesh = out.mesh;
   mesh.source = face_set.where.to_string();
@@ -222,17 +386,30 @@ FaceSetMesh face_set_mesh(const Node& face_set) {
   mesh.positions = vectors(mf_numbers(*coord, "point"));
 
   const Node* normal_node = sf_node(face_set, "normal");
-  const bool per_vertex = sf_bool(face_set, "normalPerVertex", true);
-  const FieldValue* normal_index = face_set.field("normalIndex");
   if (normal_node) mesh.normals = vectors(mf_numbers(*normal_node, "vector"));
-  const auto normal_at = [&](std::size_t slot, double fallback) -> std::uint32_t {
-    double index = fallback;
-    if (normal_index && slot < normal_index->numbers.size()) index = normal_index->numbers[slot];
-    if (index < 0 || index >= static_cast<double>(mesh.normals.size()))
-      index_out_of_range(normal_index ? *normal_index : *coord_index, "normalIndex", index,
-                         mesh.normals.size(), "Normal");
-    return static_cast<std::uint32_t>(index);
-  };
+  const AttributeIndex normal_at(face_set, "normalIndex", *coord_index,
+                                 sf_bool(face_set, "normalPerVertex", true), mesh.normals.size(),
+                                 "Normal");
+
+  const Node* colour_node = wanted.colours ? sf_node(face_set, "color") : nullptr;
+  std::vector<Rgb> colours;
+  if (colour_node) {
+    const std::vector<Vec3> c = vectors(mf_numbers(*colour_node, "color"));
+    for (const Vec3& v : c) colours.push_back({v.x, v.y, v.z});
+  }
+  const AttributeIndex colour_at(face_set, "colorIndex", *coord_index,
+                                 sf_bool(face_set, "colorPerVertex", true), colours.size(),
+                                 "Color");
+
+  // Given texture coordinates are indexed per vertex; the default ones belong to the vertices.
+  const Node* tex_coord_node = wanted.tex_coords ? sf_node(face_set, "texCoord") : nullptr;
+  const std::vector<TexCoord> given_tex_coords =
+      tex_coord_node ? tex_coords(mf_numbers(*tex_coord_node, "point")) : std::vector<TexCoord>{};
+  const std::vector<TexCoord> vertex_tex_coords = wanted.tex_coords && !tex_coord_node
+                                                      ? default_tex_coords(mesh.positions)
+                                                      : std::vector<TexCoord>{};
+  const AttributeIndex tex_coord_at(face_set, "texCoordIndex", *coord_index, true,
+                                    given_tex_coords.size(), "TextureCoordinate");
 
   // Split coordIndex at -1 into polygons.
   std::vector<Polygon> polygons;
@@ -249,16 +426,20 @@ FaceSetMesh face_set_mesh(const Node& face_set) {
     const double index = indices[slot];
     if (index < 0 || index >= static_cast<double>(mesh.positions.size()))
       index_out_of_range(*coord_index, "coordIndex", index, mesh.positions.size(), "Coordinate");
-    current.positions.push_back(static_cast<std::uint32_t>(index));
-    if (normal_node) {
-      current.normals.push_back(per_vertex ? normal_at(slot, index)
-                                           : normal_at(face, static_cast<double>(face)));
-    }
+    const auto vertex = static_cast<std::uint32_t>(index);
+    current.positions.push_back(vertex);
+    if (normal_node) current.normals.push_back(normal_at.at(slot, face, vertex));
+    if (colour_node) current.colours.push_back(colours[colour_at.at(slot, face, vertex)]);
+    if (tex_coord_node)
+      current.tex_coords.push_back(given_tex_coords[tex_coord_at.at(slot, face, vertex)]);
+    if (!vertex_tex_coords.empty()) current.tex_coords.push_back(vertex_tex_coords[vertex]);
   }
   if (!sf_bool(face_set, "ccw", true)) {
     for (Polygon& polygon : polygons) {
       std::reverse(polygon.positions.begin(), polygon.positions.end());
       std::reverse(polygon.normals.begin(), polygon.normals.end());
+      std::reverse(polygon.colours.begin(), polygon.colours.end());
+      std::reverse(polygon.tex_coords.begin(), polygon.tex_coords.end());
     }
   }
 
@@ -296,6 +477,13 @@ FaceSetMesh face_set_mesh(const Node& face_set) {
       triangle.v = {polygon.positions[a], polygon.positions[b], polygon.positions[c]};
       if (out.smooth) triangle.n = {polygon.normals[a], polygon.normals[b], polygon.normals[c]};
       mesh.triangles.push_back(triangle);
+      if (colour_node)
+        mesh.corner_colours.insert(mesh.corner_colours.end(),
+                                   {polygon.colours[a], polygon.colours[b], polygon.colours[c]});
+      if (wanted.tex_coords)
+        mesh.corner_tex_coords.insert(
+            mesh.corner_tex_coords.end(),
+            {polygon.tex_coords[a], polygon.tex_coords[b], polygon.tex_coords[c]});
     }
   }
   return out;

@@ -50,7 +50,9 @@ struct FieldValue {
   FieldType type = FieldType::SFFloat;
   std::vector<double> numbers;  // every element's components in order (booleans as 0 and 1)
   std::vector<std::string> strings;
-  std::vector<NodePtr> nodes;  // SFNode NULL is an empty list
+  // SFNode NULL is an empty list; in an MFNode, a node that is not drawn (ignored or
+  // unsupported) is null, so that the others keep their indices.
+  std::vector<NodePtr> nodes;
   SourceLocation where;
   std::size_t size() const;  // elements
 };

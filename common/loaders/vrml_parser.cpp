@@ -218,7 +218,9 @@ class Parser {
       case MFNode:
         if (peek_is("NULL")) {
           take("NULL");
-        } else if (NodePtr node = node_statement()) {
+        } else if (NodePtr node = node_statement(); node || out.type == MFNode) {
+          // A node that is not drawn stays in an MFNode as null, so that the others keep
+          // their indices (Switch's whichChoice counts every child, §6.46).
           out.nodes.push_back(std::move(node));
         }
         return;
@@ -398,6 +400,7 @@ class Parser {
   NodePtr instantiate(const NodePtr& node, const std::map<std::string, FieldValue>& values,
                       const std::map<std::string, std::string>& relinks,
                       std::map<const Node*, NodePtr>& copies) {
+    if (!node) return nullptr;  // a node that is not drawn
     if (const auto done = copies.find(node.get()); done != copies.end()) return done->second;
     count_node();
     auto copy = std::make_shared<Node>(*node);

@@ -82,7 +82,8 @@ class Converter {
 
   // ---- Children of grouping nodes
   void children(const Node& n, const char* field, const Affine& ct, int depth) {
-    for (const NodePtr& c : mf_nodes(n, field)) child(*c, ct, depth);
+    for (const NodePtr& c : mf_nodes(n, field))
+      if (c) child(*c, ct, depth);  // null: a node that is not drawn
   }
 
   void child(const Node& n, const Affine& ct, int depth) {
@@ -96,11 +97,14 @@ class Converter {
     } else if (t == "Switch") {
       const std::vector<NodePtr>& choice = mf_nodes(n, "choice");
       const double which = sf_float(n, "whichChoice", -1);
-      if (which >= 0 && which < static_cast<double>(choice.size()))
+      // The index counts every child, also those that are not drawn (null).
+      if (which >= 0 && which < static_cast<double>(choice.size()) &&
+          choice[static_cast<std::size_t>(which)])
         child(*choice[static_cast<std::size_t>(which)], ct, depth);
     } else if (t == "LOD") {
       const std::vector<NodePtr>& levels = mf_nodes(n, "level");
-      if (!levels.empty()) child(*levels.front(), ct, depth);  // the most detailed level
+      if (!levels.empty() && levels.front())
+        child(*levels.front(), ct, depth);  // the most detailed level
     } else if (t == "Inline") {
       inline_world(n, ct, depth);
     } else if (t == "Shape") {
@@ -150,7 +154,8 @@ class Converter {
   void shape(const Node& n, const Affine& ct) {
     const Node* geometry = sf_node(n, "geometry");
     if (!geometry) return;
-    const Material material = appearance(sf_node(n, "appearance"));
+    const Node* look = sf_node(n, "appearance");
+    const Material material = appearance(look);
     const std::string& t = geometry->type;
     if (t == "Sphere") {
       // Turned so that the texture's poles lie on y, as VRML's do.
@@ -160,21 +165,18 @@ class Converter {
     } else if (t == "Box") {
       add(Cube{}, ct * Affine::scaling(sf_vec3(*geometry, "size", {2, 2, 2}) * 0.5), material,
           *geometry);
-    } else if (t == "Cone") {
-      if (!sf_bool(*geometry, "side", true) || !sf_bool(*geometry, "bottom", true))
-        ++unsupported_["Cone side or bottom FALSE (drawn whole)"];
-      const double r = sf_float(*geometry, "bottomRadius", 1);
-      add(TaperedCylinder{0, false}, ct * along_y(r, sf_float(*geometry, "height", 2)), material,
-          *geometry);
-    } else if (t == "Cylinder") {
-      if (!sf_bool(*geometry, "side", true) || !sf_bool(*geometry, "top", true) ||
-          !sf_bool(*geometry, "bottom", true))
-        ++unsupported_["Cylinder side, top or bottom FALSE (drawn whole)"];
-      const double r = sf_float(*geometry, "radius", 1);
-      add(TaperedCylinder{1, false}, ct * along_y(r, sf_float(*geometry, "height", 2)), material,
-          *geometry);
+    } else if (t == "Cone" || t == "Cylinder") {
+      const bool cone = t == "Cone";
+      TaperedCylinder shape{cone ? 0.0 : 1.0, false, sf_bool(*geometry, "side", true),
+                            sf_bool(*geometry, "bottom", true),
+                            !cone && sf_bool(*geometry, "top", true)};
+      // With a part left out the inside shows: light it as well.
+      Material m = material;
+      if (!shape.wall || !shape.base_cap || (!cone && !shape.top_cap)) m.light_back_faces = true;
+      const double r = sf_float(*geometry, cone ? "bottomRadius" : "radius", 1);
+      add(shape, ct * along_y(r, sf_float(*geometry, "height", 2)), m, *geometry);
     } else if (t == "IndexedFaceSet" || t == "ElevationGrid" || t == "Extrusion") {
-      face_set(*geometry, ct, material);
+      face_set(*geometry, ct, material, look ? sf_node(*look, "material") : nullptr);
     } else {
       throw SceneError(geometry->where, quoted(t) + " is not a geometry node");
     }
@@ -187,29 +189,37 @@ class Converter {
            Affine::scaling({radius, radius, height});
   }
 
-  // IndexedFaceSet, ElevationGrid, Extrusion: a mesh.
-  void face_set(const Node& n, const Affine& ct, Material material) {
-    if (sf_node(n, "color")) ++unsupported_[n.type + " color"];
-    if (sf_node(n, "texCoord")) ++unsupported_[n.type + " texCoord"];
+  // IndexedFaceSet, ElevationGrid, Extrusion: a mesh. Its texture coordinates are made when
+  // the shape has an image texture, and its colours (Color) when it has none, since an RGB
+  // texture replaces them (§4.14.2); they replace the diffuse colour as a texture does.
+  void face_set(const Node& n, const Affine& ct, Material material, const Node* material_node) {
     // A face set that is not solid may be seen from behind: light both faces.
     if (!sf_bool(n, "solid", true)) material.light_back_faces = true;
-    auto [mesh_index, smooth] = mesh(n);
+    CornerAttributes wanted;
+    wanted.tex_coords = material.flat_texture.kind == FlatTexture::Kind::Image;
+    wanted.colours = !wanted.tex_coords && sf_node(n, "color");
+    if (wanted.colours) {
+      replace_diffuse(material_node, material);
+      material.corner_colours_decal = !material_node;
+    }
+    auto [mesh_index, smooth] = mesh(n, wanted);
     if (mesh_index) add(MeshShape{*mesh_index, smooth}, ct, material, n);
   }
 
-  // The mesh of a face set node, made once per node however often USE repeats it.
-  std::pair<std::optional<std::size_t>, bool> mesh(const Node& n) {
-    if (const auto made = meshes_.find(&n); made != meshes_.end()) return made->second;
+  // The mesh of a face set node with the wanted corner attributes, made once per node and
+  // attributes however often USE repeats it.
+  std::pair<std::optional<std::size_t>, bool> mesh(const Node& n, CornerAttributes wanted) {
+    if (const auto made = meshes_.find({&n, wanted}); made != meshes_.end()) return made->second;
     NodePtr generated;
     if (n.type == "ElevationGrid") generated = elevation_grid_face_set(n);
     if (n.type == "Extrusion") generated = extrusion_face_set(n);
-    FaceSetMesh made = face_set_mesh(generated ? *generated : n);
+    FaceSetMesh made = face_set_mesh(generated ? *generated : n, wanted);
     std::pair<std::optional<std::size_t>, bool> out{std::nullopt, made.smooth};
     if (!made.mesh.triangles.empty()) {
       out.first = scene_.meshes.size();
       scene_.meshes.push_back(std::move(made.mesh));
     }
-    meshes_[&n] = out;
+    meshes_[{&n, wanted}] = out;
     return out;
   }
 
@@ -238,14 +248,43 @@ class Converter {
       out.specular_exponent = sf_float(*m, "shininess", 0.2) * 128;
       out.transparency = std::clamp(sf_float(*m, "transparency", 0), 0.0, 1.0);
     }
-    if (const Node* t = node ? sf_node(*node, "texture") : nullptr) texture(*t, m, out);
-    if (node && sf_node(*node, "textureTransform")) ++unsupported_["TextureTransform"];
+    if (const Node* t = node ? sf_node(*node, "texture") : nullptr) {
+      texture(*t, m, out);
+      out.flat_texture.transform = texture_transform(sf_node(*node, "textureTransform"));
+    }
     return out;
   }
 
-  // ImageTexture (§6.22) with the shape's own texture mapping (texture_coordinates.h). An RGB
-  // texture replaces the diffuse colour (modulating white); with no material it is the unlit
-  // colour (a decal).
+  // A colour that replaces the diffuse colour (an RGB texture, Color) modulates a white
+  // material; with no material the shape is unlit and the colour shows as it is (a decal), so
+  // the material's own white glow goes.
+  static void replace_diffuse(const Node* material, Material& out) {
+    if (material) {
+      out.ambient = Rgb::gray(sf_float(*material, "ambientIntensity", 0.2));
+      out.diffuse = {1, 1, 1};
+    } else {
+      out.emissive = {};
+    }
+  }
+
+  // TextureTransform (§6.48): Tc' = -C x S x R x C x T x Tc, as the rows of a 2D affine map
+  // (FlatTexture::transform). No node: the identity, so that coordinates beyond [0, 1] repeat
+  // the texture.
+  static std::array<double, 6> texture_transform(const Node* n) {
+    if (!n) return {1, 0, 0, 0, 1, 0};
+    const auto [cs, ct] = sf_vec2(*n, "center", {0, 0});
+    const auto [ss, st] = sf_vec2(*n, "scale", {1, 1});
+    const auto [ts, tt] = sf_vec2(*n, "translation", {0, 0});
+    const double angle = sf_float(*n, "rotation", 0);
+    const double cos_a = std::cos(angle), sin_a = std::sin(angle);
+    // The linear part S R takes Tc + T + C; then less C.
+    const double a = ss * cos_a, b = -ss * sin_a, d = st * sin_a, e = st * cos_a;
+    const double us = ts + cs, ut = tt + ct;
+    return {a, b, a * us + b * ut - cs, d, e, d * us + e * ut - ct};
+  }
+
+  // ImageTexture (§6.22) with the shape's own texture mapping (texture_coordinates.h) or a
+  // face set's texture coordinates. An RGB texture replaces the diffuse colour.
   void texture(const Node& t, const Node* material, Material& out) {
     for (const std::string& name :
          t.field("url") ? t.field("url")->strings : std::vector<std::string>{}) {
@@ -262,12 +301,9 @@ class Converter {
       flat.kind = FlatTexture::Kind::Image;
       flat.image_file = *path;
       flat.decal = !material;
-      if (material) {
-        out.ambient = Rgb::gray(sf_float(*material, "ambientIntensity", 0.2));
-        out.diffuse = {1, 1, 1};
-      } else {
-        out.emissive = {};
-      }
+      replace_diffuse(material, out);
+      flat.clamp_s = !sf_bool(t, "repeatS", true);
+      flat.clamp_t = !sf_bool(t, "repeatT", true);
       return;
     }
     throw SceneError(t.where,
@@ -475,7 +511,8 @@ class Converter {
   std::vector<Billboard> billboards_;
   std::vector<NodePtr> roots_;         // every file's, alive for the whole conversion
   std::set<std::string> image_paths_;  // in Scene::images
-  std::map<const Node*, std::pair<std::optional<std::size_t>, bool>> meshes_;
+  std::map<std::pair<const Node*, CornerAttributes>, std::pair<std::optional<std::size_t>, bool>>
+      meshes_;
   std::optional<Camera> viewpoint_;
   std::optional<bool> headlight_;
   std::optional<Rgb> background_;

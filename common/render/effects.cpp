@@ -6,7 +6,7 @@
 namespace tessera {
 
 namespace {
-constexpr std::array<std::pair<Effect, const char*>, 20> kEffectNames{{
+constexpr std::array<std::pair<Effect, const char*>, 21> kEffectNames{{
     {Effect::HardShadows, "hard_shadows"},
     {Effect::Reflection, "reflection"},
     {Effect::Refraction, "refraction"},
@@ -27,6 +27,7 @@ constexpr std::array<std::pair<Effect, const char*>, 20> kEffectNames{{
     {Effect::SoftShadows, "soft_shadows"},
     {Effect::ShowExtents, "show_extents"},
     {Effect::DirectionalLight, "directional_light"},
+    {Effect::VertexColors, "vertex_colors"},
 }};
 }  // namespace
 

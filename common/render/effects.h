@@ -29,6 +29,7 @@ enum class Effect : std::uint32_t {
   SoftShadows = 1u << 17,       // a cone of shadow feelers per light (§4.2.1)
   ShowExtents = 1u << 18,       // objects' bounding boxes drawn as white bars (§3.2.7)
   DirectionalLight = 1u << 19,  // lights at infinity (VRML DirectionalLight, headlight)
+  VertexColors = 1u << 20,      // meshes coloured per vertex or per face (VRML Color)
 };
 
 class EffectSet {

@@ -55,7 +55,11 @@ EffectSet scene_effects(const Scene& scene) {
       if (m.translucency_strength > 0) effects.add(Effect::Translucency);
     }
     if (m.surface_roughness > 0) effects.add(Effect::SurfaceRoughness);
-    if (std::holds_alternative<MeshShape>(object.geometry)) effects.add(Effect::Meshes);
+    if (const auto* mesh = std::get_if<MeshShape>(&object.geometry)) {
+      effects.add(Effect::Meshes);
+      if (mesh->mesh < scene.meshes.size() && !scene.meshes[mesh->mesh].corner_colours.empty())
+        effects.add(Effect::VertexColors);
+    }
     if (std::holds_alternative<CsgShape>(object.geometry)) effects.add(Effect::Csg);
     if (m.solid_texture.type != 0) effects.add(Effect::SolidTexture);
     if (m.flat_texture.kind == FlatTexture::Kind::Image) effects.add(Effect::ImageTexture);
@@ -113,9 +117,10 @@ std::vector<SceneObject> extent_bars(const std::vector<SceneObject>& objects,
   return bars;
 }
 
+// Whether some shape's colours vary over its surface: textures, or a mesh's corner colours.
 bool has_texture(const EffectSet& effects) {
   return effects.has(Effect::SolidTexture) || effects.has(Effect::ImageTexture) ||
-         effects.has(Effect::ProceduralTexture);
+         effects.has(Effect::ProceduralTexture) || effects.has(Effect::VertexColors);
 }
 
 // Every image file the scene names, decoded once for all rays.
@@ -140,7 +145,13 @@ ObjectTexture object_texture(const SceneObject& object, const Scene& scene,
     if (scene.images[i].path == m.flat_texture.image_file) image = &images[i];
   if (m.flat_texture.kind == FlatTexture::Kind::Image && image == nullptr)
     throw SceneError(object.where, "image file '" + m.flat_texture.image_file + "' was not read");
-  return {make_solid_pattern(m.solid_texture), make_flat_texture(m.flat_texture, image)};
+  ObjectTexture out{make_solid_pattern(m.solid_texture), make_flat_texture(m.flat_texture, image)};
+  if (const auto* shape = std::get_if<MeshShape>(&object.geometry);
+      shape && !scene.meshes[shape->mesh].corner_colours.empty()) {
+    out.coloured_mesh = &scene.meshes[shape->mesh];
+    out.colour_decal = m.corner_colours_decal;
+  }
+  return out;
 }
 
 // Whether a surface of object `index` is transparent (for a boolean object, a child's).

@@ -47,7 +47,7 @@ class PreparedScene {
   const EffectSet& effects() const { return effects_; }
   const std::vector<Instance>& instances() const { return instances_; }
   const Bvh& bvh() const { return bvh_; }
-  // Whether any shape has a texture; only then may texture() be called.
+  // Whether any shape has a texture or corner colours; only then may texture() be called.
   bool textured() const { return !textures_.empty(); }
   const ObjectTexture& texture(std::uint32_t index) const { return textures_[index]; }
   // For a transparent object, the other transparent objects whose world bounds meet its own:

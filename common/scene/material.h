@@ -1,6 +1,8 @@
 // Surface materials: the parameters of SDL §3.2.5 and §3.2.8, with the defaults of Hill's SDL.
 #pragma once
 
+#include <array>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -26,6 +28,11 @@ struct FlatTexture {
   bool decal = false;
   double tile_s = 1, tile_t = 1;
   double offset_s = 0, offset_t = 0;  // flatTextureOffset
+  // VRML's placement (TextureTransform, ISO/IEC 14772-1 §6.48) instead of the offset and
+  // tiles: (s, t) becomes (m[0] s + m[1] t + m[2], m[3] s + m[4] t + m[5]), and the texture
+  // repeats beyond the square instead of being clipped to it.
+  std::optional<std::array<double, 6>> transform;
+  bool clamp_s = false, clamp_t = false;  // VRML's repeatS, repeatT FALSE: an image's edges go on
   friend bool operator==(const FlatTexture&, const FlatTexture&) = default;
 };
 
@@ -49,6 +56,10 @@ struct Material {
   bool disable_refraction = false;
   SolidTexture solid_texture;
   FlatTexture flat_texture;
+  // A mesh with corner colours (Mesh::corner_colours) takes its diffuse colour from them,
+  // modulating this material's; as a decal (a VRML shape without a Material) they show as they
+  // are, unlit, like a decal flat texture.
+  bool corner_colours_decal = false;
   friend bool operator==(const Material&, const Material&) = default;
 };
 

@@ -8,6 +8,8 @@
 #include <vector>
 
 #include "common/math/vec3.h"
+#include "common/scene/rgb.h"
+#include "common/scene/tex_coord.h"
 
 namespace tessera {
 
@@ -24,6 +26,12 @@ struct Mesh {
   std::vector<Vec3> positions;
   std::vector<Vec3> normals;
   std::vector<MeshTriangle> triangles;  // polygons are fan-triangulated on load
+  // Optional attributes of the triangles' corners (VRML's Color and TextureCoordinate): empty,
+  // or three per triangle, corner k of triangle i at 3 i + k in the order of MeshTriangle::v,
+  // so that only meshes that have them pay for them. Colours replace the material's diffuse
+  // colour (common/texture/surface_texture.h); texture coordinates replace shrink wrapping.
+  std::vector<Rgb> corner_colours;
+  std::vector<TexCoord> corner_tex_coords;
 };
 
 }  // namespace tessera

@@ -25,6 +25,9 @@ struct Cube {
 struct TaperedCylinder {
   double top_radius = 1;
   bool distort_texture = false;  // caps' texture mapping: distort (true) or clip (false)
+  // Which parts are drawn (VRML's Cylinder and Cone may leave out side, bottom or top). An
+  // open shape has no inside: it is no operand for a boolean object.
+  bool wall = true, base_cap = true, top_cap = true;
   friend bool operator==(const TaperedCylinder&, const TaperedCylinder&) = default;
 };
 struct MeshShape {

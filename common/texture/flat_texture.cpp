@@ -19,9 +19,12 @@ double offset_and_clip(double s, double offset) {
 }
 
 struct Lookup {
-  TexCoord uv;  // placed: repeats with period 1
+  TexCoord uv;  // placed: repeats with period 1 unless clamped
+  bool clamp_s = false, clamp_t = false;
 
-  Rgb operator()(const ImagePattern& p) const { return bilinear_lookup(*p.image, uv.s, uv.t); }
+  Rgb operator()(const ImagePattern& p) const {
+    return bilinear_lookup(*p.image, uv.s, uv.t, clamp_s, clamp_t);
+  }
   Rgb operator()(const FlatCheckerboard& c) const {
     const double cells =
         std::floor(periodic(uv.s) * c.tiles_s) + std::floor(periodic(uv.t) * c.tiles_t);
@@ -61,16 +64,22 @@ std::optional<PreparedFlatTexture> make_flat_texture(const FlatTexture& texture,
   out.tile_t = texture.tile_t;
   out.offset_s = texture.offset_s;
   out.offset_t = texture.offset_t;
+  out.transform = texture.transform;
+  out.clamp_s = texture.clamp_s;
+  out.clamp_t = texture.clamp_t;
   return out;
 }
 
 TexCoord place_on_texture(const PreparedFlatTexture& texture, TexCoord st) {
+  if (const auto& m = texture.transform)
+    return {(*m)[0] * st.s + (*m)[1] * st.t + (*m)[2], (*m)[3] * st.s + (*m)[4] * st.t + (*m)[5]};
   return {offset_and_clip(st.s, texture.offset_s) * texture.tile_s,
           offset_and_clip(st.t, texture.offset_t) * texture.tile_t};
 }
 
 Rgb flat_texture_colour(const PreparedFlatTexture& texture, TexCoord st) {
-  return std::visit(Lookup{place_on_texture(texture, st)}, texture.pattern);
+  return std::visit(Lookup{place_on_texture(texture, st), texture.clamp_s, texture.clamp_t},
+                    texture.pattern);
 }
 
 }  // namespace tessera

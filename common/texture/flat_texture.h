@@ -3,6 +3,7 @@
 // times, applied as a decal or modulating.
 #pragma once
 
+#include <array>
 #include <optional>
 #include <variant>
 
@@ -30,6 +31,8 @@ struct PreparedFlatTexture {
   bool decal = false;
   double tile_s = 1, tile_t = 1;
   double offset_s = 0, offset_t = 0;
+  std::optional<std::array<double, 6>> transform;  // FlatTexture::transform (VRML)
+  bool clamp_s = false, clamp_t = false;           // FlatTexture::clamp_s, clamp_t (VRML)
 };
 
 // The prepared form of a loaded flat texture, with `image` its decoded file (for an image
@@ -38,7 +41,8 @@ std::optional<PreparedFlatTexture> make_flat_texture(const FlatTexture& texture,
                                                      const Image* image);
 
 // §4.3.2's housekeeping: the offset added with a wrap-around, the result clipped to [0, 1],
-// then scaled by the tile counts (the patterns repeat with period 1).
+// then scaled by the tile counts (the patterns repeat with period 1). With a VRML transform,
+// that transform instead, unclipped.
 TexCoord place_on_texture(const PreparedFlatTexture& texture, TexCoord st);
 
 // The texture's colour at shape coordinates `st` (placed, then looked up).

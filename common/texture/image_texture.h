@@ -13,6 +13,9 @@ inline constexpr std::size_t kMaxTexturePixels = std::size_t{1} << 24;
 
 // The colour at texture position (u, v), taken modulo 1: u left to right, v bottom to top.
 // Texel (i, j) (row j from the top) has its centre at ((i + 1/2) / width, 1 - (j + 1/2) / height).
-Rgb bilinear_lookup(const Image& image, double u, double v);
+// A clamped direction (VRML's repeatS or repeatT FALSE) does not repeat: beyond [0, 1] its edge
+// texels go on.
+Rgb bilinear_lookup(const Image& image, double u, double v, bool clamp_u = false,
+                    bool clamp_v = false);
 
 }  // namespace tessera

@@ -1,7 +1,10 @@
-// The texturing of a hit (SDL §4.3, figure 4.4): a shape's solid texture always modulates its
-// ambient and diffuse colours; its flat texture then modulates them as well, or, as a decal,
-// replaces the ambient term with the texture's own colour and drops diffuse and specular
-// light, so that the texture shows as it is, lit or not.
+// The texturing of a hit (SDL §4.3, figure 4.4): a mesh's corner colours (VRML's Color) first
+// modulate the ambient and diffuse colours (the material's are white, so they replace them,
+// as ISO/IEC 14772-1 §4.14.4 says) or, as a decal, replace the ambient term and drop the
+// lights; a shape's solid texture then modulates its ambient and diffuse colours; its flat
+// texture modulates them as well, or, as a decal, replaces the ambient term with the
+// texture's own colour and drops diffuse and specular light, so that the texture shows as it
+// is, lit or not.
 #pragma once
 
 #include <optional>
@@ -24,7 +27,9 @@ struct SurfaceColours {
 struct ObjectTexture {
   std::optional<SolidPattern> solid;
   std::optional<PreparedFlatTexture> flat;
-  bool empty() const { return !solid && !flat; }
+  const Mesh* coloured_mesh = nullptr;  // a mesh with corner colours
+  bool colour_decal = false;            // its colours show unlit (Material::corner_colours_decal)
+  bool empty() const { return !solid && !flat && coloured_mesh == nullptr; }
 };
 
 SurfaceColours textured_colours(const ObjectTexture& texture, const Instance& instance,

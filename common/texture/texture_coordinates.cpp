@@ -4,6 +4,8 @@
 #include <cmath>
 #include <numbers>
 
+#include "common/texture/mesh_corners.h"
+
 namespace tessera {
 
 namespace {
@@ -48,7 +50,14 @@ struct ShapeCoordinates {
   TexCoord operator()(const Torus& t) const {
     return torus_texture_coordinates(t, hit.object_point);
   }
-  TexCoord operator()(const MeshShape&) const { return mesh_texture_coordinates(hit.object_point); }
+  // The mesh's own corner coordinates where it has them (VRML's TextureCoordinate), else
+  // shrink wrapping.
+  TexCoord operator()(const MeshShape&) const {
+    const Mesh* mesh = instance.mesh ? instance.mesh->mesh : nullptr;
+    if (mesh && !mesh->corner_tex_coords.empty())
+      return corner_tex_coord(*mesh, hit.part, hit.object_point);
+    return mesh_texture_coordinates(hit.object_point);
+  }
   TexCoord operator()(const AlgebraicSurface& a) const {
     // The box extent is centred on the object's origin in the world, along the world axes.
     const Vec3 centre = instance.to_world.apply_point({0, 0, 0});

@@ -8,12 +8,9 @@
 #include "common/geometry/instance.h"
 #include "common/math/vec3.h"
 #include "common/scene/shape.h"
+#include "common/scene/tex_coord.h"
 
 namespace tessera {
-
-struct TexCoord {
-  double s = 0, t = 0;
-};
 
 // Eq. 4.33-4.34: s the longitude from +x towards +y, t = 1 at the north pole (+z).
 TexCoord sphere_texture_coordinates(const Vec3& p);
@@ -28,13 +25,15 @@ TexCoord tapered_cylinder_texture_coordinates(const TaperedCylinder& shape, cons
                                               std::uint32_t part);
 // Eq. 4.49-4.51, with cos(phi) = (sqrt(x^2 + y^2) - R) / r.
 TexCoord torus_texture_coordinates(const Torus& shape, const Vec3& p);
-// Shrink wrapping of meshes, eq. 4.31-4.32: s the longitude, t = theta / pi from +z.
+// Shrink wrapping of meshes without corner texture coordinates, eq. 4.31-4.32: s the longitude, t =
+// theta / pi from +z.
 TexCoord mesh_texture_coordinates(const Vec3& p);
 // Shrink wrapping of algebraic surfaces, eq. 4.29-4.30: `from_centre` is the hit relative to
 // the centre of the box extent, `depth` the box's depth along z.
 TexCoord algebraic_texture_coordinates(const Vec3& from_centre, double depth);
 
-// The coordinates of a hit on an instance, by its shape.
+// The coordinates of a hit on an instance, by its shape (for a mesh with corner texture
+// coordinates, those interpolated).
 TexCoord texture_coordinates(const Instance& instance, const WorldHit& hit);
 
 }  // namespace tessera

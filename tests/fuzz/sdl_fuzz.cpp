@@ -7,8 +7,7 @@
 
 #include "common/loaders/scene_source.h"
 #include "common/loaders/sdl_parser.h"
-#include "common/render/prepared_scene.h"
-#include "common/render/render.h"
+#include "tests/fuzz/fuzz_render.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   using namespace tessera;
@@ -19,13 +18,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   limits.max_lights = 100;
   limits.max_tokens = 1u << 20;
   try {
-    const Scene scene = sdl::load_sdl_with_limits(source, "scene.sdl", limits);
-    const PreparedScene prepared(scene, BvhMode::Sah);
-    RenderSettings settings;
-    settings.width = 3;
-    settings.height = 2;
-    RenderStats stats;
-    render_image(prepared, settings, 1, stats);
+    fuzz::prepare_and_render(sdl::load_sdl_with_limits(source, "scene.sdl", limits));
   } catch (const SceneError&) {
   }
   return 0;

@@ -55,6 +55,27 @@ TEST(VrmlScene, PrimitivesMapOntoTheGenericShapes) {
   EXPECT_TRUE(near(scene.objects[3].transform.apply_point({0, 0, 1}), {0, 1, 0}, 1e-12));
 }
 
+TEST(VrmlScene, ConeAndCylinderPartsLeftOutAreNotDrawn) {
+  const Scene scene = load_world(
+      "Shape { geometry Cylinder { side FALSE top FALSE } }\n"
+      "Shape { geometry Cone { bottom FALSE } }\n"
+      "Shape { geometry Cylinder {} }\n");
+  ASSERT_EQ(scene.objects.size(), 3u);
+  const auto& base = std::get<TaperedCylinder>(scene.objects[0].geometry);
+  EXPECT_FALSE(base.wall);
+  EXPECT_TRUE(base.base_cap);
+  EXPECT_FALSE(base.top_cap);
+  const auto& cone = std::get<TaperedCylinder>(scene.objects[1].geometry);
+  EXPECT_TRUE(cone.wall);
+  EXPECT_FALSE(cone.base_cap);
+  // What is open shows its inside, lit; closed shapes keep one-sided lighting.
+  EXPECT_TRUE(scene.objects[0].material.light_back_faces);
+  EXPECT_TRUE(scene.objects[1].material.light_back_faces);
+  EXPECT_FALSE(scene.objects[2].material.light_back_faces);
+  EXPECT_EQ(scene.objects[2].geometry, ShapeGeometry(TaperedCylinder{1, false}));
+  EXPECT_TRUE(scene.warnings.empty());
+}
+
 TEST(VrmlScene, MaterialMapsOntoTheLightingModel) {
   const Scene scene = load_world(
       "Shape { appearance Appearance { material Material { diffuseColor 0.5 0.25 1\n"
@@ -228,6 +249,20 @@ TEST(VrmlScene, ExtrusionIsAClosedOutwardFacingSolid) {
   EXPECT_GT(volume(bent.meshes.at(0)), 0);
 }
 
+TEST(VrmlScene, ExtrusionEndsTakeTheirNeighboursPlanes) {
+  // A right-angle bend at the middle point: its Z is (0, 0, -1), which the open spine's two
+  // end points take too (§6.18.2), so that the section's x runs along -x at the start (X = Y x
+  // Z with Y = +y) and along +y at the end (Y = +x).
+  const Scene scene = load_world(
+      "Shape { geometry Extrusion { spine [0 0 0, 0 1 0, 1 1 0] crossSection [1 0, 0 1, -1 0]\n"
+      "  beginCap FALSE endCap FALSE } }");
+  const Mesh& m = scene.meshes.at(0);
+  ASSERT_EQ(m.positions.size(), 9u);
+  EXPECT_TRUE(near(m.positions[0], {-1, 0, 0}));  // section (1, 0) at the first point
+  EXPECT_TRUE(near(m.positions[1], {0, 0, -1}));  // section (0, 1): along Z
+  EXPECT_TRUE(near(m.positions[6], {1, 2, 0}));   // section (1, 0) at the last point
+}
+
 TEST(VrmlScene, UseOfAFaceSetSharesOneMesh) {
   const Scene scene = load_world(
       "DEF F Shape { geometry IndexedFaceSet { coord Coordinate { point [0 0 0, 1 0 0, 0 1 0] }"
@@ -313,6 +348,15 @@ TEST(VrmlScene, SwitchAndLodChooseOneChild) {
   ASSERT_EQ(scene.objects.size(), 2u);
   EXPECT_TRUE(std::holds_alternative<Sphere>(scene.objects[0].geometry));
   EXPECT_TRUE(std::holds_alternative<Sphere>(scene.objects[1].geometry));
+  // whichChoice counts every child, also those that are not drawn (§6.46).
+  const Scene counted = load_world(
+      "DEF T TimeSensor {}\n"
+      "Switch { whichChoice 2 choice [ USE T Text {} Shape { geometry Sphere {} } ] }\n"
+      "Switch { whichChoice 0 choice [ WorldInfo {} Shape { geometry Box {} } ] }\n"
+      "LOD { level [ Transform { children [ Script {} Shape { geometry Sphere {} } ] } ] }\n");
+  ASSERT_EQ(counted.objects.size(), 2u);
+  EXPECT_TRUE(std::holds_alternative<Sphere>(counted.objects[0].geometry));
+  EXPECT_TRUE(std::holds_alternative<Sphere>(counted.objects[1].geometry));
 }
 
 TEST(VrmlScene, InlineReadsAFileOfTheSourceUnderTheTransform) {

@@ -1,6 +1,8 @@
 // Builds small scenes in code for render tests, so that expectations can be computed by hand.
 #pragma once
 
+#include <gtest/gtest.h>
+
 #include "common/render/prepared_scene.h"
 #include "common/render/render.h"
 #include "common/render/tracer.h"
@@ -65,6 +67,12 @@ inline Rgb trace_ray(const PreparedScene& prepared, const Ray& ray, const Render
   Tracer tracer(prepared, s, stats);
   SampleStream rng(s.seed, key, 0, 0);
   return tracer.trace(ray, RayKind::Camera, 0, 1, MediumStack{}, rng);
+}
+
+inline void expect_rgb(const Rgb& got, const Rgb& expected, double tolerance = 1e-6) {
+  EXPECT_NEAR(got.r, expected.r, tolerance);
+  EXPECT_NEAR(got.g, expected.g, tolerance);
+  EXPECT_NEAR(got.b, expected.b, tolerance);
 }
 
 inline Image render(const Scene& scene, const RenderSettings& s, RenderStats* stats = nullptr,

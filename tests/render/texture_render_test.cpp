@@ -42,12 +42,6 @@ FlatTexture constant_flat(const Rgb& k, bool decal) {
   return f;
 }
 
-void expect_rgb(const Rgb& got, const Rgb& expected, double tolerance = 1e-6) {
-  EXPECT_NEAR(got.r, expected.r, tolerance);
-  EXPECT_NEAR(got.g, expected.g, tolerance);
-  EXPECT_NEAR(got.b, expected.b, tolerance);
-}
-
 TEST(TextureRender, ModulatingFlatTextureScalesAmbientAndDiffuse) {
   const Rgb k{0.2, 0.5, 1.0};
   Material m = lambertian();

@@ -95,6 +95,10 @@ TEST(ImageTexture, BilinearFilterOnTwoByTwoTexels) {
   // The image repeats: s = 0 lies half-way between the last and the first column.
   EXPECT_TRUE(near(bilinear_lookup(image, 0, 0.75), {0.5, 0.5, 0}));
   EXPECT_TRUE(near(bilinear_lookup(image, 1.25, -0.25), {1, 0, 0}));
+  // Clamped, it does not: beyond the square the edge texels go on.
+  EXPECT_TRUE(near(bilinear_lookup(image, 0, 0.75, true, false), {1, 0, 0}));
+  EXPECT_TRUE(near(bilinear_lookup(image, 1.25, -0.25, true, true), {1, 1, 1}));
+  EXPECT_TRUE(near(bilinear_lookup(image, 1.25, -0.25, false, true), {0, 0, 1}));
 }
 
 TEST(ImageTexture, TilingRepeatsTheImage) {
