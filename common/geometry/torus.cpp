@@ -154,7 +154,7 @@ void visit_torus_hits(const Torus& torus, const Ray& ray, double t_max, const Ta
 
 bool intersect_torus(const Torus& torus, const Ray& ray, double t_max, LocalHit& hit) {
   return nearest_ordered_hit([&](const auto& take) { visit_torus_hits(torus, ray, t_max, take); },
-                          hit);
+                             hit);
 }
 
 std::vector<LocalHit> torus_crossings(const Torus& torus, const Ray& ray, double t_max) {
