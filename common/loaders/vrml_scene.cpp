@@ -325,7 +325,15 @@ class Converter {
       if (out.direction == Vec3{}) throw SceneError(n.where, "DirectionalLight: zero direction");
     } else {
       out.position = ct.apply_point(sf_vec3(n, "location", {}));
-      attenuation(n);
+      const Vec3 a = sf_vec3(n, "attenuation", {1, 0, 0});
+      if (!(LightAttenuation{a.x, a.y, a.z}).is_identity()) out.attenuation = {a.x, a.y, a.z};
+      // The radius is in the light's coordinates; under a non-uniform scale the sphere it
+      // bounds becomes an ellipsoid, taken here as the sphere around it (never too short).
+      const double radius = sf_float(n, "radius", 100);
+      if (radius < 0) throw SceneError(n.where, n.type + ": radius must not be negative");
+      out.radius =
+          radius * std::max({length(ct.apply_vector({1, 0, 0})), length(ct.apply_vector({0, 1, 0})),
+                             length(ct.apply_vector({0, 0, 1}))});
     }
     if (n.type == "SpotLight") {
       out.is_spot = true;
@@ -343,21 +351,6 @@ class Converter {
       }
     }
     scene_.lights.push_back(out);
-  }
-
-  // Our light attenuation is one for the scene: the first light's that attenuates at all.
-  void attenuation(const Node& n) {
-    const Vec3 a = sf_vec3(n, "attenuation", {1, 0, 0});
-    const LightAttenuation wanted{a.x, a.y, a.z};
-    if (!attenuation_) {
-      if (!wanted.is_identity()) attenuation_ = wanted;
-      if (!wanted.is_identity()) scene_.globals.light_attenuation = wanted;
-      return;
-    }
-    if (!(*attenuation_ == wanted) && !wanted.is_identity())
-      scene_.warnings.push_back(n.where.to_string() +
-                                ": attenuation differs from an earlier light's; the first is "
-                                "used for every light");
   }
 
   // ---- Bindable nodes: the first of each kind counts (§4.6.10)
@@ -518,7 +511,6 @@ class Converter {
   std::optional<Rgb> background_;
   bool fog_seen_ = false;
   Rgb ambient_;
-  std::optional<LightAttenuation> attenuation_;
 };
 
 }  // namespace

@@ -39,8 +39,11 @@ EffectSet scene_effects(const Scene& scene) {
     if (light.is_spot) effects.add(Effect::Spotlights);
     if (light.is_directional) effects.add(Effect::DirectionalLight);
   }
-  if (!g.light_attenuation.is_identity() && !scene.lights.empty())
-    effects.add(Effect::LightAttenuation);
+  for (const Light& light : scene.lights) {
+    const LightAttenuation& a = light.attenuation ? *light.attenuation : g.light_attenuation;
+    if (!light.is_directional && (!a.is_identity() || light.radius < kInfinity))
+      effects.add(Effect::LightAttenuation);
+  }
   if (g.atmospheric_attenuation) effects.add(Effect::AtmosphericAttenuation);
   if (g.fog) effects.add(Effect::Fog);
   if (g.show_extents && !scene.objects.empty()) effects.add(Effect::ShowExtents);

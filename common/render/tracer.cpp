@@ -247,7 +247,8 @@ Rgb Tracer::local_illumination(const Hit& hit, const Material& m, const SurfaceC
 
     double attenuation = 1;  // eq. 4.12
     if (effects_.has(Effect::LightAttenuation) && !directional) {
-      const LightAttenuation& a = g.light_attenuation;
+      if (distance > light.radius) continue;
+      const LightAttenuation& a = light.attenuation ? *light.attenuation : g.light_attenuation;
       const double denominator =
           a.constant + a.linear * distance + a.quadratic * distance * distance;
       if (denominator > 1) attenuation = 1 / denominator;

@@ -2,10 +2,20 @@
 // DirectionalLight (a light at infinity), in world space.
 #pragma once
 
+#include <limits>
+#include <optional>
+
 #include "common/math/vec3.h"
 #include "common/scene/rgb.h"
 
 namespace tessera {
+
+// lightAttenuation: f = min(1, 1 / (kc + kl d + kq d^2)), eq. 4.12.
+struct LightAttenuation {
+  double constant = 1, linear = 0, quadratic = 0;
+  bool is_identity() const { return constant == 1 && linear == 0 && quadratic == 0; }
+  friend bool operator==(const LightAttenuation&, const LightAttenuation&) = default;
+};
 
 struct Spot {
   Vec3 direction{0, 0, -1};     // where the cone points (unit length after loading)
@@ -23,6 +33,11 @@ struct Light {
   // `direction` (unit length) everywhere, with no attenuation; `position` is unused.
   bool is_directional = false;
   Vec3 direction{0, 0, -1};
+  // A positional light's own attenuation and reach (VRML's PointLight and SpotLight): the
+  // attenuation replaces the scene's lightAttenuation for this light, and beyond `radius` the
+  // light lights nothing. SDL lights have neither.
+  std::optional<LightAttenuation> attenuation;
+  double radius = std::numeric_limits<double>::infinity();
   friend bool operator==(const Light&, const Light&) = default;
 };
 

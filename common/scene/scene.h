@@ -42,13 +42,6 @@ inline Vec3 camera_right(const Camera& camera, const Vec3& view) {
   return length(right) > 1e-9 ? unit_or_zero(right) : Vec3{};
 }
 
-// lightAttenuation: f = min(1, 1 / (kc + kl d + kq d^2)), eq. 4.12.
-struct LightAttenuation {
-  double constant = 1, linear = 0, quadratic = 0;
-  bool is_identity() const { return constant == 1 && linear == 0 && quadratic == 0; }
-  friend bool operator==(const LightAttenuation&, const LightAttenuation&) = default;
-};
-
 // atmosphericAttenuation <front-plane> <front-scale> <back-plane> <back-scale> <r> <g> <b>.
 struct AtmosphericAttenuation {
   double front_distance = 0, front_scale = 1, back_distance = 1, back_scale = 1;

@@ -283,7 +283,10 @@ TEST(VrmlScene, LightsTakeTheirTransformIntensityAndColour) {
   const Light& point = scene.lights[0];
   EXPECT_EQ(point.position, (Vec3{1, 5, 0}));
   EXPECT_EQ(point.color, (Rgb{0.5, 0.25, 0}));
-  EXPECT_EQ(scene.globals.light_attenuation, (LightAttenuation{1, 0.1, 0}));
+  // Its own attenuation and reach (radius defaults to 100), not the scene's.
+  EXPECT_EQ(point.attenuation, (LightAttenuation{1, 0.1, 0}));
+  EXPECT_EQ(point.radius, 100);
+  EXPECT_TRUE(scene.globals.light_attenuation.is_identity());
   const Light& directional = scene.lights[1];
   EXPECT_TRUE(directional.is_directional);
   EXPECT_EQ(directional.direction, (Vec3{0, 0, -1}));

@@ -1,7 +1,8 @@
 // VRML worlds in rendered pixels, with analytic expectations: a Box face under a
 // DirectionalLight has its Lambertian value, a Sphere seen from a Viewpoint covers the area of
-// its silhouette, the headlight lights what the camera sees head-on, and a world with no
-// Viewpoint is framed by its bounding sphere.
+// its silhouette, the headlight lights what the camera sees head-on, point lights attenuate
+// by their own factors within their radius, and a world with no Viewpoint is framed by its
+// bounding sphere.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -43,6 +44,31 @@ TEST(VrmlRender, BoxFaceUnderADirectionalLightHasItsLambertianValue) {
   EXPECT_GT(stats.shadow_rays, 0u);
   const PreparedScene prepared(scene, BvhMode::Sah);
   EXPECT_TRUE(prepared.effects().has(Effect::DirectionalLight));
+}
+
+TEST(VrmlRender, PointLightsAttenuateEachByItsOwnFactorsAndReachOnlyTheirRadius) {
+  // The Box's front face (z = 1) seen head-on, lit by point lights on the view axis at z = 3:
+  // distance 2 and N.L = 1 at the centre pixel.
+  const std::string view =
+      "NavigationInfo { headlight FALSE }\n"
+      "Viewpoint { position 0 0 5 }\n"
+      "Shape { appearance Appearance { material Material { diffuseColor 1 1 1 } }\n"
+      "        geometry Box {} }\n";
+  const auto centre = [&](const std::string& lights) {
+    return render(world(view + lights), settings(33, 33)).get(16, 16).r;
+  };
+  EXPECT_NEAR(centre("PointLight { location 0 0 3 intensity 0.9 }"), 0.9, 1e-6);
+  // 1 / (1 + 0.5 * 2 + 0.25 * 4) = 1/3, for this light only; the other keeps its full value.
+  EXPECT_NEAR(centre("PointLight { location 0 0 3 intensity 0.9 attenuation 1 0.5 0.25 }"), 0.3,
+              1e-6);
+  EXPECT_NEAR(centre("PointLight { location 0 0 3 intensity 0.3 attenuation 0 0 1 }\n"
+                     "PointLight { location 0 0 3 intensity 0.4 }"),
+              0.3 / 4 + 0.4, 1e-6);
+  // Beyond its radius a light lights nothing; the radius scales with the light's transform.
+  EXPECT_EQ(centre("PointLight { location 0 0 3 radius 1.9 }"), 0.0);
+  EXPECT_NEAR(
+      centre("Transform { scale 2 2 2 children PointLight { location 0 0 1.5 radius 1.1 } }"), 1.0,
+      1e-6);
 }
 
 TEST(VrmlRender, DirectionalLightsCastShadowsWithoutEnd) {
