@@ -378,10 +378,9 @@ class Converter {
     const double range = sf_float(n, "visibilityRange", 0);
     if (range <= 0) return;
     const FieldValue* type = n.field("fogType");
-    if (type && !type->strings.empty() && type->strings[0] == "EXPONENTIAL")
-      scene_.warnings.push_back(n.where.to_string() +
-                                ": EXPONENTIAL fog is drawn as LINEAR fog over the same range");
-    scene_.globals.fog = Fog{0, range, sf_color(n, "color", {1, 1, 1})};
+    Fog fog{0, range, sf_color(n, "color", {1, 1, 1})};
+    fog.exponential = type && !type->strings.empty() && type->strings[0] == "EXPONENTIAL";
+    scene_.globals.fog = fog;
   }
 
   // ---- After the walk: camera, headlight, ambient light, warnings

@@ -334,8 +334,10 @@ Rgb Tracer::apply_atmosphere(const Rgb& color, double distance) const {
     out = out * s + a->color * (1 - s);
   }
   if (const auto& fog = g.fog; fog && fog->start != fog->end) {
-    // Eq. 4.22-4.23, f clipped to [0, 1].
-    const double f = std::clamp((fog->end - distance) / (fog->end - fog->start), 0.0, 1.0);
+    // Eq. 4.22-4.23, f clipped to [0, 1]; or VRML's exponential fog.
+    const double f = fog->exponential
+                         ? (distance < fog->end ? std::exp(-distance / (fog->end - distance)) : 0.0)
+                         : std::clamp((fog->end - distance) / (fog->end - fog->start), 0.0, 1.0);
     out = out * f + fog->color * (1 - f);
   }
   return out;

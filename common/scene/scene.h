@@ -53,6 +53,9 @@ struct AtmosphericAttenuation {
 struct Fog {
   double start = 0, end = 1;
   Rgb color;
+  // VRML's EXPONENTIAL fog (§4.14.4): exp(-d / (end - d)) of the colour is kept for d < end,
+  // none beyond; SDL's fog is linear between start and end (eq. 4.22-4.23).
+  bool exponential = false;
   friend bool operator==(const Fog&, const Fog&) = default;
 };
 

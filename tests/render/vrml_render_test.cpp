@@ -1,8 +1,8 @@
 // VRML worlds in rendered pixels, with analytic expectations: a Box face under a
 // DirectionalLight has its Lambertian value, a Sphere seen from a Viewpoint covers the area of
 // its silhouette, the headlight lights what the camera sees head-on, point lights attenuate
-// by their own factors within their radius, and a world with no Viewpoint is framed by its
-// bounding sphere.
+// by their own factors within their radius, linear and exponential fog keep their share, and a
+// world with no Viewpoint is framed by its bounding sphere.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -69,6 +69,23 @@ TEST(VrmlRender, PointLightsAttenuateEachByItsOwnFactorsAndReachOnlyTheirRadius)
   EXPECT_NEAR(
       centre("Transform { scale 2 2 2 children PointLight { location 0 0 1.5 radius 1.1 } }"), 1.0,
       1e-6);
+}
+
+TEST(VrmlRender, LinearAndExponentialFogKeepTheirShareOfTheColour) {
+  // A glowing box face 4 units from the eye, black fog with visibilityRange 8.
+  const auto centre = [&](const std::string& fog_type) {
+    const Scene scene = world(
+        "NavigationInfo { headlight FALSE }\n"
+        "Viewpoint { position 0 0 5 }\n"
+        "Fog { color 0 0 0 visibilityRange 8 fogType \"" +
+        fog_type +
+        "\" }\n"
+        "Shape { appearance Appearance { material Material { diffuseColor 0 0 0 "
+        "emissiveColor 1 1 1 } } geometry Box {} }\n");
+    return render(scene, settings(33, 33)).get(16, 16).r;
+  };
+  EXPECT_NEAR(centre("LINEAR"), (8.0 - 4) / 8, 1e-6);
+  EXPECT_NEAR(centre("EXPONENTIAL"), std::exp(-4.0 / (8 - 4)), 1e-6);
 }
 
 TEST(VrmlRender, DirectionalLightsCastShadowsWithoutEnd) {
