@@ -100,7 +100,7 @@ LocalHit cap_hit(double height, const Vec3& o, const Vec3& d, double t) {
 struct SpanEnd {
   double t = 0;  // in the ray's own parameter
   bool reportable = false;
-  enum class Surface { Wall, Cap } surface = Surface::Wall;
+  enum class Surface { Wall, BaseCap, TopCap } surface = Surface::Wall;
 };
 
 // Where the ray o + t' d (t = shift + t') is within the wall's radius, x^2 + y^2 <= w(z)^2:
@@ -206,12 +206,13 @@ void visit_tapered_cylinder_hits(const TaperedCylinder& shape, const Ray& ray, d
   const Vec3 o_near = shift > 0 ? o + d * shift : o;
 
   // The slab 0 <= z <= 1: the caps' distances have an exact sign.
-  SpanEnd slab_lo{-kInfinity, false, SpanEnd::Surface::Cap};
-  SpanEnd slab_hi{kInfinity, false, SpanEnd::Surface::Cap};
+  SpanEnd slab_lo{-kInfinity, false, SpanEnd::Surface::BaseCap};
+  SpanEnd slab_hi{kInfinity, false, SpanEnd::Surface::TopCap};
   if (d.z != 0) {
-    const double t0 = (0 - o.z) / d.z, t1 = (1 - o.z) / d.z;
-    slab_lo.t = std::min(t0, t1);
-    slab_hi.t = std::max(t0, t1);
+    // Upwards the ray enters the slab through the base's plane, downwards through the top's.
+    slab_lo.t = (0 - o.z) / d.z;
+    slab_hi.t = (1 - o.z) / d.z;
+    if (d.z < 0) std::swap(slab_lo, slab_hi);
     slab_lo.reportable = slab_lo.t > 0;
     slab_hi.reportable = slab_hi.t > 0;
   } else if (!(o.z >= 0 && o.z <= 1)) {
@@ -219,12 +220,11 @@ void visit_tapered_cylinder_hits(const TaperedCylinder& shape, const Ray& ray, d
   }
 
   const auto hit_at = [&](const SpanEnd& end) {
-    if (end.surface == SpanEnd::Surface::Wall) return wall_hit(k, o_near, d, shift, end.t - shift);
-    // Entering the slab upwards, or leaving it downwards, is at z = 0.
-    const double height = (end.t == slab_lo.t) == (d.z > 0) ? 0.0 : 1.0;
     // A cone has no top cap: its top plane meets the wall only at the apex.
-    if (height == 1 && top == 0) return wall_hit(k, o_near, d, shift, end.t - shift);
-    return cap_hit(height, o, d, end.t);
+    const bool on_wall = end.surface == SpanEnd::Surface::Wall ||
+                         (end.surface == SpanEnd::Surface::TopCap && top == 0);
+    if (on_wall) return wall_hit(k, o_near, d, shift, end.t - shift);
+    return cap_hit(end.surface == SpanEnd::Surface::TopCap ? 1.0 : 0.0, o, d, end.t);
   };
   const WallSpans spans = wall_spans(k, o_near, d, shift);
   for (int i = 0; i < spans.count; ++i) {
