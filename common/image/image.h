@@ -41,5 +41,7 @@ Image read_image(const std::string& path);
 // Decodes a file held in memory (`name` for its format and messages), with at most
 // `max_pixels` pixels, the same way. Throws std::runtime_error naming `name` on failure.
 Image decode_image(std::string_view bytes, const std::string& name, std::size_t max_pixels);
+// The number of channels of a file held in memory, from its header alone.
+int image_channels(std::string_view bytes, const std::string& name);
 
 }  // namespace tessera

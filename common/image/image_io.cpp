@@ -57,6 +57,16 @@ Image read_opened(OIIO::ImageInput& in, const std::string& name, std::size_t max
   return image;
 }
 
+// Opens a file held in memory and hands it to `read`.
+template <typename Read>
+auto read_memory(std::string_view bytes, const std::string& name, Read&& read) {
+  OIIO::Filesystem::IOMemReader memory(bytes.data(), bytes.size());
+  // The name's extension picks the format first; OpenImageIO then tries the others.
+  auto in = OIIO::ImageInput::open(name, nullptr, &memory);
+  if (!in) throw std::runtime_error("cannot read " + name + ": " + OIIO::geterror());
+  return read(*in);
+}
+
 }  // namespace
 
 Image read_image(const std::string& path) {
@@ -66,11 +76,12 @@ Image read_image(const std::string& path) {
 }
 
 Image decode_image(std::string_view bytes, const std::string& name, std::size_t max_pixels) {
-  OIIO::Filesystem::IOMemReader memory(bytes.data(), bytes.size());
-  // The name's extension picks the format first; OpenImageIO then tries the others.
-  auto in = OIIO::ImageInput::open(name, nullptr, &memory);
-  if (!in) throw std::runtime_error("cannot read " + name + ": " + OIIO::geterror());
-  return read_opened(*in, name, max_pixels);
+  return read_memory(bytes, name,
+                     [&](OIIO::ImageInput& in) { return read_opened(in, name, max_pixels); });
+}
+
+int image_channels(std::string_view bytes, const std::string& name) {
+  return read_memory(bytes, name, [](OIIO::ImageInput& in) { return in.spec().nchannels; });
 }
 
 }  // namespace tessera

@@ -5,11 +5,12 @@
 #include <map>
 #include <numbers>
 #include <optional>
-#include <set>
+#include <span>
 #include <string>
 #include <variant>
 #include <vector>
 
+#include "common/image/image.h"
 #include "common/loaders/vrml_fields.h"
 #include "common/loaders/vrml_lexer.h"
 #include "common/loaders/vrml_loader.h"
@@ -72,7 +73,7 @@ class Converter {
     for (const std::string& w : parsed.warnings) scene_.warnings.push_back(w);
     const std::string outer = file_;
     file_ = path;
-    for (const NodePtr& node : parsed.roots) child(*node, ct, depth);
+    group(parsed.roots, ct, depth);  // a file's roots are a group: the Inline's children
     file_ = outer;
     // Billboards and the mesh cache hold nodes by address until the end.
     roots_.insert(roots_.end(), parsed.roots.begin(), parsed.roots.end());
@@ -80,31 +81,60 @@ class Converter {
 
   static std::string quoted(const std::string& path) { return "'" + path + "'"; }
 
-  // ---- Children of grouping nodes
-  void children(const Node& n, const char* field, const Affine& ct, int depth) {
-    for (const NodePtr& c : mf_nodes(n, field))
-      if (c) child(*c, ct, depth);  // null: a node that is not drawn
+  // ---- Children of grouping nodes, and what their DirectionalLights light
+  // The children of one grouping node. The DirectionalLights among them light only the objects
+  // laid down for the group (§6.16), and those of the Billboards inside it, which are laid down
+  // after the walk (finish).
+  void group(std::span<const NodePtr> nodes, const Affine& ct, int depth) {
+    open_groups_.push_back({static_cast<std::uint32_t>(scene_.objects.size()), {}, {}});
+    for (const NodePtr& c : nodes) {
+      if (!c) continue;  // a node that is not drawn
+      const std::size_t lights = scene_.lights.size();
+      child(*c, ct, depth);
+      if (c->type == "DirectionalLight" && scene_.lights.size() > lights)
+        open_groups_.back().lights.push_back(lights);
+    }
+    close_group();
+  }
+
+  // Scopes the closing group's DirectionalLights to its objects, hands them down to the
+  // Billboards inside it, and those Billboards up to the enclosing group, whose lights they
+  // inherit as well.
+  void close_group() {
+    const OpenGroup closing = std::move(open_groups_.back());
+    open_groups_.pop_back();
+    const ObjectRange range{closing.first_object,
+                            static_cast<std::uint32_t>(scene_.objects.size())};
+    for (const std::size_t light : closing.lights) scene_.lights[light].scope.push_back(range);
+    for (const std::size_t b : closing.billboards) {
+      std::vector<std::size_t>& inherited = billboards_[b].lights;
+      inherited.insert(inherited.end(), closing.lights.begin(), closing.lights.end());
+    }
+    if (!open_groups_.empty()) {
+      std::vector<std::size_t>& outer = open_groups_.back().billboards;
+      outer.insert(outer.end(), closing.billboards.begin(), closing.billboards.end());
+    }
   }
 
   void child(const Node& n, const Affine& ct, int depth) {
     const std::string& t = n.type;
     if (t == "Transform") {
-      children(n, "children", ct * transform(n), depth);
+      group(mf_nodes(n, "children"), ct * transform(n), depth);
     } else if (t == "Group" || t == "Anchor" || t == "Collision") {
-      children(n, "children", ct, depth);
+      group(mf_nodes(n, "children"), ct, depth);
     } else if (t == "Billboard") {
-      billboards_.push_back({&n, ct, depth, file_});  // turned once the camera is known
+      if (!open_groups_.empty()) open_groups_.back().billboards.push_back(billboards_.size());
+      billboards_.push_back({&n, ct, depth, file_, {}});  // turned once the camera is known
     } else if (t == "Switch") {
       const std::vector<NodePtr>& choice = mf_nodes(n, "choice");
       const double which = sf_float(n, "whichChoice", -1);
       // The index counts every child, also those that are not drawn (null).
-      if (which >= 0 && which < static_cast<double>(choice.size()) &&
-          choice[static_cast<std::size_t>(which)])
-        child(*choice[static_cast<std::size_t>(which)], ct, depth);
+      if (which >= 0 && which < static_cast<double>(choice.size()))
+        group(std::span(choice).subspan(static_cast<std::size_t>(which), 1), ct, depth);
     } else if (t == "LOD") {
       const std::vector<NodePtr>& levels = mf_nodes(n, "level");
-      if (!levels.empty() && levels.front())
-        child(*levels.front(), ct, depth);  // the most detailed level
+      group(std::span(levels).first(std::min<std::size_t>(levels.size(), 1)), ct,
+            depth);  // the most detailed level
     } else if (t == "Inline") {
       inline_world(n, ct, depth);
     } else if (t == "Shape") {
@@ -190,14 +220,17 @@ class Converter {
   }
 
   // IndexedFaceSet, ElevationGrid, Extrusion: a mesh. Its texture coordinates are made when
-  // the shape has an image texture, and its colours (Color) when it has none, since an RGB
-  // texture replaces them (§4.14.2); they replace the diffuse colour as a texture does.
+  // the shape has an image texture, and its colours (Color) when it has none or an intensity
+  // texture on a lit shape, since an RGB texture replaces them and an intensity texture
+  // modulates them (§4.14.2); they replace the diffuse colour as a texture does.
   void face_set(const Node& n, const Affine& ct, Material material, const Node* material_node) {
     // A face set that is not solid may be seen from behind: light both faces.
     if (!sf_bool(n, "solid", true)) material.light_back_faces = true;
     CornerAttributes wanted;
     wanted.tex_coords = material.flat_texture.kind == FlatTexture::Kind::Image;
-    wanted.colours = !wanted.tex_coords && sf_node(n, "color");
+    const bool modulated =
+        wanted.tex_coords && material_node && images_.at(material.flat_texture.image_file);
+    wanted.colours = (!wanted.tex_coords || modulated) && sf_node(n, "color");
     if (wanted.colours) {
       replace_diffuse(material_node, material);
       material.corner_colours_decal = !material_node;
@@ -270,6 +303,17 @@ class Converter {
   // TextureTransform (§6.48): Tc' = -C x S x R x C x T x Tc, as the rows of a 2D affine map
   // (FlatTexture::transform). No node: the identity, so that coordinates beyond [0, 1] repeat
   // the texture.
+  // One or two channels (intensity, and alpha): an image that modulates the colour under it.
+  // An image OpenImageIO cannot open is taken as RGB here; decoding it for the render reports
+  // it.
+  static bool is_intensity_image(const std::string& bytes, const std::string& path) {
+    try {
+      return image_channels(bytes, path) <= 2;
+    } catch (const std::runtime_error&) {
+      return false;
+    }
+  }
+
   static std::array<double, 6> texture_transform(const Node* n) {
     if (!n) return {1, 0, 0, 0, 1, 0};
     const auto [cs, ct] = sf_vec2(*n, "center", {0, 0});
@@ -284,7 +328,8 @@ class Converter {
   }
 
   // ImageTexture (§6.22) with the shape's own texture mapping (texture_coordinates.h) or a
-  // face set's texture coordinates. An RGB texture replaces the diffuse colour.
+  // face set's texture coordinates. An RGB texture replaces the diffuse colour; on a lit
+  // shape, an intensity texture modulates it (§4.14.2).
   void texture(const Node& t, const Node* material, Material& out) {
     for (const std::string& name :
          t.field("url") ? t.field("url")->strings : std::vector<std::string>{}) {
@@ -295,13 +340,15 @@ class Converter {
       if (bytes->size() > kMaxFileBytes)
         throw SceneError(
             t.where, quoted(*path) + " is larger than " + std::to_string(kMaxFileBytes) + " bytes");
-      if (image_paths_.insert(*path).second)
+      if (!images_.contains(*path)) {
+        images_[*path] = is_intensity_image(*bytes, *path);
         scene_.images.push_back({*path, std::move(*bytes), t.where});
+      }
       FlatTexture& flat = out.flat_texture;
       flat.kind = FlatTexture::Kind::Image;
       flat.image_file = *path;
       flat.decal = !material;
-      replace_diffuse(material, out);
+      if (!(images_[*path] && material)) replace_diffuse(material, out);
       flat.clamp_s = !sf_bool(t, "repeatS", true);
       flat.clamp_t = !sf_bool(t, "repeatT", true);
       return;
@@ -390,10 +437,14 @@ class Converter {
     g.global_ambient = clamp_unit(ambient_);
     scene_.camera = viewpoint_ ? *viewpoint_ : framing_camera();
     // Billboards nested in billboards are turned as they come: this loop sees them appended.
+    // Each is walked inside a group holding the DirectionalLights it inherited from the groups
+    // around it, so that they light its objects too.
     for (std::size_t i = 0; i < billboards_.size(); ++i) {
-      const Billboard b = billboards_[i];
+      const Billboard b = billboards_[i];  // a copy: the walk may append
       file_ = b.file;
-      children(*b.node, "children", b.ct * billboard_turn(*b.node, b.ct), b.depth);
+      open_groups_.push_back({static_cast<std::uint32_t>(scene_.objects.size()), b.lights, {}});
+      group(mf_nodes(*b.node, "children"), b.ct * billboard_turn(*b.node, b.ct), b.depth);
+      close_group();
     }
     if (headlight_.value_or(true)) {
       Light headlight;  // along the view, intensity 1, ambientIntensity 0 (§6.29)
@@ -499,10 +550,18 @@ class Converter {
     Affine ct;
     int depth;
     std::string file;
+    std::vector<std::size_t> lights;  // DirectionalLights of the groups around it
   };
   std::vector<Billboard> billboards_;
-  std::vector<NodePtr> roots_;         // every file's, alive for the whole conversion
-  std::set<std::string> image_paths_;  // in Scene::images
+  // The grouping nodes being walked, innermost last: where their objects begin, their
+  // DirectionalLights (in Scene::lights) and the Billboards inside them (in billboards_).
+  struct OpenGroup {
+    std::uint32_t first_object;
+    std::vector<std::size_t> lights, billboards;
+  };
+  std::vector<OpenGroup> open_groups_;
+  std::vector<NodePtr> roots_;          // every file's, alive for the whole conversion
+  std::map<std::string, bool> images_;  // in Scene::images: whether an intensity image
   std::map<std::pair<const Node*, CornerAttributes>, std::pair<std::optional<std::size_t>, bool>>
       meshes_;
   std::optional<Camera> viewpoint_;

@@ -225,6 +225,7 @@ Rgb Tracer::local_illumination(const Hit& hit, const Material& m, const SurfaceC
   const bool has_specular = !m.specular.is_zero() && specular_scale > 0;
   for (const Light& light : scene.lights) {
     const bool directional = kDirectionalLights && light.is_directional;
+    if (directional && !light.lights(hit.world.object)) continue;
     Vec3 l;
     double distance = 0;
     if (!towards_light(light, directional, hit.world.point, l, distance)) continue;

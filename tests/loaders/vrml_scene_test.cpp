@@ -298,6 +298,39 @@ TEST(VrmlScene, LightsTakeTheirTransformIntensityAndColour) {
   EXPECT_NEAR(std::pow(std::cos(0.4), spot.spot.exponent), 0.5, 1e-12);
 }
 
+TEST(VrmlScene, DirectionalLightsLightOnlyTheirGroupAndTheBillboardsInIt) {
+  // Objects: 0 and 4 at the top level, 1 and 2 in the Transform, 3 in the inline; the
+  // Billboard's box is laid down last, 5, once the camera is known.
+  const Files files{
+      {"lamp.wrl", std::string(kVrmlHeader) + "DirectionalLight {} Shape { geometry Sphere {} }"}};
+  const Scene scene = load_world(
+      "NavigationInfo { headlight FALSE }\n"
+      "Shape { geometry Box {} }\n"
+      "Transform { children [\n"
+      "  Shape { geometry Box {} }\n"
+      "  Billboard { children Shape { geometry Box {} } }\n"
+      "  DirectionalLight { direction 1 0 0 }\n"
+      "  Group { children Shape { geometry Box {} } } ] }\n"
+      "Inline { url \"lamp.wrl\" }\n"
+      "Switch { whichChoice 0 choice DirectionalLight {} }\n"
+      "Shape { geometry Box {} }\n"
+      "DirectionalLight { direction 0 -1 0 }\n",
+      files);
+  ASSERT_EQ(scene.objects.size(), 6u);
+  ASSERT_EQ(scene.lights.size(), 4u);
+  const auto lit = [&](const Light& light) {
+    std::vector<std::uint32_t> objects;
+    for (std::uint32_t i = 0; i < scene.objects.size(); ++i)
+      if (light.lights(i)) objects.push_back(i);
+    return objects;
+  };
+  using Objects = std::vector<std::uint32_t>;
+  EXPECT_EQ(lit(scene.lights[0]), (Objects{1, 2, 5}));           // the Transform's, billboard too
+  EXPECT_EQ(lit(scene.lights[1]), (Objects{3}));                 // the inline's roots
+  EXPECT_EQ(lit(scene.lights[2]), (Objects{}));                  // alone in its Switch
+  EXPECT_EQ(lit(scene.lights[3]), (Objects{0, 1, 2, 3, 4, 5}));  // the world's roots
+}
+
 TEST(VrmlScene, HeadlightIsOnUnlessNavigationInfoSaysOtherwise) {
   const Scene lit = load_world(
       "Viewpoint { position 0 0 4 orientation 0 1 0 1.5707963267948966 }\n"

@@ -178,5 +178,26 @@ TEST(VrmlColourRender, TextureTransformScalesAndTranslatesTheCoordinates) {
   expect_rgb(moved.get(30, 30), kTopLeft);
 }
 
+TEST(VrmlColourRender, IntensityTexturesModulateTheColourUnderThem) {
+  // A 2 x 2 one-channel PGM of 102 / 255 = 0.4 everywhere, lit head-on by the headlight.
+  const std::string grey = "P5\n2 2\n255\n" + std::string(4, static_cast<char>(102));
+  const std::string look =
+      "material Material { diffuseColor 1 0.5 0.25 } texture ImageTexture { url \"grey.pgm\" }";
+  const auto centre = [&](const std::string& appearance, const std::string& fields) {
+    return render(world(kView + quad(appearance, fields), {{"grey.pgm", grey}}),
+                  settings(kSize, kSize))
+        .get(kSize / 2, kSize / 2);
+  };
+  // I x diffuseColor; with a Color, I x the colour (§4.14.2, table 4.5).
+  expect_rgb(centre(look, "coordIndex [0 1 2 3]"), {0.4, 0.2, 0.1});
+  expect_rgb(centre(look,
+                    "coordIndex [0 1 2 3] color Color { color 0.5 1 0.75 } "
+                    "colorPerVertex FALSE"),
+             {0.2, 0.4, 0.3});
+  // Without a Material the shape is unlit and shows the intensity itself.
+  expect_rgb(centre("texture ImageTexture { url \"grey.pgm\" }", "coordIndex [0 1 2 3]"),
+             Rgb::gray(0.4));
+}
+
 }  // namespace
 }  // namespace tessera::test

@@ -101,6 +101,28 @@ TEST(VrmlRender, DirectionalLightsCastShadowsWithoutEnd) {
   EXPECT_EQ(image.get(28, 20).r, 0);            // x > 0: under the plate
 }
 
+TEST(VrmlRender, DirectionalLightLightsOnlyItsSiblingsButShadowsAll) {
+  // Two boxes seen from above, x in [-3, -1] and [1, 3], under a light shining straight down
+  // that is a sibling of the left one only. A plate far above the left box's left half, outside
+  // the light's group, still casts its shadow. Both glow a little, to tell them from the sky.
+  const Scene scene = world(
+      "NavigationInfo { headlight FALSE }\n"
+      "Viewpoint { position 0 10 0 orientation 1 0 0 -1.5707963267948966 }\n"
+      "Transform { translation -2 0 0 children [\n"
+      "  DirectionalLight { direction 0 -1 0 intensity 0.8 }\n"
+      "  DEF Glow Shape { appearance Appearance { material Material { emissiveColor 0.1 0.1 0.1 } "
+      "}\n"
+      "                  geometry Box {} } ] }\n"
+      "Transform { translation 2 0 0 children USE Glow }\n"
+      "Transform { translation -2.75 1000 0 children Shape { geometry Box { size 1.5 0.1 4 } } "
+      "}\n");
+  const Image image = render(scene, settings(81, 41));
+  // 9 units below the eye, a 45 degree view 41 pixels high spans 0.18 units a pixel.
+  EXPECT_NEAR(image.get(32, 20).r, 0.1 + 0.8 * 0.8, 1e-6);  // left box, x = -1.5: N.L = 1
+  EXPECT_NEAR(image.get(25, 20).r, 0.1, 1e-6);              // left box, x = -2.7: under the plate
+  EXPECT_NEAR(image.get(51, 20).r, 0.1, 1e-6);              // right box: outside the light's scope
+}
+
 TEST(VrmlRender, SphereFromAViewpointCoversItsSilhouette) {
   const double r = 1, d = 6, fov = 0.6;
   const Scene scene = world(
