@@ -11,12 +11,17 @@
 namespace tessera::test {
 namespace {
 
+bool is_scene(const std::filesystem::path& path) {
+  const std::filesystem::path extension = path.extension();
+  if (extension == ".gz") return path.stem().extension() == ".wrl";
+  return extension == ".sdl" || extension == ".wrl";
+}
+
 std::vector<std::filesystem::path> sample_scenes() {
   std::vector<std::filesystem::path> out;
   const std::filesystem::path root = std::filesystem::path(TESSERA_SOURCE_DIR) / "scenes";
   for (const auto& entry : std::filesystem::recursive_directory_iterator(root))
-    if ((entry.path().extension() == ".sdl" || entry.path().extension() == ".wrl") &&
-        entry.path().parent_path().filename() != "parts")
+    if (is_scene(entry.path()) && entry.path().parent_path().filename() != "parts")
       out.push_back(entry.path());
   std::sort(out.begin(), out.end());
   return out;
