@@ -12,22 +12,13 @@
 #include <numbers>
 
 #include "common/loaders/scene_loader.h"
+#include "tests/loaders/vrml_test_util.h"
 
 namespace tessera::test {
 namespace {
 
 Scene exported_world() {
   return load_scene_file(std::filesystem::path(TESSERA_SOURCE_DIR) / "scenes/vrml/exported.wrl.gz");
-}
-
-double area(const Mesh& mesh) {
-  double sum = 0;
-  for (const MeshTriangle& t : mesh.triangles) {
-    const Vec3 &a = mesh.positions[t.v[0]], &b = mesh.positions[t.v[1]],
-               &c = mesh.positions[t.v[2]];
-    sum += length(cross(b - a, c - a)) / 2;
-  }
-  return sum;
 }
 
 TEST(VrmlExported, EveryShapeLoadsAndUseSharesMeshes) {
@@ -56,8 +47,8 @@ TEST(VrmlExported, LargeFaceSetIsTheSphereItTessellates) {
   // Inscribed in the sphere of radius 1.5: a little less than its area, by about the square of
   // the angle a facet spans.
   const double sphere = 4 * std::numbers::pi * 1.5 * 1.5;
-  EXPECT_LT(area(*globe), sphere);
-  EXPECT_GT(area(*globe), sphere * (1 - 0.01));
+  EXPECT_LT(mesh_area(*globe), sphere);
+  EXPECT_GT(mesh_area(*globe), sphere * (1 - 0.01));
   // Given normals, one per corner: unit and radial.
   ASSERT_FALSE(globe->normals.empty());
   for (std::size_t i = 0; i < globe->positions.size(); ++i)

@@ -124,16 +124,6 @@ TEST(VrmlScene, ImageTextureTravelsWithTheSceneAndReplacesTheDiffuseColour) {
                      "or bundle"));
 }
 
-double area(const Mesh& mesh) {
-  double sum = 0;
-  for (const MeshTriangle& t : mesh.triangles) {
-    const Vec3 &a = mesh.positions[t.v[0]], &b = mesh.positions[t.v[1]],
-               &c = mesh.positions[t.v[2]];
-    sum += length(cross(b - a, c - a)) / 2;
-  }
-  return sum;
-}
-
 TEST(VrmlScene, ConcavePolygonsAreEarClipped) {
   // An L of area 3 whose first corner is reflex: a fan from it would leave the polygon.
   const std::vector<Vec3> l_shape{{1, 1, 0}, {1, 2, 0}, {0, 2, 0}, {0, 0, 0}, {2, 0, 0}, {2, 1, 0}};
@@ -156,7 +146,7 @@ TEST(VrmlScene, FaceSetBecomesAMeshWithItsWinding) {
                               " coordIndex [0 1 2 3] ccw FALSE solid FALSE } }");
   const Mesh& a = ccw.meshes.at(std::get<MeshShape>(only_object(ccw).geometry).mesh);
   const Mesh& b = cw.meshes.at(std::get<MeshShape>(only_object(cw).geometry).mesh);
-  EXPECT_DOUBLE_EQ(area(a), 1);
+  EXPECT_DOUBLE_EQ(mesh_area(a), 1);
   const auto normal = [](const Mesh& m) {
     const MeshTriangle& t = m.triangles.at(0);
     return cross(m.positions[t.v[1]] - m.positions[t.v[0]],
@@ -226,7 +216,7 @@ TEST(VrmlScene, ElevationGridIsAMeshFacingUp) {
       "  height [0 0 0, 0 0 0] } }");
   const Mesh& m = scene.meshes.at(0);
   EXPECT_EQ(m.positions.size(), 6u);
-  EXPECT_DOUBLE_EQ(area(m), 1 * 2);
+  EXPECT_DOUBLE_EQ(mesh_area(m), 1 * 2);
   for (const MeshTriangle& t : m.triangles)
     EXPECT_GT(
         cross(m.positions[t.v[1]] - m.positions[t.v[0]], m.positions[t.v[2]] - m.positions[t.v[0]])
@@ -240,7 +230,7 @@ TEST(VrmlScene, ElevationGridIsAMeshFacingUp) {
 TEST(VrmlScene, ExtrusionIsAClosedOutwardFacingSolid) {
   // The default cross-section (a 2 x 2 square) along the default spine (0 0 0 to 0 1 0).
   const Scene prism = load_world("Shape { geometry Extrusion {} }");
-  EXPECT_DOUBLE_EQ(area(prism.meshes.at(0)), 4 * 2 + 2 * 4);
+  EXPECT_DOUBLE_EQ(mesh_area(prism.meshes.at(0)), 4 * 2 + 2 * 4);
   EXPECT_NEAR(volume(prism.meshes.at(0)), 4, 1e-12);
   // Scaled and bent: a quarter turn of spine still encloses positive volume.
   const Scene bent = load_world(

@@ -1,4 +1,4 @@
-// Helpers shared by the VRML loader tests: parse or load VRML text from memory.
+// Helpers shared by the VRML loader tests: parse or load VRML text from memory, measure a mesh.
 #pragma once
 
 #include <gtest/gtest.h>
@@ -25,6 +25,17 @@ inline Scene load_world(const std::string& body, Files files = {}) {
   MemorySource source(std::move(files));
   source.add("world.wrl", kVrmlHeader + body);
   return load_vrml(source, "world.wrl");
+}
+
+// The total area of a mesh's triangles.
+inline double mesh_area(const Mesh& mesh) {
+  double sum = 0;
+  for (const MeshTriangle& t : mesh.triangles) {
+    const Vec3 &a = mesh.positions[t.v[0]], &b = mesh.positions[t.v[1]],
+               &c = mesh.positions[t.v[2]];
+    sum += length(cross(b - a, c - a)) / 2;
+  }
+  return sum;
 }
 
 // Succeeds when loading `body` throws a SceneError at world.wrl:line:column (lines counted
