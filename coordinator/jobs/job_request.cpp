@@ -134,11 +134,14 @@ Submission read_tar_submission(std::string_view body,
   if (auto it = query.find("main"); it != query.end()) {
     sub.main = it->second;
   } else if (!sub.files.count(sub.main)) {
-    // A single top-level .sdl (.wrl) file is the scene.
-    const char* ending = sub.format == "vrml" ? ".wrl" : ".sdl";
+    // A single top-level scene file of the format (.sdl; .wrl, .wrl.gz, .wrz) is the scene.
+    const auto is_scene = [&](const std::string& path) {
+      return sub.format == "vrml" ? scene_format_of(path) == SceneFormat::Vrml
+                                  : path.ends_with(".sdl");
+    };
     std::vector<std::string> top;
     for (const auto& [path, bytes] : sub.files)
-      if (path.find('/') == std::string::npos && path.ends_with(ending)) top.push_back(path);
+      if (path.find('/') == std::string::npos && is_scene(path)) top.push_back(path);
     if (top.size() != 1) throw bad_request("name the bundle's scene file with ?main=PATH");
     sub.main = top.front();
   }

@@ -300,30 +300,33 @@ def case_bundle():
 
 
 def case_vrml():
-    """A VRML world with an Inline and a texture, as a tar bundle (the single top-level .wrl is the scene),
-    renders bit-identical to tessera-render on its folder; its effects include the
-    directional light, and the ignored ROUTEs come back as one warning."""
+    """VRML worlds as tar bundles, the single top-level world the scene: one with an Inline and
+    a texture, and a gzip-compressed one as modelling tools export them. Each renders
+    bit-identical to tessera-render on its folder; the effects include the directional light,
+    and the ignored ROUTEs come back as one warning."""
     folder = os.path.join(ARGS.source, "scenes", "vrml")
-    buf = io.BytesIO()
-    with tarfile.open(fileobj=buf, mode="w", format=tarfile.USTAR_FORMAT) as tar:
-        tar.add(os.path.join(folder, "world.wrl"), "world.wrl")
-        tar.add(os.path.join(folder, "parts", "arch.wrl"), "parts/arch.wrl")
-        tar.add(os.path.join(folder, "textures", "gradient.bmp"), "textures/gradient.bmp")
+    worlds = {"world.wrl": ["world.wrl", "parts/arch.wrl", "textures/gradient.bmp"],
+              "exported.wrl.gz": ["exported.wrl.gz", "textures/gradient.bmp"]}
     settings = {"width": 64, "height": 48}
     with tempfile.TemporaryDirectory() as tmp, Service("--local-workers", "2",
                                                        "--local-threads", "1") as service:
-        status, _, body = service.request(
-            "POST", "/api/jobs?format=vrml&width=64&height=48", buf.getvalue(),
-            {"Content-Type": "application/x-tar"})
-        assert status == 201, (status, body)
-        job = json.loads(body)
-        assert "directional_light" in job["effects"], job
-        assert any("ROUTE (2)" in w for w in job["warnings"]), job["warnings"]
-        final = service.wait_job(job["id"])
-        assert final["state"] == "done", final
-        service.exr(job["id"], os.path.join(tmp, "svc.exr"))
-        render_cli(os.path.join(folder, "world.wrl"), settings, os.path.join(tmp, "cli.exr"))
-        assert_identical(os.path.join(tmp, "svc.exr"), os.path.join(tmp, "cli.exr"))
+        for main, files in worlds.items():
+            buf = io.BytesIO()
+            with tarfile.open(fileobj=buf, mode="w", format=tarfile.USTAR_FORMAT) as tar:
+                for name in files:
+                    tar.add(os.path.join(folder, name), name)
+            status, _, body = service.request(
+                "POST", "/api/jobs?format=vrml&width=64&height=48", buf.getvalue(),
+                {"Content-Type": "application/x-tar"})
+            assert status == 201, (main, status, body)
+            job = json.loads(body)
+            assert "directional_light" in job["effects"], job
+            assert any("ROUTE (2)" in w for w in job["warnings"]), job["warnings"]
+            final = service.wait_job(job["id"])
+            assert final["state"] == "done", final
+            service.exr(job["id"], os.path.join(tmp, "svc.exr"))
+            render_cli(os.path.join(folder, main), settings, os.path.join(tmp, "cli.exr"))
+            assert_identical(os.path.join(tmp, "svc.exr"), os.path.join(tmp, "cli.exr"))
 
 
 def case_worker_faults():
