@@ -196,7 +196,12 @@ def world():
 
 WorldInfo { title "Exported workshop" info [ "Tessera sample: an exporter-style world" ] }
 NavigationInfo { headlight FALSE type [ "EXAMINE", "ANY" ] }
-Background { skyColor 0.55 0.65 0.8 }
+Background {
+  skyColor [ 0.25 0.4 0.75, 0.55 0.65 0.8, 0.85 0.85 0.8 ]
+  skyAngle [ 1.1, 1.5708 ]
+  groundColor [ 0.2 0.18 0.15, 0.35 0.33 0.3 ]
+  groundAngle [ 1.5708 ]
+}
 DEF Camera01 Viewpoint {
   position 0 3.2 11
   orientation -1 0 0 0.18

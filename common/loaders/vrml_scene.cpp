@@ -146,7 +146,7 @@ class Converter {
     } else if (t == "NavigationInfo") {
       if (!headlight_) headlight_ = sf_bool(n, "headlight", true);
     } else if (t == "Background") {
-      if (!background_) background_ = background(n);
+      if (!background_seen_) background(n, ct);
     } else if (t == "Fog") {
       if (!fog_seen_) fog(n);
     } else {
@@ -415,9 +415,50 @@ class Converter {
     return camera;
   }
 
-  static Rgb background(const Node& n) {
-    const std::vector<double>& sky = mf_numbers(n, "skyColor");
-    return sky.size() >= 3 ? Rgb{sky[0], sky[1], sky[2]} : Rgb{};
+  // Background (§6.5): skyColor[0] everywhere, or, given sky or ground angles, the gradient
+  // about the Background's +y. Colours beyond one per angle and one more are ignored, as are
+  // angles beyond them.
+  void background(const Node& n, const Affine& ct) {
+    background_seen_ = true;
+    for (const char* url : {"backUrl", "bottomUrl", "frontUrl", "leftUrl", "rightUrl", "topUrl"})
+      if (const FieldValue* v = n.field(url); v && !v->strings.empty()) {
+        ++unsupported_["Background panorama"];
+        break;
+      }
+    SkyGradient sky;
+    sky.up = unit_or_zero(ct.apply_vector({0, 1, 0}));
+    sky.sky_colours = colours(n, "skyColor");
+    if (sky.sky_colours.empty()) sky.sky_colours.push_back(Rgb{});
+    scene_.globals.background = sky.sky_colours.front();
+    sky.sky_angles = angles(n, "skyAngle", sky.sky_colours.size() - 1);
+    sky.sky_colours.resize(sky.sky_angles.size() + 1);
+    sky.ground_colours = colours(n, "groundColor");
+    if (!sky.ground_colours.empty()) {
+      sky.ground_angles = angles(n, "groundAngle", sky.ground_colours.size() - 1);
+      sky.ground_colours.resize(sky.ground_angles.size() + 1);
+    }
+    if ((!sky.sky_angles.empty() || !sky.ground_angles.empty()) && sky.up != Vec3{})
+      scene_.globals.sky = sky;
+  }
+
+  static std::vector<Rgb> colours(const Node& n, const char* field) {
+    const std::vector<double>& numbers = mf_numbers(n, field);
+    std::vector<Rgb> out;
+    for (std::size_t i = 0; i + 2 < numbers.size(); i += 3)
+      out.push_back({numbers[i], numbers[i + 1], numbers[i + 2]});
+    return out;
+  }
+
+  // At most `count` angles of the field, in radians: increasing, within [0, pi].
+  static std::vector<double> angles(const Node& n, const char* field, std::size_t count) {
+    const std::vector<double>& all = mf_numbers(n, field);
+    std::vector<double> out(all.begin(),
+                            all.begin() + static_cast<std::ptrdiff_t>(std::min(count, all.size())));
+    for (std::size_t i = 0; i < out.size(); ++i)
+      if (!(out[i] >= (i == 0 ? 0 : out[i - 1]) && out[i] <= std::numbers::pi))
+        throw SceneError(n.field(field)->where, std::string("Background: ") + field +
+                                                    " must increase from 0 to at most pi");
+    return out;
   }
 
   void fog(const Node& n) {
@@ -433,7 +474,6 @@ class Converter {
   // ---- After the walk: camera, headlight, ambient light, warnings
   void finish() {
     SceneGlobals& g = scene_.globals;
-    g.background = background_.value_or(Rgb{});
     g.global_ambient = clamp_unit(ambient_);
     scene_.camera = viewpoint_ ? *viewpoint_ : framing_camera();
     // Billboards nested in billboards are turned as they come: this loop sees them appended.
@@ -566,7 +606,7 @@ class Converter {
       meshes_;
   std::optional<Camera> viewpoint_;
   std::optional<bool> headlight_;
-  std::optional<Rgb> background_;
+  bool background_seen_ = false;
   bool fog_seen_ = false;
   Rgb ambient_;
 };

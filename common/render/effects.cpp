@@ -6,7 +6,7 @@
 namespace tessera {
 
 namespace {
-constexpr std::array<std::pair<Effect, const char*>, 21> kEffectNames{{
+constexpr std::array<std::pair<Effect, const char*>, 22> kEffectNames{{
     {Effect::HardShadows, "hard_shadows"},
     {Effect::Reflection, "reflection"},
     {Effect::Refraction, "refraction"},
@@ -28,6 +28,7 @@ constexpr std::array<std::pair<Effect, const char*>, 21> kEffectNames{{
     {Effect::ShowExtents, "show_extents"},
     {Effect::DirectionalLight, "directional_light"},
     {Effect::VertexColors, "vertex_colors"},
+    {Effect::SkyGradient, "sky_gradient"},
 }};
 }  // namespace
 

@@ -30,6 +30,7 @@ enum class Effect : std::uint32_t {
   ShowExtents = 1u << 18,       // objects' bounding boxes drawn as white bars (§3.2.7)
   DirectionalLight = 1u << 19,  // lights at infinity (VRML DirectionalLight, headlight)
   VertexColors = 1u << 20,      // meshes coloured per vertex or per face (VRML Color)
+  SkyGradient = 1u << 21,       // a background coloured by direction (VRML Background angles)
 };
 
 class EffectSet {

@@ -46,6 +46,7 @@ EffectSet scene_effects(const Scene& scene) {
   }
   if (g.atmospheric_attenuation) effects.add(Effect::AtmosphericAttenuation);
   if (g.fog) effects.add(Effect::Fog);
+  if (g.sky) effects.add(Effect::SkyGradient);
   if (g.show_extents && !scene.objects.empty()) effects.add(Effect::ShowExtents);
   for (const SceneObject& object : scene.objects) {
     const Material& m = object.material;

@@ -358,7 +358,9 @@ Rgb Tracer::trace(const Ray& ray_in, RayKind kind, int depth, double weight,
   Crossing crossing;
   for (int skipped = 0;; ++skipped) {
     if (!closest_hit(ray, hit)) {
-      return kind == RayKind::Reflected ? Rgb{} : g.background;  // eq. 4.2
+      if (kind == RayKind::Reflected) return Rgb{};  // eq. 4.2
+      return effects.has(Effect::SkyGradient) ? g.sky->colour(unit_or_zero(ray.direction))
+                                              : g.background;
     }
     travelled += hit.world.t;
     m = &scene.objects[hit.world.object].material;

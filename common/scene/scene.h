@@ -12,6 +12,7 @@
 #include "common/scene/mesh.h"
 #include "common/scene/motion.h"
 #include "common/scene/shape.h"
+#include "common/scene/sky_gradient.h"
 #include "common/scene/source_location.h"
 
 namespace tessera {
@@ -62,6 +63,8 @@ struct Fog {
 // Global scene attributes of SDL §3.2.7.
 struct SceneGlobals {
   Rgb background{0, 0, 0};
+  // VRML's Background gradient: when set, it gives the background by direction instead.
+  std::optional<SkyGradient> sky;
   Rgb global_ambient{0.1, 0.1, 0.1};
   LightAttenuation light_attenuation;
   std::optional<AtmosphericAttenuation> atmospheric_attenuation;

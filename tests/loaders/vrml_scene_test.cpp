@@ -364,6 +364,33 @@ TEST(VrmlScene, BackgroundAndFog) {
   ASSERT_TRUE(scene.globals.fog);
   EXPECT_EQ(*scene.globals.fog, (Fog{0, 40, {0.5, 0.5, 0.5}}));
   EXPECT_FALSE(load_world("Fog { visibilityRange 0 }").globals.fog);  // no fog
+  EXPECT_TRUE(scene.globals.sky);                                     // a sky angle: a gradient
+  EXPECT_FALSE(load_world("Background { skyColor 0.1 0.2 0.3 }").globals.sky);
+}
+
+TEST(VrmlScene, BackgroundAnglesMakeAGradientAboutItsUp) {
+  const Scene scene = load_world(
+      "Transform { rotation 0 0 1 1.5707963267948966 children Background {\n"
+      "  skyColor [0 0 1, 1 1 1, 0.5 0.5 0.5, 9 9 9] skyAngle [1.2, 1.6, 2, 2.5]\n"
+      "  groundColor [0.2 0.1 0, 0 0.6 0] groundAngle 1 } }\n");
+  ASSERT_TRUE(scene.globals.sky);
+  const SkyGradient& sky = *scene.globals.sky;
+  EXPECT_TRUE(near(sky.up, {-1, 0, 0}, 1e-12));  // +y turned a quarter about z
+  // One angle fewer than colours: the fourth sky angle has no colour after it and is ignored.
+  EXPECT_EQ(sky.sky_angles, (std::vector<double>{1.2, 1.6, 2}));
+  EXPECT_EQ(sky.sky_colours, (std::vector<Rgb>{{0, 0, 1}, {1, 1, 1}, {0.5, 0.5, 0.5}, {9, 9, 9}}));
+  EXPECT_EQ(sky.ground_angles, (std::vector<double>{1}));
+  EXPECT_EQ(sky.ground_colours.size(), 2u);
+  EXPECT_EQ(scene.globals.background, (Rgb{0, 0, 1}));
+  EXPECT_TRUE(scene.warnings.empty());
+  // Panoramas are not drawn: said once.
+  const Scene panorama = load_world("Background { skyColor 0 0 1 frontUrl \"sky.png\" }");
+  ASSERT_EQ(panorama.warnings.size(), 1u);
+  EXPECT_NE(panorama.warnings[0].find("not rendered (yet): Background panorama (1)"),
+            std::string::npos)
+      << panorama.warnings[0];
+  EXPECT_TRUE(world_fails_at("Background { skyColor [0 0 1, 1 1 1, 0 0 0] skyAngle [1.5 1] }", 2,
+                             54, "Background: skyAngle must increase from 0 to at most pi"));
 }
 
 TEST(VrmlScene, SwitchAndLodChooseOneChild) {

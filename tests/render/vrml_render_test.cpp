@@ -123,6 +123,34 @@ TEST(VrmlRender, DirectionalLightLightsOnlyItsSiblingsButShadowsAll) {
   EXPECT_NEAR(image.get(51, 20).r, 0.1, 1e-6);              // right box: outside the light's scope
 }
 
+TEST(VrmlRender, BackgroundGradientColoursEachPixelByItsAngle) {
+  // An empty world seen level from the origin: a pixel in the middle column, row j of 41, looks
+  // up at the elevation e with tan e = (1 - 2 (j + 1/2) / 41) tan(22.5 degrees). The sky runs
+  // from blue straight up to white at the horizon, the ground from black straight down to
+  // green there.
+  const std::string body =
+      "Viewpoint { position 0 0 0 fieldOfView 0.7853981633974483 }\n"
+      "Background { skyColor [0 0 1, 1 1 1] skyAngle 1.5707963267948966\n"
+      "             groundColor [0 0 0, 0 1 0] groundAngle 1.5707963267948966 }\n";
+  const Scene scene = world(body);
+  const Image image = render(scene, settings(41, 41));
+  for (const int j : {0, 7, 19, 21, 33, 40}) {
+    SCOPED_TRACE(j);
+    const double e = std::atan((1 - 2 * (j + 0.5) / 41) * std::tan(std::numbers::pi / 8));
+    const double f = 1 - std::abs(e) / (std::numbers::pi / 2);  // towards the horizon
+    const Rgb expected = e > 0 ? Rgb{f, f, 1} : Rgb{0, f, 0};
+    const Rgb got = image.get(20, j);
+    EXPECT_NEAR(got.r, expected.r, 1e-6);
+    EXPECT_NEAR(got.g, expected.g, 1e-6);
+    EXPECT_NEAR(got.b, expected.b, 1e-6);
+  }
+  EXPECT_TRUE(PreparedScene(scene, BvhMode::Sah).effects().has(Effect::SkyGradient));
+  // One sky colour is no gradient: the background costs what SDL's does.
+  const Scene plain = world("Background { skyColor 0.2 0.3 0.4 }\n");
+  EXPECT_FALSE(PreparedScene(plain, BvhMode::Sah).effects().has(Effect::SkyGradient));
+  expect_rgb(render(plain, settings(9, 9)).get(4, 4), {0.2, 0.3, 0.4});
+}
+
 TEST(VrmlRender, SphereFromAViewpointCoversItsSilhouette) {
   const double r = 1, d = 6, fov = 0.6;
   const Scene scene = world(
