@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "common/math/affine.h"
+#include "common/math/float_error.h"
 #include "common/math/vec3.h"
 
 namespace tessera {
@@ -47,7 +48,26 @@ struct Bounds3 {
 
 // Slab test against precomputed reciprocal direction. Returns whether [t0, t1] overlaps the box
 // within [0, t_max]; the far distance is enlarged by 2*gamma(3) so that a ray grazing a box
-// face is never culled by rounding (pbrt-v3 §3.9.2).
-bool intersect_bounds(const Bounds3& b, const Vec3& origin, const Vec3& inv_dir, double t_max);
+// face is never culled by rounding (pbrt-v3 §3.9.2). Inline and without early exits: the BVH
+// traversal calls it for every node it visits, and which slab empties the interval first is
+// a branch no predictor guesses.
+[[gnu::always_inline]] inline bool intersect_bounds(const Bounds3& b, const Vec3& origin,
+                                                    const Vec3& inv_dir, double t_max) {
+  constexpr double kFarScale = 1 + 2 * gamma_bound(3);
+  double t0 = 0, t1 = t_max;
+  for (int a = 0; a < 3; ++a) {
+    const double inv = inv_dir[a];
+    const bool forward = inv >= 0;
+    const double t_near = ((forward ? b.lo[a] : b.hi[a]) - origin[a]) * inv;
+    const double t_far = ((forward ? b.hi[a] : b.lo[a]) - origin[a]) * inv * kFarScale;
+    // A zero direction component makes these infinite, with the sign that keeps or empties the
+    // interval as the origin lies inside or outside the slab; with the origin on one of its
+    // planes, NaN (0 * inf), which these comparisons leave out: the ray runs along the face
+    // of a closed slab.
+    t0 = t_near > t0 ? t_near : t0;
+    t1 = t_far < t1 ? t_far : t1;
+  }
+  return t0 <= t1;
+}
 
 }  // namespace tessera
