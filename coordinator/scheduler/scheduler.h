@@ -51,7 +51,7 @@ struct Prediction {
 
 class Scheduler {
  public:
-  Scheduler(JobStore& jobs, SchedulerOptions options) : jobs_(jobs), options_(options) {}
+  explicit Scheduler(SchedulerOptions options) : options_(options) {}
 
   // The caller welcomes the worker, then calls fill_slots() to give it work.
   std::int64_t add_worker(WorkerHello hello, std::shared_ptr<FrameConnection> connection);
@@ -109,7 +109,6 @@ class Scheduler {
   int take_back_units(WorkerSlot& worker, const std::function<bool(std::int64_t)>& of_job);
   void finish(JobRun& run, JobState state, const std::string& error = {});
 
-  JobStore& jobs_;
   SchedulerOptions options_;
   std::map<std::int64_t, JobRun> runs_;
   std::map<std::int64_t, WorkerSlot> workers_;
