@@ -163,7 +163,13 @@ TEST_F(JobDatabaseTest, ACrashLosesOnlyTheResultsNotFlushed) {
     db.append_result(id, 2, awkward_values(2, 6), {}, "w");
     EXPECT_EQ(db.queued(), 1u);
   }  // destroyed without flush: the process died
+  // What a crash between writing a file and committing its row leaves: swept at open.
+  write_file_atomically(dir_ / "bundles" / "0badc0de", "orphan bundle");
+  write_file_atomically(dir_ / "bundles" / ".tmp-feed", "torn temporary");
+  fs::create_directories(dir_ / "images" / "99");
   JobDatabase db(dir_);
+  EXPECT_EQ(files_in("bundles"), 1u);
+  EXPECT_EQ(files_in("images"), 0u);
   std::vector<StoredJob> jobs = db.load_all();
   ASSERT_EQ(jobs.size(), 1u);
   ASSERT_EQ(jobs[0].results.size(), 2u);
@@ -305,7 +311,8 @@ TEST_F(JobDatabaseTest, AFullStoreFailsTheWriteAndKeepsWhatItHeld) {
     size = db.size_bytes();
   }
   {
-    JobDatabase db(dir_, size + 2000);
+    // Room for about 16 more results: a flush that was not one transaction would keep some.
+    JobDatabase db(dir_, size + 200'000);
     // 100 results of 12 KB: SQLite refuses to grow the file (SQLITE_FULL, max_page_count).
     for (int i = 0; i < 100; ++i)
       db.append_result(running, 2 + i, awkward_values(i, 3072), {}, "w");
@@ -319,14 +326,14 @@ TEST_F(JobDatabaseTest, AFullStoreFailsTheWriteAndKeepsWhatItHeld) {
     EXPECT_EQ(db.queued(), 0u);
     // A bundle that fits SQLite's pages but not the byte budget: the store's own check.
     try {
-      db.add_job(make_request(std::string(50'000, 'x')), at_seconds(3));
+      db.add_job(make_request(std::string(300'000, 'x')), at_seconds(3));
       FAIL() << "a job was stored over the limit";
     } catch (const StoreError& e) {
       EXPECT_NE(e.cause().find("over its limit"), std::string::npos) << e.what();
     }
     EXPECT_EQ(files_in("bundles"), 2u);  // the new bundle's file went with its row
     EXPECT_THROW(db.finish_job(running, "done", "", at_seconds(4),
-                               {{"image.png", std::string(50'000, 'y')}}),
+                               {{"image.png", std::string(300'000, 'y')}}),
                  StoreError);
     EXPECT_FALSE(fs::exists(dir_ / "images" / std::to_string(running)));
     // Failing the job is a small write that still fits.
