@@ -5,6 +5,7 @@
 
 #include <unistd.h>
 
+#include <algorithm>
 #include <bit>
 #include <chrono>
 #include <cstring>
@@ -359,17 +360,21 @@ TEST_F(JobDatabaseTest, FlushOfAHundredUnitResultsFitsATick) {
   std::int64_t id = db.add_job(make_request(), at_seconds(0));
   std::vector<float> values = awkward_values(0, 3 * 1024);
   std::int64_t empty = db.size_bytes();
-  double slowest = 0;
+  std::vector<double> seconds;
   for (int round = 0; round < 5; ++round) {
     for (int i = 0; i < 100; ++i) db.append_result(id, i, values, stats_with(1024, 0.01), "w");
     auto start = std::chrono::steady_clock::now();
     db.flush();
-    slowest = std::max(
-        slowest, std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
+    seconds.push_back(
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count());
   }
+  std::sort(seconds.begin(), seconds.end());
+  double slowest = seconds.back();
   double per_result = static_cast<double>(db.size_bytes() - empty) / 500.0;
-  std::printf("flush of 100 results of 12 KB: slowest of 5 %.1f ms; %.0f bytes per result\n",
-              slowest * 1e3, per_result);
+  std::printf(
+      "flush of 100 results of 12 KB: median %.1f ms, slowest of 5 %.1f ms; "
+      "%.0f bytes per result\n",
+      seconds[2] * 1e3, slowest * 1e3, per_result);
   EXPECT_LT(slowest, 0.25);
   EXPECT_LT(per_result, 1.1 * 12288);
 }
