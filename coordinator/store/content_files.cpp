@@ -38,9 +38,9 @@ void write_file_atomically(const std::filesystem::path& path, std::string_view b
   }
   // Synced before the rename and before the database row that refers to it commits, so that
   // a committed row never points at a file lost with the page cache.
-  bool synced = ::fsync(fd) == 0;
-  if (::close(fd) != 0) synced = false;
-  if (!synced) {
+  bool file_synced = ::fsync(fd) == 0;
+  if (::close(fd) != 0) file_synced = false;
+  if (!file_synced) {
     int saved = errno;
     ::unlink(temporary.c_str());
     errno = saved;
@@ -52,6 +52,12 @@ void write_file_atomically(const std::filesystem::path& path, std::string_view b
     errno = saved;
     fail_errno("cannot rename to", path);
   }
+  // The rename itself is durable only once its directory is synced.
+  int folder = ::open(path.parent_path().c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+  if (folder < 0) fail_errno("cannot open", path.parent_path());
+  bool synced = ::fsync(folder) == 0;
+  ::close(folder);
+  if (!synced) fail_errno("cannot sync", path.parent_path());
 }
 
 std::string read_whole_file(const std::filesystem::path& path) {

@@ -401,80 +401,82 @@ void JobDatabase::finish_job(std::int64_t job, const std::string& state, const s
 
 std::vector<StoredJob> JobDatabase::load_all() {
   std::lock_guard lock(mutex_);
-  std::vector<StoredJob> jobs;
-  std::map<std::string, Bundle> bundles;
-  sqlite::Statement select(*db_, R"sql(
+  return guarded({}, [&] {
+    std::vector<StoredJob> jobs;
+    std::map<std::string, Bundle> bundles;
+    sqlite::Statement select(*db_, R"sql(
     SELECT id, bundle_hash, spec, width, height, passes, progressive, unit_order, preview,
       unit_pixels, priority, effects, warnings, seconds_per_pixel_pass, uncalibrated_prediction,
       predicted_seconds, prediction_threads, state, error, created_us, finished_us
     FROM jobs ORDER BY id)sql");
-  sqlite::Statement results(*db_,
-                            "SELECT sequence, unit, payload, stats, worker FROM results "
-                            "WHERE job_id = ? ORDER BY sequence");
-  sqlite::Statement images(*db_, "SELECT name FROM images WHERE job_id = ? ORDER BY name");
-  while (select.step()) {
-    StoredJob job;
-    job.id = select.column_int(0);
-    try {
-      std::string hash = select.column_text(1);
-      auto bundle = bundles.find(hash);
-      if (bundle == bundles.end()) {
-        Bundle parsed = parse_bundle(read_whole_file(bundle_path(hash)));
-        if (content_hash(parsed) != hash)
-          throw std::runtime_error("its content does not match its hash");
-        bundle = bundles.emplace(hash, std::move(parsed)).first;
-      }
-      StoredRequest& request = job.request;
-      request.bundle = bundle->second;
-      request.spec = job_spec_from_json(nlohmann::json::parse(select.column_text(2)));
-      request.plan.width = static_cast<int>(select.column_int(3));
-      request.plan.height = static_cast<int>(select.column_int(4));
-      request.plan.passes = static_cast<int>(select.column_int(5));
-      request.plan.progressive = select.column_int(6) != 0;
-      request.plan.order = parse_unit_order(select.column_text(7));
-      request.plan.preview = parse_preview_mode(select.column_text(8));
-      request.plan.unit_pixels = select.column_int(9);
-      request.priority = static_cast<int>(select.column_int(10));
-      request.effects =
-          nlohmann::json::parse(select.column_text(11)).get<std::vector<std::string>>();
-      request.warnings =
-          nlohmann::json::parse(select.column_text(12)).get<std::vector<std::string>>();
-      request.seconds_per_pixel_pass = select.column_double(13);
-      if (!select.is_null(14)) request.uncalibrated_prediction = select.column_double(14);
-      if (!select.is_null(15)) request.predicted_seconds = select.column_double(15);
-      request.prediction_threads = static_cast<int>(select.column_int(16));
-      job.state = select.column_text(17);
-      job.error = select.column_text(18);
-      job.created = from_micros(select.column_int(19));
-      if (!select.is_null(20)) job.finished = from_micros(select.column_int(20));
+    sqlite::Statement results(*db_,
+                              "SELECT sequence, unit, payload, stats, worker FROM results "
+                              "WHERE job_id = ? ORDER BY sequence");
+    sqlite::Statement images(*db_, "SELECT name FROM images WHERE job_id = ? ORDER BY name");
+    while (select.step()) {
+      StoredJob job;
+      job.id = select.column_int(0);
+      try {
+        std::string hash = select.column_text(1);
+        auto bundle = bundles.find(hash);
+        if (bundle == bundles.end()) {
+          Bundle parsed = parse_bundle(read_whole_file(bundle_path(hash)));
+          if (content_hash(parsed) != hash)
+            throw std::runtime_error("its content does not match its hash");
+          bundle = bundles.emplace(hash, std::move(parsed)).first;
+        }
+        StoredRequest& request = job.request;
+        request.bundle = bundle->second;
+        request.spec = job_spec_from_json(nlohmann::json::parse(select.column_text(2)));
+        request.plan.width = static_cast<int>(select.column_int(3));
+        request.plan.height = static_cast<int>(select.column_int(4));
+        request.plan.passes = static_cast<int>(select.column_int(5));
+        request.plan.progressive = select.column_int(6) != 0;
+        request.plan.order = parse_unit_order(select.column_text(7));
+        request.plan.preview = parse_preview_mode(select.column_text(8));
+        request.plan.unit_pixels = select.column_int(9);
+        request.priority = static_cast<int>(select.column_int(10));
+        request.effects =
+            nlohmann::json::parse(select.column_text(11)).get<std::vector<std::string>>();
+        request.warnings =
+            nlohmann::json::parse(select.column_text(12)).get<std::vector<std::string>>();
+        request.seconds_per_pixel_pass = select.column_double(13);
+        if (!select.is_null(14)) request.uncalibrated_prediction = select.column_double(14);
+        if (!select.is_null(15)) request.predicted_seconds = select.column_double(15);
+        request.prediction_threads = static_cast<int>(select.column_int(16));
+        job.state = select.column_text(17);
+        job.error = select.column_text(18);
+        job.created = from_micros(select.column_int(19));
+        if (!select.is_null(20)) job.finished = from_micros(select.column_int(20));
 
-      results.bind(1, job.id);
-      while (results.step()) {
-        StoredResult& result = job.results.emplace_back();
-        result.sequence = results.column_int(0);
-        result.unit = static_cast<int>(results.column_int(1));
-        std::span<const std::byte> payload = results.column_blob(2);
-        if (payload.size() % sizeof(float) != 0)
-          throw std::runtime_error("result " + std::to_string(result.sequence) +
-                                   " has a payload of " + std::to_string(payload.size()) +
-                                   " bytes, not whole floats");
-        result.values.resize(payload.size() / sizeof(float));
-        if (!payload.empty()) std::memcpy(result.values.data(), payload.data(), payload.size());
-        result.stats = stats_from_json(nlohmann::json::parse(results.column_text(3)));
-        result.worker = results.column_text(4);
+        results.bind(1, job.id);
+        while (results.step()) {
+          StoredResult& result = job.results.emplace_back();
+          result.sequence = results.column_int(0);
+          result.unit = static_cast<int>(results.column_int(1));
+          std::span<const std::byte> payload = results.column_blob(2);
+          if (payload.size() % sizeof(float) != 0)
+            throw std::runtime_error("result " + std::to_string(result.sequence) +
+                                     " has a payload of " + std::to_string(payload.size()) +
+                                     " bytes, not whole floats");
+          result.values.resize(payload.size() / sizeof(float));
+          if (!payload.empty()) std::memcpy(result.values.data(), payload.data(), payload.size());
+          result.stats = stats_from_json(nlohmann::json::parse(results.column_text(3)));
+          result.worker = results.column_text(4);
+        }
+        results.reset();
+        images.bind(1, job.id);
+        while (images.step()) job.images.push_back(images.column_text(0));
+        images.reset();
+      } catch (const StoreError&) {
+        throw;
+      } catch (const std::exception& e) {
+        throw StoreError({job.id}, std::string("cannot be read back: ") + e.what());
       }
-      results.reset();
-      images.bind(1, job.id);
-      while (images.step()) job.images.push_back(images.column_text(0));
-      images.reset();
-    } catch (const StoreError&) {
-      throw;
-    } catch (const std::exception& e) {
-      throw StoreError({job.id}, std::string("cannot be read back: ") + e.what());
+      jobs.push_back(std::move(job));
     }
-    jobs.push_back(std::move(job));
-  }
-  return jobs;
+    return jobs;
+  });
 }
 
 std::vector<JobListing> JobDatabase::list(int limit, std::int64_t after_id) {

@@ -181,6 +181,26 @@ TEST_F(JobDatabaseTest, ACrashLosesOnlyTheResultsNotFlushed) {
   EXPECT_EQ(db.load_all()[0].results.size(), 3u);
 }
 
+// A bundle file swapped for another valid bundle, or for garbage: loading names the job.
+TEST_F(JobDatabaseTest, ABundleFileThatDoesNotMatchItsHashNamesItsJob) {
+  JobDatabase db(dir_);
+  std::int64_t id = db.add_job(make_request(), at_seconds(0));
+  db.add_job(make_request("camera { fov 10 }\n"), at_seconds(0));
+  fs::path file = dir_ / "bundles" / content_hash(make_request().bundle);
+  for (std::string content :
+       {read_whole_file(dir_ / "bundles" /
+                        content_hash(make_request("camera { fov 10 }\n").bundle)),
+        std::string("{}\n")}) {
+    write_file_atomically(file, content);
+    try {
+      db.load_all();
+      FAIL() << "a damaged bundle was loaded";
+    } catch (const StoreError& e) {
+      EXPECT_EQ(e.jobs(), (std::vector<std::int64_t>{id})) << e.what();
+    }
+  }
+}
+
 TEST_F(JobDatabaseTest, IdsAreNeverReusedAcrossRestartsAndDeletions) {
   {
     JobDatabase db(dir_);
