@@ -112,8 +112,6 @@ Bundle parse_bundle(const std::string& bytes) {
   return decode_bundle(nlohmann::json::parse(bytes.substr(0, newline)), bytes.substr(newline + 1));
 }
 
-nlohmann::json string_list(const std::vector<std::string>& list) { return nlohmann::json(list); }
-
 }  // namespace
 
 StoreError::StoreError(std::vector<std::int64_t> jobs, const std::string& cause)
@@ -257,8 +255,8 @@ std::int64_t JobDatabase::add_job(const StoredRequest& request, WallClock::time_
           .bind(8, std::string_view(to_string(plan.preview)))
           .bind(9, std::int64_t{plan.unit_pixels})
           .bind(10, std::int64_t{request.priority})
-          .bind(11, string_list(request.effects).dump())
-          .bind(12, string_list(request.warnings).dump())
+          .bind(11, nlohmann::json(request.effects).dump())
+          .bind(12, nlohmann::json(request.warnings).dump())
           .bind(13, request.seconds_per_pixel_pass)
           .bind(14, request.uncalibrated_prediction)
           .bind(15, request.predicted_seconds)
