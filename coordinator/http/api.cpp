@@ -111,10 +111,10 @@ void Api::route(HttpRequest& request, const std::string& path, const Query& quer
   }
   if (path == "/api/predict") {
     if (method != http::verb::post) throw ApiError(405, "method_not_allowed", "POST /api/predict");
-    return predict(request, query, std::move(respond));
+    return predict(request, query, respond);
   }
   if (path == "/api/jobs") {
-    if (method == http::verb::post) return create_job(request, query, client, std::move(respond));
+    if (method == http::verb::post) return create_job(request, query, client, respond);
     if (method != http::verb::get)
       throw ApiError(405, "method_not_allowed", "GET or POST /api/jobs");
     nlohmann::json list = nlohmann::json::array();
@@ -136,7 +136,7 @@ void Api::route(HttpRequest& request, const std::string& path, const Query& quer
       return respond(json_response(200, job_status_json(*job, now)));
     }
     if (sub == "image" && method == http::verb::get)
-      return job_image(request, *job, query, std::move(respond));
+      return job_image(request, *job, query, respond);
     if (sub == "tiles" && method == http::verb::get) {
       std::size_t since = 0;
       if (auto it = query.find("since"); it != query.end()) {
@@ -201,7 +201,7 @@ void Api::offload(HttpRespond respond, std::function<Finish(const IntakeBudget&)
 }
 
 void Api::create_job(HttpRequest& request, const Query& query, const std::string& client,
-                     HttpRespond respond) {
+                     HttpRespond& respond) {
   const auto over_cap = [this, &client] {
     return jobs_.unfinished_of(client) >= config_.max_jobs_per_client;
   };
@@ -239,7 +239,7 @@ void Api::create_job(HttpRequest& request, const Query& query, const std::string
           });
 }
 
-void Api::predict(HttpRequest& request, const Query& query, HttpRespond respond) {
+void Api::predict(HttpRequest& request, const Query& query, HttpRespond& respond) {
   auto upload = std::make_shared<const HttpRequest>(std::move(request));
   offload(std::move(respond),
           [this, upload, query, limits = config_.limits,
@@ -263,7 +263,8 @@ void Api::predict(HttpRequest& request, const Query& query, HttpRespond respond)
           });
 }
 
-void Api::job_image(const HttpRequest& request, Job& job, const Query& query, HttpRespond respond) {
+void Api::job_image(const HttpRequest& request, Job& job, const Query& query,
+                    HttpRespond& respond) {
   std::string format = "png";
   if (auto it = query.find("format"); it != query.end()) format = it->second;
   if (format != "png" && format != "exr")

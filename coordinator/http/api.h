@@ -46,10 +46,10 @@ class Api {
   void route(HttpRequest& request, const std::string& path, const Query& query,
              const std::string& client, HttpRespond& respond);
   void create_job(HttpRequest& request, const Query& query, const std::string& client,
-                  HttpRespond respond);
+                  HttpRespond& respond);
   // The time a job would take, without submitting it (the page asks as settings change).
-  void predict(HttpRequest& request, const Query& query, HttpRespond respond);
-  void job_image(const HttpRequest& request, Job& job, const Query& query, HttpRespond respond);
+  void predict(HttpRequest& request, const Query& query, HttpRespond& respond);
+  void job_image(const HttpRequest& request, Job& job, const Query& query, HttpRespond& respond);
   HttpResponse static_file(const std::string& path);
   // Runs `work` on the pool under a deadline of --max-intake-seconds: 503 when the pool's
   // queue is full, 422 when the deadline passes first (the late result is then dropped).
