@@ -4,7 +4,7 @@ never delay status answers, finished and cancelled jobs give their memory back, 
 may submit can. The hostile inputs are generated here, small.
 
 usage: hostile_test.py --build BUILD_DIR --source SOURCE_DIR CASE
-CASE: intake | submit_rules | job_cap | memory
+CASE: intake | submit_rules | job_cap | memory | connections | descriptors
 """
 import argparse
 import http.client
@@ -164,6 +164,67 @@ def case_job_cap():
         status, _, _ = service.request("DELETE", "/api/jobs/%d" % first["id"])
         assert status == 200
         service.submit("sphere\n", SMALL)
+
+
+def refused(port):
+    """Whether a new connection is closed by the server without an answer."""
+    with socket.create_connection(("127.0.0.1", port)) as s:
+        s.settimeout(5)
+        s.sendall(b"GET /api/workers HTTP/1.1\r\nHost: x\r\n\r\n")
+        try:
+            return s.recv(64) == b""
+        except ConnectionResetError:
+            return True
+
+
+def case_connections():
+    """Beyond --max-http-connections a new connection is closed at once; closing one makes
+    room again."""
+    with Service("--max-http-connections", "4") as service:
+        idle = [socket.create_connection(("127.0.0.1", service.http_port)) for _ in range(4)]
+        time.sleep(0.2)
+        assert refused(service.http_port)
+        idle.pop().close()
+        time.sleep(0.2)
+        assert not refused(service.http_port)
+        for s in idle:
+            s.close()
+        assert service.get("/api/workers") == []
+
+
+def cpu_seconds(pid):
+    with open("/proc/%d/stat" % pid) as f:
+        fields = f.read().rsplit(")", 1)[1].split()
+    return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
+
+
+def case_descriptors():
+    """At the descriptor limit the accept loop backs off instead of spinning, logs a line a
+    second at most, and serves again once descriptors are free."""
+    with Service(prefix=("prlimit", "--nofile=48:48")) as service:
+        held = []
+        for _ in range(80):  # beyond the limit: the kernel queues them, accept gets EMFILE
+            held.append(socket.create_connection(("127.0.0.1", service.http_port)))
+        time.sleep(0.5)
+        pid = service.coordinator.pid
+        cpu_before, start = cpu_seconds(pid), time.time()
+        time.sleep(2)
+        busy = (cpu_seconds(pid) - cpu_before) / (time.time() - start)
+        log = open(os.path.join(service.tmp.name, "coordinator.log")).read()
+        failures = log.count("HTTP accept failed")
+        print("at the limit: %.1f%% of a core, %d log lines about it" % (100 * busy, failures))
+        assert failures >= 1 and failures <= 5, failures
+        assert busy < 0.1, busy
+        for s in held:
+            s.close()
+        deadline = time.time() + 5
+        while True:  # the next retry (at most a second away) accepts again
+            try:
+                assert service.get("/api/workers") == []
+                break
+            except (OSError, http.client.HTTPException):
+                assert time.time() < deadline
+                time.sleep(0.1)
 
 
 def rss_mb(pid):
