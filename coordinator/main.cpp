@@ -3,6 +3,7 @@
 // scheduler; scene intake and image encoding run on a small pool (IntakePool).
 #include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
@@ -96,6 +97,13 @@ int main(int argc, char** argv) {
     asio::steady_timer timer(io);
     tick_every(timer, scheduler);
     io.run();
+    if (intake.pending() > 0) {
+      // A runaway scene would hold the exit until its budget stops it: leave without it
+      // (local workers get SIGTERM from the kernel as we exit, PR_SET_PDEATHSIG).
+      spdlog::warn("stopping with {} requests still in intake", intake.pending());
+      spdlog::shutdown();
+      std::_Exit(0);
+    }
   } catch (const std::exception& e) {
     spdlog::error("{}", e.what());
     return 1;

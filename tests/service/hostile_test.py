@@ -10,6 +10,7 @@ import argparse
 import http.client
 import json
 import os
+import signal
 import socket
 import sys
 import threading
@@ -88,6 +89,12 @@ def case_intake():
         # The service itself is fine: the small job finished, a worker is still there.
         assert service.wait_job(job["id"])["state"] == "done"
         assert len(service.get("/api/workers")) == 1
+        # SIGTERM ends it at once although the runaway scenes are still in work.
+        start = time.time()
+        service.coordinator.send_signal(signal.SIGTERM)
+        assert service.coordinator.wait(timeout=5) == 0
+        print("SIGTERM to exit: %.2f s" % (time.time() - start))
+        assert time.time() - start < 1.0
 
 
 def non_loopback_address():
