@@ -1,7 +1,9 @@
 // tessera-coordinator: the HTTP API and page, the job store and the scheduler, and the port
-// workers connect to (docs/SERVICE.md). One io thread runs everything but rendering.
+// workers connect to (docs/SERVICE.md). One io thread does the I/O and owns the jobs and the
+// scheduler; scene intake and image encoding run on a small pool (IntakePool).
 #include <algorithm>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
@@ -70,9 +72,17 @@ int main(int argc, char** argv) {
     const auto address = asio::ip::make_address(options.bind);
     WorkerListener workers(io, {address, options.worker_port}, {options.secret, options.insecure},
                            scheduler, options.timing);
-    Api api(jobs, scheduler, {options.limits, options.scenes_dir, options.web_dir});
-    HttpServer http(io, {address, options.http_port}, options.limits.max_body_bytes,
-                    [&api](const HttpRequest& r) { return api.handle(r); });
+    // A few submissions may wait for a thread; beyond that they get 503 at once.
+    IntakePool intake(io, options.intake_threads, options.intake_threads + 8);
+    Api api(io, jobs, scheduler, intake,
+            {options.limits, options.scenes_dir, options.web_dir, options.submit,
+             static_cast<double>(options.max_intake_seconds), options.max_jobs_per_client});
+    HttpServer http(
+        io, {address, options.http_port},
+        {options.limits.max_body_bytes, options.max_http_connections},
+        [&api](HttpRequest r, const asio::ip::tcp::endpoint& peer, HttpRespond respond) {
+          api.handle(std::move(r), peer, std::move(respond));
+        });
     spdlog::info("page and API at http://{}:{}/ ; workers connect to port {}", options.bind,
                  http.port(), workers.port());
     if (options.port_file) write_port_file(*options.port_file, http.port(), workers.port());
@@ -87,6 +97,13 @@ int main(int argc, char** argv) {
     asio::steady_timer timer(io);
     tick_every(timer, scheduler);
     io.run();
+    if (intake.pending() > 0) {
+      // A runaway scene would hold the exit until its budget stops it: leave without it
+      // (local workers get SIGTERM from the kernel as we exit, PR_SET_PDEATHSIG).
+      spdlog::warn("stopping with {} requests still in intake", intake.pending());
+      spdlog::shutdown();
+      std::_Exit(0);
+    }
   } catch (const std::exception& e) {
     spdlog::error("{}", e.what());
     return 1;

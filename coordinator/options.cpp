@@ -13,7 +13,9 @@ const char* const kCoordinatorUsage =
     "usage: tessera-coordinator --http-port P --worker-port Q [--secret S | --insecure]\n"
     "       [--local-workers N] [--local-threads T] [--scenes-dir DIR] [--web-dir DIR]\n"
     "       [--bind ADDR] [--worker-binary PATH] [--max-job-seconds S] [--max-body-bytes N]\n"
-    "       [--heartbeat-ms MS] [--silence-ms MS] [--port-file PATH]";
+    "       [--heartbeat-ms MS] [--silence-ms MS] [--port-file PATH] [--intake-threads N]\n"
+    "       [--max-intake-seconds S] [--max-http-connections N] [--api-token T | --open-submit]\n"
+    "       [--allow-origin ORIGIN]... [--max-jobs-per-client N]";
 
 namespace {
 
@@ -31,6 +33,7 @@ long parse_number(const std::string& flag, const std::string& text, long lo, lon
 CoordinatorOptions parse_coordinator_options(int argc, char** argv) {
   CoordinatorOptions o;
   if (const char* s = std::getenv("TESSERA_SECRET")) o.secret = s;
+  if (const char* t = std::getenv("TESSERA_API_TOKEN")) o.submit.api_token = t;
   o.web_dir = TESSERA_WEB_DIR;
   for (int i = 1; i < argc; ++i) {
     const std::string arg = argv[i];
@@ -69,6 +72,20 @@ CoordinatorOptions parse_coordinator_options(int argc, char** argv) {
       o.timing.heartbeat = std::chrono::milliseconds(parse_number(arg, value(), 10, 60000));
     else if (arg == "--silence-ms")
       o.timing.silence = std::chrono::milliseconds(parse_number(arg, value(), 50, 600000));
+    else if (arg == "--intake-threads")
+      o.intake_threads = static_cast<int>(parse_number(arg, value(), 1, 64));
+    else if (arg == "--max-intake-seconds")
+      o.max_intake_seconds = static_cast<int>(parse_number(arg, value(), 1, 3600));
+    else if (arg == "--max-http-connections")
+      o.max_http_connections = static_cast<int>(parse_number(arg, value(), 1, 65536));
+    else if (arg == "--api-token")
+      o.submit.api_token = value();
+    else if (arg == "--open-submit")
+      o.submit.open_submit = true;
+    else if (arg == "--allow-origin")
+      o.submit.allowed_origins.push_back(value());
+    else if (arg == "--max-jobs-per-client")
+      o.max_jobs_per_client = static_cast<int>(parse_number(arg, value(), 1, 1024));
     else
       throw std::invalid_argument("unknown argument " + arg + "\n" + kCoordinatorUsage);
   }

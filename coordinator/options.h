@@ -2,7 +2,9 @@
 //   --http-port P --worker-port Q [--secret S | --insecure] [--local-workers N]
 //   [--local-threads T] [--scenes-dir DIR] [--web-dir DIR] [--bind ADDR]
 //   [--worker-binary PATH] [--max-job-seconds S] [--max-body-bytes N] [--heartbeat-ms MS]
-//   [--silence-ms MS]
+//   [--silence-ms MS] [--intake-threads N] [--max-intake-seconds S]
+//   [--max-http-connections N] [--api-token T | --open-submit] [--allow-origin O]...
+//   [--max-jobs-per-client N]
 #pragma once
 
 #include <filesystem>
@@ -10,6 +12,7 @@
 #include <string>
 
 #include "common/protocol/connection.h"
+#include "coordinator/http/submit_policy.h"
 #include "coordinator/jobs/limits.h"
 
 namespace tessera {
@@ -30,6 +33,11 @@ struct CoordinatorOptions {
   std::optional<std::filesystem::path> port_file;
   ServiceLimits limits;
   ConnectionTiming timing;
+  int intake_threads = 2;       // scene loading, probes and encodings, off the io thread
+  int max_intake_seconds = 10;  // wall time of one submission or prediction
+  int max_http_connections = 256;
+  SubmitPolicy submit;          // --api-token (TESSERA_API_TOKEN), --open-submit, --allow-origin
+  int max_jobs_per_client = 8;  // unfinished jobs per peer address
 };
 
 extern const char* const kCoordinatorUsage;

@@ -1,7 +1,11 @@
 #!/bin/bash
 # Maps the containers' environment to the programs' flags; flags given to `podman run` after
 # the image name are appended and win.
-#   coordinator: TESSERA_HTTP_PORT, TESSERA_WORKER_PORT, TESSERA_SECRET (read by the program)
+#   coordinator: TESSERA_HTTP_PORT, TESSERA_WORKER_PORT, TESSERA_SECRET and TESSERA_API_TOKEN
+#                (read by the program), TESSERA_OPEN_SUBMIT=1 (--open-submit). Requests from the
+#                host through a published port do not come from loopback inside the container:
+#                to submit, give them TESSERA_API_TOKEN (Authorization: Bearer TOKEN; the page
+#                asks for it) or, on a trusted network, TESSERA_OPEN_SUBMIT=1.
 #   worker:      TESSERA_COORDINATOR (host:port, required), TESSERA_THREADS, TESSERA_NAME,
 #                TESSERA_SECRET
 set -euo pipefail
@@ -9,6 +13,7 @@ role=$1
 shift
 case "$role" in
   coordinator)
+    [ "${TESSERA_OPEN_SUBMIT:-}" = 1 ] && set -- --open-submit "$@"
     exec tessera-coordinator --http-port "$TESSERA_HTTP_PORT" --worker-port "$TESSERA_WORKER_PORT" \
       --web-dir /usr/share/tessera/web --scenes-dir /usr/share/tessera/scenes "$@" ;;
   worker)

@@ -10,8 +10,9 @@ scripts/build-images.sh >/dev/null
 sudo=""
 if [ "$(id -u)" -ne 0 ]; then sudo="sudo"; fi
 compose=($sudo podman-compose --podman-args="--runtime runc" -f docker/compose.yaml)
-export TESSERA_SECRET
+export TESSERA_SECRET TESSERA_API_TOKEN
 TESSERA_SECRET=$(head -c 18 /dev/urandom | base64)
+TESSERA_API_TOKEN=$(head -c 18 /dev/urandom | base64)
 cleanup() { "${compose[@]}" down >/dev/null 2>&1 || true; }
 trap cleanup EXIT
 # A network made before the dnsname plugin was installed has no name resolution: start afresh.
@@ -25,7 +26,7 @@ for _ in $(seq 100); do
   sleep 0.2
 done
 settings='{"width": 320, "height": 240, "aa": 5, "stochastic": true, "passes": 2}'
-job=$(curl -sf -H 'Content-Type: application/json' \
+job=$(curl -sf -H 'Content-Type: application/json' -H "Authorization: Bearer $TESSERA_API_TOKEN" \
   -d "{\"scene_file\": \"demo.sdl\", \"settings\": $settings}" "$api/jobs" |
   python3 -c 'import json,sys; print(json.load(sys.stdin)["id"])')
 for _ in $(seq 300); do

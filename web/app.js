@@ -41,9 +41,27 @@ function describeError(status, body) {
   return `HTTP ${status}`;
 }
 
+// Requests that change state carry the coordinator's API token (--api-token) when it has
+// one: asked once, when such a request answers 401, and kept in localStorage. `ask` is false
+// for requests the page makes by itself (predictions), which never prompt.
+async function fetchWithToken(path, init, ask = true) {
+  const send = () => {
+    const token = localStorage.getItem("tesseraApiToken");
+    const headers = { ...(init.headers || {}) };
+    if (token) headers.Authorization = `Bearer ${token}`;
+    return fetch(path, { ...init, headers });
+  };
+  const response = await send();
+  if (response.status !== 401 || !ask) return response;
+  const token = window.prompt("This coordinator needs its API token (--api-token):");
+  if (!token) return response;
+  localStorage.setItem("tesseraApiToken", token.trim());
+  return send();
+}
+
 // POSTs the scene and settings of the form to `path` (/api/jobs, or /api/predict, which takes
 // the same request and only answers how long it would take).
-async function postScene(path) {
+async function postScene(path, ask = true) {
   const settings = collectSettings();
   const files = [...$("scene-file").files];
   const file = files[0];
@@ -54,17 +72,17 @@ async function postScene(path) {
     form.append("main", scene.name);
     form.append("settings", JSON.stringify(settings));
     for (const f of files) form.append("file", f, f.name);
-    return fetch(path, { method: "POST", body: form });
+    return fetchWithToken(path, { method: "POST", body: form }, ask);
   }
   if (file && file.name.endsWith(".tar")) {
     const query = new URLSearchParams(Object.entries(settings).map(([k, v]) => [k, String(v)]));
-    return fetch(`${path}?${query}`, {
-      method: "POST", headers: { "Content-Type": "application/x-tar" }, body: file });
+    return fetchWithToken(`${path}?${query}`, {
+      method: "POST", headers: { "Content-Type": "application/x-tar" }, body: file }, ask);
   }
   const scene = file ? await file.text() : $("scene-text").value;
-  return fetch(path, {
+  return fetchWithToken(path, {
     method: "POST", headers: { "Content-Type": "application/json" },
-    body: JSON.stringify({ scene, format: "sdl", settings }) });
+    body: JSON.stringify({ scene, format: "sdl", settings }) }, ask);
 }
 
 // The predicted time of the form's scene with its settings, shown beside the Render button
@@ -77,9 +95,10 @@ function schedulePrediction() {
       $("prediction").textContent = "";
       return;
     }
-    const response = await postScene("/api/predict");
+    const response = await postScene("/api/predict", false);
     const body = await response.json().catch(() => null);
-    if (response.status !== 200) $("prediction").textContent = "";
+    if (response.status === 401) $("prediction").textContent = "needs the API token (asked on Render)";
+    else if (response.status !== 200) $("prediction").textContent = "";
     else if (body.predicted_seconds === null) $("prediction").textContent = "no workers connected";
     else $("prediction").textContent =
       `about ${fmtSeconds(body.predicted_seconds)} on ${body.threads} worker threads`;
@@ -289,7 +308,7 @@ $("submit-form").addEventListener("submit", submit);
 $("submit-form").addEventListener("input", schedulePrediction);
 $("submit-form").addEventListener("change", schedulePrediction);
 $("cancel").addEventListener("click", async () => {
-  if (view.job !== null) await fetch(`/api/jobs/${view.job}`, { method: "DELETE" });
+  if (view.job !== null) await fetchWithToken(`/api/jobs/${view.job}`, { method: "DELETE" });
 });
 $("overlay").addEventListener("change", () => {
   if (!$("overlay").checked) return drawOverlay();

@@ -4,6 +4,10 @@
 #include <fstream>
 #include <sstream>
 
+#include <malloc.h>
+#include <spdlog/spdlog.h>
+#include <boost/asio/steady_timer.hpp>
+
 #include "coordinator/http/image_codec.h"
 #include "coordinator/http/job_json.h"
 #include "coordinator/jobs/api_error.h"
@@ -36,6 +40,10 @@ std::string percent_decode(std::string_view s) {
 }
 
 HttpResponse error_response(const ApiError& e) { return json_response(e.status(), e.body()); }
+
+ApiError busy() {
+  return ApiError(503, "busy", "the coordinator is busy with other submissions; try again soon");
+}
 
 // Parses "/api/jobs/{id}..." ids: digits only, so "/api/jobs/abc" is a 404 rather than a throw.
 std::optional<std::int64_t> parse_id(const std::string& s) {
@@ -73,40 +81,45 @@ std::pair<std::string, std::map<std::string, std::string>> split_target(std::str
   return {std::string(target.substr(0, q)), query};
 }
 
-HttpResponse Api::handle(const HttpRequest& request) {
+void Api::handle(HttpRequest request, const boost::asio::ip::tcp::endpoint& peer,
+                 HttpRespond respond) {
   const auto target = request.target();
   auto [path, query] = split_target(std::string_view(target.data(), target.size()));
   try {
-    return route(request, path, query);
+    const auto method = request.method();
+    if (method == http::verb::post || method == http::verb::delete_)
+      check_submitter(config_.submit, request, peer.address());
+    route(request, path, query, peer.address().to_string(), respond);
   } catch (const ApiError& e) {
-    return error_response(e);
+    respond(error_response(e));
   }
 }
 
-HttpResponse Api::route(const HttpRequest& request, const std::string& path,
-                        const std::map<std::string, std::string>& query) {
+// Throws ApiError before it hands `respond` on, never after.
+void Api::route(HttpRequest& request, const std::string& path, const Query& query,
+                const std::string& client, HttpRespond& respond) {
   const auto method = request.method();
   const auto now = Clock::now();
   if (!path.starts_with("/api/")) {
     if (method != http::verb::get && method != http::verb::head)
       throw ApiError(405, "method_not_allowed", "the page only answers GET");
-    return static_file(path == "/" ? "index.html" : path.substr(1));
+    return respond(static_file(path == "/" ? "index.html" : path.substr(1)));
   }
   if (path == "/api/workers") {
     if (method != http::verb::get) throw ApiError(405, "method_not_allowed", "GET /api/workers");
-    return json_response(200, scheduler_.workers_json());
+    return respond(json_response(200, scheduler_.workers_json()));
   }
   if (path == "/api/predict") {
     if (method != http::verb::post) throw ApiError(405, "method_not_allowed", "POST /api/predict");
-    return predict(request, query);
+    return predict(request, query, respond);
   }
   if (path == "/api/jobs") {
-    if (method == http::verb::post) return create_job(request, query);
+    if (method == http::verb::post) return create_job(request, query, client, respond);
     if (method != http::verb::get)
       throw ApiError(405, "method_not_allowed", "GET or POST /api/jobs");
     nlohmann::json list = nlohmann::json::array();
     for (const auto& [id, job] : jobs_.all()) list.push_back(job_summary_json(*job, now));
-    return json_response(200, list);
+    return respond(json_response(200, list));
   }
   const std::string prefix = "/api/jobs/";
   if (path.starts_with(prefix)) {
@@ -117,12 +130,13 @@ HttpResponse Api::route(const HttpRequest& request, const std::string& path,
     if (!job) throw ApiError(404, "not_found", "no job " + rest.substr(0, slash));
     const std::string sub = slash == std::string::npos ? "" : rest.substr(slash + 1);
     if (sub.empty() && method == http::verb::get)
-      return json_response(200, job_status_json(*job, now));
+      return respond(json_response(200, job_status_json(*job, now)));
     if (sub.empty() && method == http::verb::delete_) {
       scheduler_.cancel(job->id);
-      return json_response(200, job_status_json(*job, now));
+      return respond(json_response(200, job_status_json(*job, now)));
     }
-    if (sub == "image" && method == http::verb::get) return job_image(request, *job, query);
+    if (sub == "image" && method == http::verb::get)
+      return job_image(request, *job, query, respond);
     if (sub == "tiles" && method == http::verb::get) {
       std::size_t since = 0;
       if (auto it = query.find("since"); it != query.end()) {
@@ -130,7 +144,7 @@ HttpResponse Api::route(const HttpRequest& request, const std::string& path,
         if (!n) throw ApiError(400, "bad_request", "since must be a count");
         since = static_cast<std::size_t>(*n);
       }
-      return json_response(200, job_tiles_json(*job, since));
+      return respond(json_response(200, job_tiles_json(*job, since)));
     }
     if (sub.empty() || sub == "image" || sub == "tiles")
       throw ApiError(405, "method_not_allowed", std::string(request.method_string()) + " " + path);
@@ -138,70 +152,232 @@ HttpResponse Api::route(const HttpRequest& request, const std::string& path,
   throw ApiError(404, "not_found", "no route " + path);
 }
 
-HttpResponse Api::create_job(const HttpRequest& request,
-                             const std::map<std::string, std::string>& query) {
-  const auto content_type = request[http::field::content_type];
-  JobUpload upload{request.body(), std::string_view(content_type.data(), content_type.size()),
-                   query};
-  Job* job = jobs_.create(parse_job_request(upload, config_.limits, config_.scenes_dir));
-  if (!job) throw ApiError(503, "busy", "too many unfinished jobs; cancel some or wait");
-  const Prediction prediction =
-      scheduler_.predict(job->seconds_per_pixel_pass, job->plan.total_cost);
-  job->predicted_seconds = prediction.seconds;
-  job->uncalibrated_prediction = prediction.uncalibrated;
-  job->prediction_threads = prediction.threads;
-  scheduler_.add_job(*job);
-  HttpResponse res = json_response(201, job_status_json(*job, Clock::now()));
-  res.set(http::field::location, "/api/jobs/" + std::to_string(job->id));
-  return res;
+void Api::offload(HttpRespond respond, std::function<Finish(const IntakeBudget&)> work) {
+  struct Pending {
+    Pending(HttpRespond r, boost::asio::io_context& io) : respond(std::move(r)), deadline(io) {}
+    HttpRespond respond;
+    boost::asio::steady_timer deadline;
+    bool answered = false;  // by the work or by the deadline, whichever comes first
+  };
+  auto pending = std::make_shared<Pending>(std::move(respond), io_);
+  const IntakeBudget budget = IntakeBudget::starting_now(config_.max_intake_seconds);
+  const bool queued = pool_.submit([pending, budget, work = std::move(work)] {
+    Finish finish;
+    try {
+      budget.check("waiting for an intake thread");
+      finish = work(budget);
+    } catch (const ApiError& e) {
+      finish = [e] { return error_response(e); };
+    } catch (const std::bad_alloc&) {
+      finish = [] {
+        return json_response(413, {{"error", "over_budget"},
+                                   {"detail", "the request needs more memory than is available"},
+                                   {"limit", "memory"}});
+      };
+    } catch (const std::exception& e) {
+      finish = [what = std::string(e.what())] {
+        return json_response(500, {{"error", "internal"}, {"detail", what}});
+      };
+    }
+    // On the io thread: the only place jobs and the scheduler are touched.
+    return [pending, finish = std::move(finish)] {
+      if (pending->answered) return;
+      pending->answered = true;
+      pending->deadline.cancel();
+      try {
+        pending->respond(finish());
+      } catch (const ApiError& e) {
+        pending->respond(error_response(e));
+      }
+    };
+  });
+  if (!queued) return pending->respond(error_response(busy()));
+  pending->deadline.expires_at(budget.deadline);
+  pending->deadline.async_wait([pending, budget](boost::system::error_code ec) {
+    if (ec || pending->answered) return;
+    pending->answered = true;
+    pending->respond(error_response(budget.over_time("the deadline")));
+  });
 }
 
-HttpResponse Api::predict(const HttpRequest& request,
-                          const std::map<std::string, std::string>& query) {
-  const auto content_type = request[http::field::content_type];
-  const JobRequest job = parse_job_request(
-      {request.body(), std::string_view(content_type.data(), content_type.size()), query},
-      config_.limits, config_.scenes_dir);
-  const long long pixel_passes = make_plan(job.plan).total_cost;
-  const Prediction p = scheduler_.predict(job.seconds_per_pixel_pass, pixel_passes);
-  return json_response(200,
-                       {{"predicted_seconds", p.seconds ? nlohmann::json(*p.seconds) : nullptr},
-                        {"seconds_per_pixel_pass", job.seconds_per_pixel_pass},
+void Api::create_job(HttpRequest& request, const Query& query, const std::string& client,
+                     HttpRespond& respond) {
+  const auto over_cap = [this, &client] {
+    return jobs_.unfinished_of(client) >= config_.max_jobs_per_client;
+  };
+  const ApiError too_many(
+      429, "too_many_jobs",
+      "this client has " + std::to_string(config_.max_jobs_per_client) +
+          " unfinished jobs, the limit; cancel some or wait",
+      {{"limit", "max_jobs_per_client"}, {"value", config_.max_jobs_per_client}});
+  if (over_cap()) throw too_many;
+  auto upload = std::make_shared<const HttpRequest>(std::move(request));
+  offload(std::move(respond),
+          [this, upload, query, client, over_cap, too_many, limits = config_.limits,
+           scenes = config_.scenes_dir](const IntakeBudget& budget) -> Finish {
+            const auto type = (*upload)[http::field::content_type];
+            auto parsed = std::make_shared<JobRequest>(parse_job_request(
+                {upload->body(), std::string_view(type.data(), type.size()), query}, limits, scenes,
+                budget));
+            return [this, parsed, client, over_cap, too_many] {
+              if (over_cap())
+                throw too_many;  // other submissions of this client finished meanwhile
+              Job* job = jobs_.create(std::move(*parsed), client);
+              if (!job)
+                throw ApiError(503, "busy", "too many unfinished jobs; cancel some or wait");
+              job->on_released = [this](Job& released) { on_released(released); };
+              const Prediction prediction =
+                  scheduler_.predict(job->seconds_per_pixel_pass, job->plan.total_cost);
+              job->predicted_seconds = prediction.seconds;
+              job->uncalibrated_prediction = prediction.uncalibrated;
+              job->prediction_threads = prediction.threads;
+              scheduler_.add_job(*job);
+              HttpResponse res = json_response(201, job_status_json(*job, Clock::now()));
+              res.set(http::field::location, "/api/jobs/" + std::to_string(job->id));
+              return res;
+            };
+          });
+}
+
+void Api::predict(HttpRequest& request, const Query& query, HttpRespond& respond) {
+  auto upload = std::make_shared<const HttpRequest>(std::move(request));
+  offload(std::move(respond),
+          [this, upload, query, limits = config_.limits,
+           scenes = config_.scenes_dir](const IntakeBudget& budget) -> Finish {
+            const auto type = (*upload)[http::field::content_type];
+            auto job = std::make_shared<const JobRequest>(parse_job_request(
+                {upload->body(), std::string_view(type.data(), type.size()), query}, limits, scenes,
+                budget));
+            const long long pixel_passes = make_plan(job->plan).total_cost;
+            return [this, job, pixel_passes] {
+              const Prediction p = scheduler_.predict(job->seconds_per_pixel_pass, pixel_passes);
+              return json_response(
+                  200, {{"predicted_seconds", p.seconds ? nlohmann::json(*p.seconds) : nullptr},
+                        {"seconds_per_pixel_pass", job->seconds_per_pixel_pass},
                         {"pixel_passes", pixel_passes},
                         {"threads", p.threads},
                         {"calibration", p.factor},
                         {"overhead_seconds", p.overhead_seconds},
-                        {"effects", job.effects}});
+                        {"effects", job->effects}});
+            };
+          });
 }
 
-HttpResponse Api::job_image(const HttpRequest& request, const Job& job,
-                            const std::map<std::string, std::string>& query) {
+void Api::job_image(const HttpRequest& request, Job& job, const Query& query,
+                    HttpRespond& respond) {
   std::string format = "png";
   if (auto it = query.find("format"); it != query.end()) format = it->second;
   if (format != "png" && format != "exr")
     throw ApiError(400, "bad_request", "format must be png or exr");
+  if (job.state == JobState::Cancelled || job.state == JobState::Failed)
+    throw ApiError(404, "no_image",
+                   "job " + std::to_string(job.id) + " is " + to_string(job.state) +
+                       ": its image is not kept");
   // The version changes with every merged unit: an unchanged image is answered with 304.
-  const std::string etag =
-      "\"" + std::to_string(job.id) + "-" + std::to_string(job.version) + "-" + format + "\"";
-  if (request[http::field::if_none_match] == etag) {
+  const auto etag_of = [id = job.id, format](std::uint64_t version) {
+    return "\"" + std::to_string(id) + "-" + std::to_string(version) + "-" + format + "\"";
+  };
+  if (request[http::field::if_none_match] == etag_of(job.version)) {
     HttpResponse res{http::status::not_modified, request.version()};
-    res.set(http::field::etag, etag);
+    res.set(http::field::etag, etag_of(job.version));
+    return respond(std::move(res));
+  }
+  const auto reply = [etag_of, format, id = job.id](std::shared_ptr<const std::string> bytes,
+                                                    std::uint64_t version) {
+    if (!bytes)
+      return json_response(404, {{"error", "no_image"},
+                                 {"detail", "the image of job " + std::to_string(id) +
+                                                " could not be encoded or was freed"}});
+    HttpResponse res{http::status::ok, 11};
+    res.set(http::field::content_type, format == "png" ? "image/png" : "image/x-exr");
+    res.set(http::field::etag, etag_of(version));
+    res.set(http::field::cache_control, "no-cache");
+    if (format == "exr")
+      res.set(http::field::content_disposition,
+              "attachment; filename=\"tessera-" + std::to_string(id) + ".exr\"");
+    res.body() = *bytes;
     return res;
+  };
+  if (auto it = job.final_encoded.find(format); it != job.final_encoded.end())
+    return respond(reply(it->second, job.version));
+  const std::pair key{job.id, format};
+  Encoding& cached = encoded_[key];
+  if (cached.version == job.version && cached.bytes)
+    return respond(reply(cached.bytes, job.version));
+  auto waiter = [respond, reply](std::shared_ptr<const std::string> bytes, std::uint64_t version) {
+    respond(reply(std::move(bytes), version));
+  };
+  const bool encoding = !cached.waiting.empty();
+  if (encoding && cached.version == job.version) return cached.waiting.push_back(waiter);
+  // A new version: snapshot it here (a copy), encode it on the pool. Requests waiting for an
+  // older version's encoding get this newer one.
+  std::shared_ptr<const Image> snapshot =
+      job.final_image ? job.final_image : std::make_shared<const Image>(job.image());
+  const std::uint64_t version = job.version;
+  const bool queued = pool_.submit([this, key, version, snapshot] {
+    std::shared_ptr<const std::string> bytes;
+    try {
+      bytes = std::make_shared<const std::string>(encode_image(*snapshot, key.second));
+    } catch (const std::exception& e) {
+      spdlog::error("encoding job {} as {}: {}", key.first, key.second, e.what());
+    }
+    return [this, key, version, bytes] {
+      auto it = encoded_.find(key);
+      if (it == encoded_.end() || it->second.version != version) return;  // superseded
+      auto waiting = std::move(it->second.waiting);
+      it->second.waiting.clear();
+      if (bytes)
+        it->second.bytes = bytes;
+      else
+        encoded_.erase(it);
+      for (auto& w : waiting) w(bytes, version);
+    };
+  });
+  if (!queued) {
+    if (!encoding) encoded_.erase(key);
+    throw busy();
   }
-  HttpResponse res{http::status::ok, request.version()};
-  res.set(http::field::content_type, format == "png" ? "image/png" : "image/x-exr");
-  res.set(http::field::etag, etag);
-  res.set(http::field::cache_control, "no-cache");
-  if (format == "exr")
-    res.set(http::field::content_disposition,
-            "attachment; filename=\"tessera-" + std::to_string(job.id) + ".exr\"");
-  EncodedImage& cached = encoded_[{job.id, format}];
-  if (cached.bytes.empty() || cached.version != job.version) {
-    cached = {job.version, encode_image(job.image(), format)};
-    std::erase_if(encoded_, [&](const auto& entry) { return !jobs_.find(entry.first.first); });
+  cached.version = version;
+  cached.bytes.reset();
+  cached.waiting.push_back(waiter);
+  std::erase_if(encoded_, [&](const auto& entry) {
+    return entry.second.waiting.empty() && !jobs_.find(entry.first.first);
+  });
+}
+
+void Api::on_released(Job& job) {
+  const std::int64_t id = job.id;
+  if (!job.final_image) {
+    // Cancelled or failed: its cached encodings go, and requests waiting for one get a 404.
+    for (auto it = encoded_.begin(); it != encoded_.end();) {
+      if (it->first.first != id) {
+        ++it;
+        continue;
+      }
+      auto waiting = std::move(it->second.waiting);
+      const std::uint64_t version = it->second.version;
+      it = encoded_.erase(it);
+      for (auto& w : waiting) w(nullptr, version);
+    }
+    return;
   }
-  res.body() = cached.bytes;
-  return res;
+  // Encoded on the pool even when it is full: the service owes every done job its image.
+  pool_.submit(
+      [this, id, image = job.final_image] {
+        auto png = std::make_shared<const std::string>(encode_image(*image, "png"));
+        auto exr = std::make_shared<const std::string>(encode_image(*image, "exr"));
+        return std::function<void()>([this, id, png, exr] {
+          if (Job* done = jobs_.find(id)) {
+            done->final_encoded = {{"png", png}, {"exr", exr}};
+            done->final_image.reset();
+          }
+          std::erase_if(encoded_, [id](const auto& entry) {
+            return entry.first.first == id && entry.second.waiting.empty();
+          });
+          malloc_trim(0);
+        });
+      },
+      true);
 }
 
 HttpResponse Api::static_file(const std::string& name) {

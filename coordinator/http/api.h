@@ -1,13 +1,20 @@
-// The HTTP API of docs/SERVICE.md and the static page: a function from request to response
-// over the job store and the scheduler.
+// The HTTP API of docs/SERVICE.md and the static page over the job store and the scheduler.
+// Light routes answer at once on the io thread; submissions, predictions and image encodings
+// go to the intake pool under a budget, and their results come back to the io thread.
 #pragma once
 
 #include <filesystem>
 #include <map>
+#include <memory>
 #include <optional>
 #include <string>
+#include <vector>
+
+#include <boost/asio/io_context.hpp>
 
 #include "coordinator/http/http_server.h"
+#include "coordinator/http/intake_pool.h"
+#include "coordinator/http/submit_policy.h"
 #include "coordinator/jobs/job_store.h"
 #include "coordinator/jobs/limits.h"
 #include "coordinator/scheduler/scheduler.h"
@@ -18,34 +25,52 @@ struct ApiConfig {
   ServiceLimits limits;
   std::optional<std::filesystem::path> scenes_dir;
   std::filesystem::path web_dir;
+  SubmitPolicy submit;
+  double max_intake_seconds = 10;  // wall time of one submission or prediction
+  int max_jobs_per_client = 8;     // unfinished jobs per peer address
 };
 
 class Api {
  public:
-  Api(JobStore& jobs, Scheduler& scheduler, ApiConfig config)
-      : jobs_(jobs), scheduler_(scheduler), config_(std::move(config)) {}
-  HttpResponse handle(const HttpRequest& request);
+  Api(boost::asio::io_context& io, JobStore& jobs, Scheduler& scheduler, IntakePool& pool,
+      ApiConfig config)
+      : io_(io), jobs_(jobs), scheduler_(scheduler), pool_(pool), config_(std::move(config)) {}
+  // On the io thread; `respond` is called once, at once or when the pool's work is done.
+  void handle(HttpRequest request, const boost::asio::ip::tcp::endpoint& peer, HttpRespond respond);
 
  private:
-  HttpResponse route(const HttpRequest& request, const std::string& path,
-                     const std::map<std::string, std::string>& query);
-  HttpResponse create_job(const HttpRequest& request,
-                          const std::map<std::string, std::string>& query);
-  // The time a job would take, without submitting it (the page asks as settings change).
-  HttpResponse predict(const HttpRequest& request, const std::map<std::string, std::string>& query);
-  HttpResponse job_image(const HttpRequest& request, const Job& job,
-                         const std::map<std::string, std::string>& query);
-  HttpResponse static_file(const std::string& path);
+  using Query = std::map<std::string, std::string>;
+  // What heavy work leaves for the io thread: it makes the response there.
+  using Finish = std::function<HttpResponse()>;
 
+  void route(HttpRequest& request, const std::string& path, const Query& query,
+             const std::string& client, HttpRespond& respond);
+  void create_job(HttpRequest& request, const Query& query, const std::string& client,
+                  HttpRespond& respond);
+  // The time a job would take, without submitting it (the page asks as settings change).
+  void predict(HttpRequest& request, const Query& query, HttpRespond& respond);
+  void job_image(const HttpRequest& request, Job& job, const Query& query, HttpRespond& respond);
+  HttpResponse static_file(const std::string& path);
+  // Runs `work` on the pool under a deadline of --max-intake-seconds: 503 when the pool's
+  // queue is full, 422 when the deadline passes first (the late result is then dropped).
+  void offload(HttpRespond respond, std::function<Finish(const IntakeBudget&)> work);
+  // A job has freed its buffers: a done one's final image is encoded on the pool.
+  void on_released(Job& job);
+
+  boost::asio::io_context& io_;
   JobStore& jobs_;
   Scheduler& scheduler_;
+  IntakePool& pool_;
   ApiConfig config_;
-  // The last encoding per job and format: polling pages ask for the same version many times.
-  struct EncodedImage {
+  // The last encoding per job and format (polling pages ask for the same version many
+  // times); requests for a version being encoded wait for that one encoding.
+  struct Encoding {
     std::uint64_t version = 0;
-    std::string bytes;
+    std::shared_ptr<const std::string> bytes;  // null while encoding
+    // Each gets the bytes (null when the image is gone) and the version they show.
+    std::vector<std::function<void(std::shared_ptr<const std::string>, std::uint64_t)>> waiting;
   };
-  std::map<std::pair<std::int64_t, std::string>, EncodedImage> encoded_;
+  std::map<std::pair<std::int64_t, std::string>, Encoding> encoded_;
 };
 
 // "/a/b?x=1&y=%20" -> path "/a/b" and {x: "1", y: " "}.

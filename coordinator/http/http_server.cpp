@@ -4,6 +4,7 @@
 #include <optional>
 
 #include <spdlog/spdlog.h>
+#include <boost/asio/post.hpp>
 #include <boost/beast/core.hpp>
 #include <nlohmann/json.hpp>
 
@@ -20,8 +21,15 @@ constexpr auto kReadTimeout = std::chrono::seconds(30);
 
 class HttpSession : public std::enable_shared_from_this<HttpSession> {
  public:
-  HttpSession(tcp::socket socket, std::size_t body_limit, const HttpHandler& handler)
-      : stream_(std::move(socket)), body_limit_(body_limit), handler_(handler) {}
+  HttpSession(tcp::socket socket, std::size_t body_limit,
+              std::shared_ptr<const HttpHandler> handler, std::shared_ptr<std::atomic<int>> open)
+      : stream_(std::move(socket)),
+        body_limit_(body_limit),
+        handler_(std::move(handler)),
+        open_(std::move(open)) {
+    ++*open_;
+  }
+  ~HttpSession() { --*open_; }
 
   void read() {
     parser_.emplace();
@@ -52,17 +60,28 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
       return close();
     }
     HttpRequest request = parser_->release();
-    HttpResponse response;
+    const unsigned version = request.version();
+    const bool keep_alive = request.keep_alive();
+    beast::error_code peer_error;
+    const tcp::endpoint peer = stream_.socket().remote_endpoint(peer_error);
+    if (peer_error) return close();
+    // Until the response is written the session reads nothing more (no pipelining), so one
+    // connection never has two requests in work.
+    HttpRespond respond = [self = shared_from_this(), version, keep_alive](HttpResponse response) {
+      asio::post(self->stream_.get_executor(),
+                 [self, version, keep_alive, response = std::move(response)]() mutable {
+                   response.version(version);
+                   response.keep_alive(keep_alive);
+                   self->write(std::move(response), !keep_alive);
+                 });
+    };
+    const std::string method(request.method_string()), target(request.target());
     try {
-      response = handler_(request);
+      (*handler_)(std::move(request), peer, respond);
     } catch (const std::exception& e) {  // a bug in a handler must not end the service
-      spdlog::error("{} {}: {}", std::string(request.method_string()),
-                    std::string(request.target()), e.what());
-      response = json_response(500, nlohmann::json{{"error", "internal"}, {"detail", e.what()}});
+      spdlog::error("{} {}: {}", method, target, e.what());
+      respond(json_response(500, nlohmann::json{{"error", "internal"}, {"detail", e.what()}}));
     }
-    response.version(request.version());
-    response.keep_alive(request.keep_alive());
-    write(std::move(response), !request.keep_alive());
   }
 
   void write(HttpResponse response, bool close_after) {
@@ -87,7 +106,8 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
   beast::tcp_stream stream_;
   beast::flat_buffer buffer_;
   std::size_t body_limit_;
-  const HttpHandler& handler_;
+  std::shared_ptr<const HttpHandler> handler_;
+  std::shared_ptr<std::atomic<int>> open_;
   std::optional<http::request_parser<http::string_body>> parser_;
   std::shared_ptr<HttpResponse> response_;
 };
@@ -102,17 +122,46 @@ HttpResponse json_response(unsigned status, const nlohmann::json& body, unsigned
   return res;
 }
 
-HttpServer::HttpServer(asio::io_context& io, const tcp::endpoint& endpoint, std::size_t body_limit,
-                       HttpHandler handler)
-    : acceptor_(io, endpoint), body_limit_(body_limit), handler_(std::move(handler)) {
+HttpServer::HttpServer(asio::io_context& io, const tcp::endpoint& endpoint,
+                       HttpServerOptions options, HttpHandler handler)
+    : acceptor_(io, endpoint),
+      retry_(io),
+      options_(options),
+      handler_(std::make_shared<const HttpHandler>(std::move(handler))),
+      open_(std::make_shared<std::atomic<int>>(0)) {
   accept();
 }
 
 void HttpServer::accept() {
-  acceptor_.async_accept([this](beast::error_code ec, tcp::socket socket) {
-    if (!ec) std::make_shared<HttpSession>(std::move(socket), body_limit_, handler_)->read();
-    if (acceptor_.is_open()) accept();
-  });
+  acceptor_.async_accept(
+      [this](beast::error_code ec, tcp::socket socket) { on_accept(ec, std::move(socket)); });
+}
+
+void HttpServer::on_accept(beast::error_code ec, tcp::socket socket) {
+  if (ec == asio::error::operation_aborted || !acceptor_.is_open()) return;
+  if (ec) {
+    // At the descriptor limit accept fails at once, again and again: wait, doubling the wait.
+    const auto delay = accept_backoff_.next();
+    if (const auto skipped = accept_errors_.admit())
+      spdlog::warn("HTTP accept failed: {} (retrying in {} ms; {} more failures not logged)",
+                   ec.message(), delay.count(), *skipped);
+    retry_.expires_after(delay);
+    retry_.async_wait([this](beast::error_code wait_ec) {
+      if (!wait_ec) accept();
+    });
+    return;
+  }
+  accept_backoff_.reset();
+  if (*open_ >= options_.max_connections) {
+    if (const auto skipped = refused_.admit())
+      spdlog::warn("refused an HTTP connection: {} are open, the limit (+{} more not logged)",
+                   options_.max_connections, *skipped);
+    beast::error_code ignored;
+    socket.close(ignored);
+  } else {
+    std::make_shared<HttpSession>(std::move(socket), options_.body_limit, handler_, open_)->read();
+  }
+  accept();
 }
 
 }  // namespace tessera

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include <malloc.h>
+
 #include "common/render/post_normalization.h"
 
 namespace tessera {
@@ -71,6 +73,17 @@ Image Job::image() const {
   const RenderSettings& s = spec.settings;
   if (s.normalize_colors) post_normalize(image, s.normalize_brightness);
   return image;
+}
+
+void Job::release_buffers() {
+  if (state == JobState::Done) final_image = std::make_shared<const Image>(image());
+  // Assigning empty containers frees their storage (clear() would keep the capacity).
+  frame_buffer = FrameBuffer(0, 0);
+  display = Image();
+  display_rank = std::vector<int>();
+  tiles = std::vector<TileRecord>();
+  malloc_trim(0);  // large frees go back to the system only when trimmed (glibc)
+  if (on_released) on_released(*this);
 }
 
 double Job::elapsed_seconds(Clock::time_point now) const {

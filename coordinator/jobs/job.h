@@ -5,7 +5,9 @@
 
 #include <chrono>
 #include <cstdint>
+#include <functional>
 #include <map>
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
@@ -51,6 +53,7 @@ struct Job {
   JobSpec spec;
   PlanOptions plan_options;
   int priority;
+  std::string client;  // the submitter's address, for the per-client cap on unfinished jobs
   Plan plan;
   std::vector<std::string> effects, warnings;
   // The prediction made at submission from the probe and the worker threads then connected
@@ -76,14 +79,26 @@ struct Job {
   std::vector<int> display_rank;  // per pixel: how fine the value shown there is
   std::uint64_t version = 0;      // bumps whenever `display` changes
 
+  // Once finished the buffers above are freed (release_buffers): a done job keeps only its
+  // final image, as pixels until the coordinator has encoded it, then only encoded; a
+  // cancelled or failed job keeps no image. So memory is bounded by the running jobs.
+  std::shared_ptr<const Image> final_image;
+  std::map<std::string, std::shared_ptr<const std::string>> final_encoded;  // "png", "exr"
+  // Called by release_buffers, on the io thread: the coordinator encodes the final image.
+  std::function<void(Job&)> on_released;
+
   bool finished_state() const {
     return state == JobState::Done || state == JobState::Failed || state == JobState::Cancelled;
   }
   // Merges one unit's values (3 floats per pixel of expand(unit), in that order).
   void apply_result(int unit, std::span<const float> values);
   // The final image once done (bit-identical to tessera-render), else the display image;
-  // post-normalized when the settings ask for it.
+  // post-normalized when the settings ask for it. Only before release_buffers.
   Image image() const;
+  // Called once the state is final (Scheduler::finish): keeps the final image of a done job,
+  // frees the frame buffer, display, ranks and tile records, and returns the memory to the
+  // system (malloc_trim).
+  void release_buffers();
   double elapsed_seconds(Clock::time_point now) const;
   std::optional<double> eta_seconds(Clock::time_point now) const;
   // The first stage not finished: the level or pass being refined now.

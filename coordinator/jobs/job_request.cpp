@@ -182,8 +182,9 @@ Submission read_multipart_submission(std::string_view body, const std::string& b
   return sub;
 }
 
+// The one place where a request's budget meets the loader and the probe.
 void check_scene(const Submission& sub, const std::optional<std::filesystem::path>& scenes_dir,
-                 const ServiceLimits& limits, JobRequest& out) {
+                 const ServiceLimits& limits, const IntakeBudget& budget, JobRequest& out) {
   for (const auto& [path, bytes] : sub.files)
     if (!is_plain_relative_path(path))
       throw ApiError(400, "bad_bundle", "file path \"" + path + "\" leaves the bundle");
@@ -195,14 +196,17 @@ void check_scene(const Submission& sub, const std::optional<std::filesystem::pat
   RecordingSource source(submitted, folder ? &*folder : nullptr);
   try {
     Scene scene = load_scene(source, sub.main, *scene_format_named(sub.format));
+    budget.check("loading the scene");
     apply_overrides(scene, out.spec.overrides);
     if (scene.globals.max_recursion_depth > limits.max_depth)
       throw bad_request("maxRecursionDepth " + std::to_string(scene.globals.max_recursion_depth) +
                         " is over this service's limit of " + std::to_string(limits.max_depth));
     const PreparedScene prepared(scene, out.spec.settings.bvh);
+    budget.check("preparing the scene");
     out.effects = render_effects(prepared, out.spec.settings).names();
     out.seconds_per_pixel_pass =
         probe_render_cost(prepared, out.spec.settings).seconds_per_pixel_pass();
+    budget.check("the cost probe");
     out.plan.unit_pixels = unit_pixels_for_cost(out.seconds_per_pixel_pass);
     out.warnings = scene.warnings;
     for (const auto& u : prepared.unsupported()) out.warnings.push_back(u);
@@ -273,7 +277,8 @@ void parse_settings(const json& s, const ServiceLimits& limits, JobRequest& out)
 }
 
 JobRequest parse_job_request(const JobUpload& upload, const ServiceLimits& limits,
-                             const std::optional<std::filesystem::path>& scenes_dir) {
+                             const std::optional<std::filesystem::path>& scenes_dir,
+                             const IntakeBudget& budget) {
   const std::string_view type = upload.content_type;
   Submission sub;
   if (type.starts_with("application/x-tar") || type.starts_with("application/tar"))
@@ -289,7 +294,8 @@ JobRequest parse_job_request(const JobUpload& upload, const ServiceLimits& limit
   if (!scene_format_named(sub.format)) throw bad_request("format must be \"sdl\" or \"vrml\"");
   JobRequest out;
   parse_settings(sub.settings, limits, out);
-  check_scene(sub, scenes_dir, limits, out);
+  budget.check("decoding the request");
+  check_scene(sub, scenes_dir, limits, budget, out);
   return out;
 }
 

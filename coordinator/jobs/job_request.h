@@ -1,6 +1,6 @@
 // POST /api/jobs: turns a request body into a validated job request, or an ApiError with the
-// right status. The scene is parsed and prepared here, so a bad scene is a 400 that never
-// reaches a worker; the bundle keeps exactly the files the scene read.
+// right status (422/413 over its IntakeBudget). The scene is parsed and prepared here, so a bad
+// scene is a 400 that never reaches a worker; the bundle keeps exactly the files the scene read.
 #pragma once
 
 #include <filesystem>
@@ -13,6 +13,7 @@
 #include "common/progressive/plan.h"
 #include "common/protocol/bundle.h"
 #include "common/protocol/job_spec.h"
+#include "coordinator/jobs/intake_budget.h"
 #include "coordinator/jobs/limits.h"
 
 namespace tessera {
@@ -32,8 +33,10 @@ struct JobUpload {
   std::map<std::string, std::string> query;  // settings for tar uploads
 };
 
+// Runs off the io thread (IntakePool); the budget is checked between its stages.
 JobRequest parse_job_request(const JobUpload& upload, const ServiceLimits& limits,
-                             const std::optional<std::filesystem::path>& scenes_dir);
+                             const std::optional<std::filesystem::path>& scenes_dir,
+                             const IntakeBudget& budget = {});
 
 // The settings object of a request ({"width", "height", "aa", ...}); throws ApiError.
 void parse_settings(const nlohmann::json& settings, const ServiceLimits& limits, JobRequest& out);

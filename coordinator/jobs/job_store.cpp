@@ -2,7 +2,7 @@
 
 namespace tessera {
 
-Job* JobStore::create(JobRequest request) {
+Job* JobStore::create(JobRequest request, std::string client) {
   for (auto it = jobs_.begin(); static_cast<int>(jobs_.size()) >= max_jobs_ && it != jobs_.end();)
     it = it->second->finished_state() ? jobs_.erase(it) : std::next(it);
   if (static_cast<int>(jobs_.size()) >= max_jobs_) return nullptr;
@@ -12,9 +12,16 @@ Job* JobStore::create(JobRequest request) {
   job->effects = std::move(request.effects);
   job->warnings = std::move(request.warnings);
   job->seconds_per_pixel_pass = request.seconds_per_pixel_pass;
+  job->client = std::move(client);
   Job* raw = job.get();
   jobs_[id] = std::move(job);
   return raw;
+}
+
+int JobStore::unfinished_of(const std::string& client) const {
+  int n = 0;
+  for (const auto& [id, job] : jobs_) n += !job->finished_state() && job->client == client;
+  return n;
 }
 
 Job* JobStore::find(std::int64_t id) {

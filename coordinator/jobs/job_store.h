@@ -15,7 +15,9 @@ class JobStore {
  public:
   explicit JobStore(int max_jobs) : max_jobs_(max_jobs) {}
   // Returns nullptr when the store is full of unfinished jobs.
-  Job* create(JobRequest request);
+  Job* create(JobRequest request, std::string client = {});
+  // Queued and running jobs submitted from `client`.
+  int unfinished_of(const std::string& client) const;
   Job* find(std::int64_t id);
   const std::map<std::int64_t, std::unique_ptr<Job>>& all() const { return jobs_; }
 

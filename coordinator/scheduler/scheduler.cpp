@@ -278,6 +278,7 @@ void Scheduler::finish(JobRun& run, JobState state, const std::string& error) {
       job.prediction_threads > 0)
     calibration_.observe(*job.uncalibrated_prediction, job.stats.seconds / job.prediction_threads,
                          job.elapsed_seconds(*job.finished));
+  job.release_buffers();
   runs_.erase(job.id);  // `run` and `job` references end here
   fill_slots();
 }

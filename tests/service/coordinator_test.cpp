@@ -1,14 +1,19 @@
-// Unit tests of the coordinator's pure parts: request targets, job requests and
-// the merge of unit results into the frame buffer and the display.
+// Unit tests of the coordinator's pure parts: request targets, job requests, the
+// merge of unit results into the frame buffer and the display, what finished jobs keep, who
+// may submit, and the accept backoff and log limiter.
 #include <gtest/gtest.h>
 
 #include <algorithm>
 
 #include "coordinator/http/api.h"
+#include "coordinator/http/submit_policy.h"
 #include "coordinator/jobs/api_error.h"
 #include "coordinator/jobs/job.h"
 #include "coordinator/jobs/job_request.h"
 #include "coordinator/jobs/multipart.h"
+#include "coordinator/net/backoff.h"
+#include "coordinator/net/log_limiter.h"
+#include "coordinator/scheduler/scheduler.h"
 
 namespace tessera {
 namespace {
@@ -173,6 +178,127 @@ TEST(JobMerge, FinalImageIsTheFrameBufferMean) {
   EXPECT_EQ(final_image, job.frame_buffer.resolve());
   EXPECT_EQ(final_image.get(1, 1).r, static_cast<float>(101 + 0.25));  // mean of passes 0..2
   EXPECT_EQ(final_image, job.display);
+}
+
+void fill(Job& job) {
+  for (int u = 0; u < static_cast<int>(job.plan.units.size()); ++u)
+    job.apply_result(u, values_for(job, u));
+}
+
+void expect_buffers_freed(const Job& job) {
+  EXPECT_EQ(job.frame_buffer.width(), 0);
+  EXPECT_EQ(job.display.rgb.capacity(), 0u);
+  EXPECT_EQ(job.display_rank.capacity(), 0u);
+  EXPECT_EQ(job.tiles.capacity(), 0u);
+}
+
+TEST(JobMemory, ADoneJobKeepsOnlyItsFinalImage) {
+  Job job = make_job(6, 4, 3);
+  fill(job);
+  job.tiles.push_back({});
+  job.state = JobState::Done;
+  const Image final_image = job.image();
+  int released = 0;
+  job.on_released = [&](Job&) { ++released; };
+  job.release_buffers();
+  expect_buffers_freed(job);
+  ASSERT_TRUE(job.final_image);
+  EXPECT_EQ(*job.final_image, final_image);
+  EXPECT_EQ(released, 1);
+}
+
+TEST(JobMemory, CancellingThroughTheSchedulerFreesEverything) {
+  JobStore store(4);
+  Scheduler scheduler({});
+  JobRequest r;
+  r.bundle = {"scene.sdl", "sdl", {{"scene.sdl", "sphere"}}};
+  r.spec.settings.width = r.plan.width = 64;
+  r.spec.settings.height = r.plan.height = 32;
+  Job* job = store.create(std::move(r), "10.0.0.7");
+  scheduler.add_job(*job);
+  EXPECT_EQ(job->display_rank.size(), 64u * 32u);
+  EXPECT_EQ(store.unfinished_of("10.0.0.7"), 1);
+  EXPECT_TRUE(scheduler.cancel(job->id));
+  EXPECT_EQ(job->state, JobState::Cancelled);
+  expect_buffers_freed(*job);
+  EXPECT_FALSE(job->final_image);
+  EXPECT_EQ(store.unfinished_of("10.0.0.7"), 0);
+}
+
+HttpRequest state_change(const std::string& host, const std::string& origin = "",
+                         const std::string& authorization = "") {
+  HttpRequest r{boost::beast::http::verb::post, "/api/jobs", 11};
+  r.set(boost::beast::http::field::host, host);
+  if (!origin.empty()) r.set(boost::beast::http::field::origin, origin);
+  if (!authorization.empty()) r.set(boost::beast::http::field::authorization, authorization);
+  return r;
+}
+
+int refusal(const SubmitPolicy& policy, const HttpRequest& request, const std::string& peer) {
+  try {
+    check_submitter(policy, request, boost::asio::ip::make_address(peer));
+    return 0;
+  } catch (const ApiError& e) {
+    return e.status();
+  }
+}
+
+TEST(SubmitPolicy, WithoutATokenOnlyLoopbackMaySubmit) {
+  const SubmitPolicy closed;
+  EXPECT_EQ(refusal(closed, state_change("h:8080"), "127.0.0.1"), 0);
+  EXPECT_EQ(refusal(closed, state_change("h:8080"), "::1"), 0);
+  EXPECT_EQ(refusal(closed, state_change("h:8080"), "::ffff:127.0.0.1"), 0);
+  EXPECT_EQ(refusal(closed, state_change("h:8080"), "192.168.1.9"), 403);
+  SubmitPolicy open;
+  open.open_submit = true;
+  EXPECT_EQ(refusal(open, state_change("h:8080"), "192.168.1.9"), 0);
+}
+
+TEST(SubmitPolicy, ATokenIsNeededFromEveryPeer) {
+  SubmitPolicy policy;
+  policy.api_token = "s3cret";
+  EXPECT_EQ(refusal(policy, state_change("h"), "127.0.0.1"), 401);
+  EXPECT_EQ(refusal(policy, state_change("h", "", "Bearer s3cre"), "127.0.0.1"), 401);
+  EXPECT_EQ(refusal(policy, state_change("h", "", "Bearer s3cret!"), "10.1.1.1"), 401);
+  EXPECT_EQ(refusal(policy, state_change("h", "", "Basic s3cret"), "10.1.1.1"), 401);
+  EXPECT_EQ(refusal(policy, state_change("h", "", "Bearer s3cret"), "10.1.1.1"), 0);
+  EXPECT_TRUE(token_matches("abc", "abc"));
+  EXPECT_FALSE(token_matches("abd", "abc"));
+  EXPECT_FALSE(token_matches("", "abc"));
+}
+
+TEST(SubmitPolicy, ForeignOriginsAreRefusedUnlessAllowed) {
+  SubmitPolicy policy;
+  EXPECT_EQ(refusal(policy, state_change("localhost:8080", "http://localhost:8080"), "::1"), 0);
+  EXPECT_EQ(refusal(policy, state_change("LocalHost:8080", "http://localhost:8080"), "::1"), 0);
+  EXPECT_EQ(refusal(policy, state_change("localhost:8080", "http://localhost:9090"), "::1"), 403);
+  EXPECT_EQ(refusal(policy, state_change("localhost:8080", "https://evil.example"), "::1"), 403);
+  EXPECT_EQ(refusal(policy, state_change("localhost:8080", "null"), "::1"), 403);
+  policy.allowed_origins = {"https://render.example"};
+  EXPECT_EQ(refusal(policy, state_change("localhost:8080", "https://render.example"), "::1"), 0);
+  // The origin is checked before the token: a foreign page is refused even with it.
+  policy.api_token = "t";
+  EXPECT_EQ(refusal(policy, state_change("h", "https://evil.example", "Bearer t"), "::1"), 403);
+}
+
+TEST(Backoff, DoublesUpToItsCapAndResets) {
+  Backoff b(std::chrono::milliseconds(50), std::chrono::milliseconds(1000));
+  std::vector<long> delays;
+  for (int i = 0; i < 7; ++i) delays.push_back(static_cast<long>(b.next().count()));
+  EXPECT_EQ(delays, (std::vector<long>{50, 100, 200, 400, 800, 1000, 1000}));
+  b.reset();
+  EXPECT_EQ(b.next().count(), 50);
+}
+
+TEST(LogLimiter, OneLinePerIntervalCountingTheRest) {
+  LogLimiter limiter(std::chrono::seconds(1));
+  const auto t0 = LogLimiter::Clock::time_point{} + std::chrono::hours(1);
+  EXPECT_EQ(limiter.admit(t0), 0);
+  for (int i = 1; i <= 999; ++i)
+    EXPECT_FALSE(limiter.admit(t0 + std::chrono::microseconds(999'000 * i / 999 - 1)));
+  EXPECT_EQ(limiter.admit(t0 + std::chrono::seconds(1)), 999);
+  EXPECT_FALSE(limiter.admit(t0 + std::chrono::milliseconds(1500)));
+  EXPECT_EQ(limiter.admit(t0 + std::chrono::seconds(3)), 1);
 }
 
 }  // namespace

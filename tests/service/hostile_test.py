@@ -1,0 +1,280 @@
+#!/usr/bin/env python3
+"""The coordinator against hostile clients (issue 16 §1, §4, §7): requests that would stall it
+never delay status answers, finished and cancelled jobs give their memory back, and only who
+may submit can. The hostile inputs are generated here, small.
+
+usage: hostile_test.py --build BUILD_DIR --source SOURCE_DIR CASE
+CASE: intake | submit_rules | job_cap | memory | connections | descriptors
+"""
+import argparse
+import http.client
+import json
+import os
+import signal
+import socket
+import sys
+import threading
+import time
+
+import service_test
+from service_test import Service
+
+JSON = {"Content-Type": "application/json"}
+SMALL = {"width": 32, "height": 24}
+INTAKE_SECONDS = 2
+
+
+def def_use_bomb(depth=60):
+    """Each level USEs the one before twice: 2**depth nodes without a single shape."""
+    lines = ["#VRML V2.0 utf8", "DEF A0 Transform {}"]
+    lines += ["DEF A%d Transform { children [USE A%d USE A%d] }" % (i, i - 1, i - 1)
+              for i in range(1, depth + 1)]
+    return "\n".join(lines) + "\n"
+
+
+# A glossy mirror hall: the camera inside a scaled sphere, every hit spawning 64 glossy rays,
+# 16 deep, with nothing cut off by weight. One pixel of it takes minutes.
+MIRROR_HALL = ("eyePoint 0 0 0\nviewPoint 0 0 -1\nlight 0 0 0 1 1 1\n"
+               "reflectivity 0.95\nglossStrength 0.5\nscale 10 10 10\nsphere\n")
+RUNAWAY = {"width": 32, "height": 24, "cone_samples": 64, "max_depth": 16, "min_weight": 0}
+
+
+def post(service, path, payload, headers=None):
+    start = time.time()
+    status, _, reply = service.request("POST", path, json.dumps(payload).encode(),
+                                       {**JSON, **(headers or {})})
+    return status, json.loads(reply), time.time() - start
+
+
+def case_intake():
+    """While a DEF/USE bomb and several runaway predictions are in work, GET /api/workers and
+    a job's status answer in under 100 ms, and the hostile requests end with 422/413/503 and
+    a JSON error within their budget."""
+    with Service("--max-intake-seconds", str(INTAKE_SECONDS), "--local-workers", "1",
+                 "--local-threads", "1") as service:
+        service.wait_workers(1)
+        job = service.submit("sphere\n", SMALL)
+        hostile = [("/api/jobs", {"scene": def_use_bomb(), "format": "vrml", "settings": SMALL})]
+        hostile += [("/api/predict", {"scene": MIRROR_HALL, "settings": RUNAWAY})] * 3
+        outcomes = [None] * len(hostile)
+
+        def send(i, path, payload):
+            outcomes[i] = post(service, path, payload)
+
+        threads = [threading.Thread(target=send, args=(i, *h)) for i, h in enumerate(hostile)]
+        for t in threads:
+            t.start()
+        conn = http.client.HTTPConnection("127.0.0.1", service.http_port, timeout=10)
+        latencies = []
+        while any(t.is_alive() for t in threads):
+            for path in ("/api/workers", "/api/jobs/%d" % job["id"]):
+                start = time.time()
+                conn.request("GET", path)
+                response = conn.getresponse()
+                response.read()
+                latencies.append(time.time() - start)
+                assert response.status == 200, (path, response.status)
+            time.sleep(0.01)
+        for t in threads:
+            t.join()
+        print("%d status requests, slowest %.1f ms" % (len(latencies), 1000 * max(latencies)))
+        assert len(latencies) >= 50, len(latencies)
+        assert max(latencies) < 0.1, sorted(latencies)[-5:]
+        for (path, _), (status, err, seconds) in zip(hostile, outcomes):
+            print("%s: %d %s in %.2f s" % (path, status, err, seconds))
+            assert status in (413, 422, 503), (path, status, err)
+            assert err["error"] in ("over_budget", "busy") and err["detail"], err
+            assert seconds < INTAKE_SECONDS + 1.5, (path, seconds)
+        assert any(o[1]["error"] == "over_budget" for o in outcomes), outcomes
+        # The service itself is fine: the small job finished, a worker is still there.
+        assert service.wait_job(job["id"])["state"] == "done"
+        assert len(service.get("/api/workers")) == 1
+        # SIGTERM ends it at once although the runaway scenes are still in work.
+        start = time.time()
+        service.coordinator.send_signal(signal.SIGTERM)
+        assert service.coordinator.wait(timeout=5) == 0
+        print("SIGTERM to exit: %.2f s" % (time.time() - start))
+        assert time.time() - start < 1.0
+
+
+def non_loopback_address():
+    """An address of this machine other than loopback, or None."""
+    with socket.socket(socket.AF_INET, socket.SOCK_DGRAM) as s:
+        try:
+            s.connect(("192.0.2.123", 9))  # no packet is sent: it only picks the source address
+            address = s.getsockname()[0]
+        except OSError:
+            return None
+    return None if address.startswith("127.") else address
+
+
+def case_submit_rules():
+    """--api-token makes POST and DELETE need the bearer token; without one only loopback may
+    submit unless --open-submit; foreign origins are refused unless --allow-origin."""
+    scene = {"scene": "sphere\n", "settings": SMALL}
+    with Service("--api-token", "tok3n") as service:
+        for headers in ({}, {"Authorization": "Bearer wrong"}, {"Authorization": "tok3n"}):
+            status, err, _ = post(service, "/api/jobs", scene, headers)
+            assert status == 401 and err["error"] == "unauthorized", (headers, status, err)
+        status, job, _ = post(service, "/api/jobs", scene, {"Authorization": "Bearer tok3n"})
+        assert status == 201, job
+        path = "/api/jobs/%d" % job["id"]
+        status, _, reply = service.request("DELETE", path)
+        assert status == 401 and json.loads(reply)["error"] == "unauthorized", reply
+        assert service.get(path)["id"] == job["id"]  # reading needs no token
+        status, _, _ = service.request("DELETE", path, None, {"Authorization": "Bearer tok3n"})
+        assert status == 200
+    os.environ["TESSERA_API_TOKEN"] = "from-env"
+    try:
+        with Service() as service:
+            assert post(service, "/api/jobs", scene)[0] == 401
+            assert post(service, "/api/jobs", scene,
+                        {"Authorization": "Bearer from-env"})[0] == 201
+    finally:
+        del os.environ["TESSERA_API_TOKEN"]
+
+    with Service("--allow-origin", "https://render.example") as service:
+        own = "http://127.0.0.1:%d" % service.http_port
+        for origin, expect in (("https://evil.example", 403), ("null", 403),
+                               ("http://127.0.0.1:1", 403), (own, 201),
+                               ("https://render.example", 201)):
+            status, err, _ = post(service, "/api/jobs", scene, {"Origin": origin})
+            assert status == expect, (origin, status, err)
+            if expect == 403:
+                assert err["error"] == "cross_origin" and origin in err["detail"], err
+        status, _, reply = service.request("DELETE", "/api/jobs/1", None,
+                                           {"Origin": "https://evil.example"})
+        assert status == 403, reply
+        assert service.get("/api/jobs/1")["state"] != "cancelled"
+
+    address = non_loopback_address()
+    if address is None:
+        print("no non-loopback address: the loopback-only rule is covered by test_coordinator")
+        return
+    for flags, expect in (((), 403), (("--open-submit",), 201)):
+        with Service(*flags, host=address) as service:
+            status, err, _ = post(service, "/api/jobs", scene)
+            assert status == expect, (address, flags, status, err)
+            if expect == 403:
+                assert err["error"] == "forbidden" and "--api-token" in err["detail"], err
+            assert service.get("/api/workers") == []  # reading stays open
+
+
+def case_job_cap():
+    """One client holds at most --max-jobs-per-client unfinished jobs: 429 beyond."""
+    with Service("--max-jobs-per-client", "2") as service:  # no workers: jobs stay queued
+        first = service.submit("sphere\n", SMALL)
+        service.submit("sphere\n", SMALL)
+        status, err, _ = post(service, "/api/jobs", {"scene": "sphere\n", "settings": SMALL})
+        assert status == 429 and err["error"] == "too_many_jobs", (status, err)
+        assert err["value"] == 2, err
+        status, _, _ = service.request("DELETE", "/api/jobs/%d" % first["id"])
+        assert status == 200
+        service.submit("sphere\n", SMALL)
+
+
+def refused(port):
+    """Whether a new connection is closed by the server without an answer."""
+    with socket.create_connection(("127.0.0.1", port)) as s:
+        s.settimeout(5)
+        s.sendall(b"GET /api/workers HTTP/1.1\r\nHost: x\r\n\r\n")
+        try:
+            return s.recv(64) == b""
+        except ConnectionResetError:
+            return True
+
+
+def case_connections():
+    """Beyond --max-http-connections a new connection is closed at once; closing one makes
+    room again."""
+    with Service("--max-http-connections", "4") as service:
+        idle = [socket.create_connection(("127.0.0.1", service.http_port)) for _ in range(4)]
+        time.sleep(0.2)
+        assert refused(service.http_port)
+        idle.pop().close()
+        time.sleep(0.2)
+        assert not refused(service.http_port)
+        for s in idle:
+            s.close()
+        assert service.get("/api/workers") == []
+
+
+def cpu_seconds(pid):
+    with open("/proc/%d/stat" % pid) as f:
+        fields = f.read().rsplit(")", 1)[1].split()
+    return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
+
+
+def case_descriptors():
+    """At the descriptor limit the accept loop backs off instead of spinning, logs a line a
+    second at most, and serves again once descriptors are free."""
+    with Service(prefix=("prlimit", "--nofile=48:48")) as service:
+        held = []
+        for _ in range(80):  # beyond the limit: the kernel queues them, accept gets EMFILE
+            held.append(socket.create_connection(("127.0.0.1", service.http_port)))
+        time.sleep(0.5)
+        pid = service.coordinator.pid
+        cpu_before, start = cpu_seconds(pid), time.time()
+        time.sleep(2)
+        busy = (cpu_seconds(pid) - cpu_before) / (time.time() - start)
+        log = open(os.path.join(service.tmp.name, "coordinator.log")).read()
+        failures = log.count("HTTP accept failed")
+        print("at the limit: %.1f%% of a core, %d log lines about it" % (100 * busy, failures))
+        assert failures >= 1 and failures <= 5, failures
+        assert busy < 0.1, busy
+        for s in held:
+            s.close()
+        deadline = time.time() + 5
+        while True:  # the next retry (at most a second away) accepts again
+            try:
+                assert service.get("/api/workers") == []
+                break
+            except (OSError, http.client.HTTPException):
+                assert time.time() < deadline
+                time.sleep(0.1)
+
+
+def rss_mb(pid):
+    with open("/proc/%d/status" % pid) as f:
+        for line in f:
+            if line.startswith("VmRSS:"):
+                return int(line.split()[1]) / 1024.0
+    raise AssertionError("no VmRSS")
+
+
+def case_memory():
+    """Ten 2048x2048 jobs cancelled at once give their buffers back: the coordinator's RSS
+    returns to within 100 MB of what it was before."""
+    with Service("--max-jobs-per-client", "16") as service:  # no workers: nothing renders
+        service.get("/api/jobs")
+        pid = service.coordinator.pid
+        before = rss_mb(pid)
+        big = {"width": 2048, "height": 2048}
+        jobs = [service.submit("sphere\n", big) for _ in range(10)]
+        held = rss_mb(pid)
+        for job in jobs:
+            status, _, _ = service.request("DELETE", "/api/jobs/%d" % job["id"])
+            assert status == 200
+        time.sleep(0.5)
+        after = rss_mb(pid)
+        print("RSS before %.0f MB, ten jobs held %.0f MB, cancelled %.0f MB" %
+              (before, held, after))
+        assert held > before + 1000, (before, held)  # the jobs' buffers were really there
+        assert after < before + 100, (before, after)
+        status, _, reply = service.request("GET", "/api/jobs/%d/image" % jobs[0]["id"])
+        assert status == 404 and json.loads(reply)["error"] == "no_image", (status, reply)
+
+
+def main():
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--build", required=True)
+    parser.add_argument("--source", required=True)
+    parser.add_argument("case")
+    service_test.ARGS = parser.parse_args()
+    start = time.time()
+    globals()["case_" + service_test.ARGS.case]()
+    print("%s passed in %.1f s" % (service_test.ARGS.case, time.time() - start))
+
+
+if __name__ == "__main__":
+    sys.exit(main())
