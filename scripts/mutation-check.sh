@@ -29,6 +29,7 @@ mutations=(
   "marble_octaves~common/texture/solid_texture.cpp~constexpr int kMarbleOctaves = 6;~constexpr int kMarbleOctaves = 5;~test_texture~gtest test_texture SolidTexture.Marble*"
   "mesh_bounds_two_vertices~common/accel/mesh_accel.cpp~for (const std::uint32_t v : mesh.triangles[i].v) bounds[i].extend(mesh.positions.at(v));~for (int k = 0; k < 2; ++k) bounds[i].extend(mesh.positions.at(mesh.triangles[i].v[k]));~test_fuzz_regressions~$build/tests/fuzz/test_fuzz_regressions"
   "over_range_samples~common/render/render.cpp~constexpr double kMax = std::numeric_limits<float>::max();~constexpr double kMax = std::numeric_limits<double>::max();~test_fuzz_regressions~$build/tests/fuzz/test_fuzz_regressions"
+  "frame_buffer_blue_from_green~common/render/frame_buffer.cpp~  sums_[3 * i + 2] += rgb[2];~  sums_[3 * i + 2] += rgb[1];~test_coordinator~gtest service/test_coordinator JobMerge*"
   "constant_etag~coordinator/http/api.cpp~std::to_string(job.version) + \"-\" + format~std::to_string(0) + \"-\" + format~tessera-coordinator tessera-worker~node tests/service/e2e/page_test.js $build ."
   "page_records_failed_loads~web/app.js~    img.src = url;\n  });~    img.src = url + (view.version % 2 ? \"broken\" : \"\");\n  }).then(() => true);~~node tests/service/e2e/page_test.js $build ."
 )
