@@ -7,7 +7,7 @@
 #
 # Each mutation replaces one exact string in one file of this checkout (the script refuses a
 # file with uncommitted changes), and the file is restored with `git checkout` afterwards, also
-# on interruption; the targets are rebuilt at the end so the build matches the sources again.
+# on interruption, when the targets are rebuilt so the build matches the sources again.
 # Needs a configured build (docs/SERVICE.md); the page mutations need node, chromium and
 # `npm ci --prefix tests/service/e2e`.
 set -euo pipefail
@@ -34,13 +34,22 @@ mutations=(
   "page_records_failed_loads~web/app.js~    img.src = url;\n  });~    img.src = url + (view.version % 2 ? \"broken\" : \"\");\n  }).then(() => true);~~node tests/service/e2e/page_test.js $build ."
 )
 
+built=()
 restore() {
   if [ -n "${current:-}" ]; then git checkout -q -- "$current"; fi
   current=
 }
-trap restore EXIT INT TERM
+# Restores the mutated file and rebuilds what was built with a mutation, however the run ends,
+# so that no binary keeps a bug.
+finish() {
+  restore
+  # shellcheck disable=SC2068
+  if [ ${#built[@]} -gt 0 ]; then nice cmake --build "$build" -j2 --target ${built[@]} >/dev/null; fi
+}
+trap finish EXIT
+trap 'exit 130' INT TERM
 
-caught=0 missed=0 built=()
+caught=0 missed=0
 for entry in "${mutations[@]}"; do
   IFS='~' read -r name file text replacement targets command <<<"$entry"
   if [ ${#only[@]} -gt 0 ] && [[ ! " ${only[*]} " == *" $name "* ]]; then continue; fi
@@ -76,9 +85,5 @@ EOF
   fi
   restore
 done
-if [ ${#built[@]} -gt 0 ]; then
-  # shellcheck disable=SC2068
-  nice cmake --build "$build" -j2 --target ${built[@]} >/dev/null
-fi
 echo "$caught caught, $missed missed"
 [ "$missed" -eq 0 ]
