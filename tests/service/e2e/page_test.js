@@ -167,7 +167,8 @@ async function main() {
     await page.waitForSelector("#image[data-state=done]", { timeout: 90000 });
     const final = await comparePixels(page, jobId);
     const done = await api(`/api/jobs/${jobId}`);
-    if (final.size[0] !== 640 || final.size[1] !== 480) throw new Error(`final image is ${final.size.join("x")}`);
+    if (final.size[0] !== 640 || final.size[1] !== 480)
+      throw new Error(`final image is ${final.size.join("x")}`);
     if (final.shownVersion !== done.version || final.differing !== 0)
       throw new Error(`the final image shown is not the server's: ${JSON.stringify(final)}`);
     const rows = await page.$$eval("#levels-table tbody tr", (trs) => trs.length);
