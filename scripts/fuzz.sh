@@ -1,11 +1,13 @@
 #!/usr/bin/env bash
 # Fuzzes the SDL loader, the mesh loaders and the VRML loader with libFuzzer (clang, from
-# Debian), seeded with the sample scenes, meshes and worlds, after replaying every regression
-# input in tests/fuzz/regressions.
+# Debian), seeded with the sample scenes, meshes and worlds (.wrl.gz too), after replaying every
+# regression input in tests/fuzz/regressions. Past survival the targets check invariants
+# (tests/fuzz/fuzz_checks.h: finite pixels, bounds, the BVH against brute force).
 #   scripts/fuzz.sh [SECONDS]   run each target for SECONDS (default 20; scripts/test.sh uses
 #                               that); longer runs: scripts/fuzz.sh 3600
 # Crashes are written to build-fuzz/artifacts/; each one found becomes a file in
-# tests/fuzz/regressions/<target>/ (and a unit test when the cause is understood).
+# tests/fuzz/regressions/<target>/, which test_fuzz_regressions replays in every build through
+# the same checks.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${1:-20}
@@ -16,7 +18,8 @@ cmake --build build-fuzz -j"$(nproc)" --target fuzz_sdl fuzz_mesh fuzz_vrml
 corpus=build-fuzz/corpus
 mkdir -p "$corpus/sdl" "$corpus/mesh" "$corpus/vrml" build-fuzz/artifacts
 find scenes -name '*.sdl' -exec cp {} "$corpus/sdl/" \;
-find scenes -name '*.wrl' -exec cp {} "$corpus/vrml/" \;
+# Plain and gzip-compressed worlds alike (the target inflates what starts with gzip's magic).
+find scenes \( -name '*.wrl' -o -name '*.wrl.gz' -o -name '*.wrz' \) -exec cp {} "$corpus/vrml/" \;
 # The mesh target's first byte picks the format: 0 OBJ, 1 3VN, 2 3DV, 3 3DM.
 for f in $(find scenes -path '*meshes/*' -type f); do
   case "$f" in

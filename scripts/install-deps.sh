@@ -8,7 +8,7 @@ packages=(
   cmake ninja-build g++ clang-format ccache
   # fuzzing (scripts/fuzz.sh): clang and its libFuzzer runtime
   clang libclang-rt-14-dev
-  # libraries (DESIGN.md §6)
+  # libraries (docs/ARCHITECTURE.md, "Dependencies")
   libboost-dev nlohmann-json3-dev libopenimageio-dev libspdlog-dev zlib1g-dev
   libssl-dev        # SHA-256, HMAC (libcrypto)
   libarchive-dev    # tar bundles

@@ -166,7 +166,17 @@ async function loadImage(job) {
   if (!response.ok || job.id !== view.job) return;
   const url = URL.createObjectURL(await response.blob());
   const img = $("image");
-  await new Promise((resolve) => { img.onload = img.onerror = resolve; img.src = url; });
+  const loaded = await new Promise((resolve) => {
+    img.onload = () => resolve(true);
+    img.onerror = () => resolve(false);
+    img.src = url;
+  });
+  // An image that did not load shows nothing new: the previous one stays, and no version or
+  // level is recorded for it, so the next poll fetches it again.
+  if (!loaded) {
+    if (view.imageUrl) img.src = view.imageUrl;
+    return URL.revokeObjectURL(url);
+  }
   if (view.imageUrl) URL.revokeObjectURL(view.imageUrl);
   view.imageUrl = url;
   view.version = job.version;

@@ -19,7 +19,8 @@ struct Measured {
   bool pareto = false;    // no other variant is both faster and closer
 };
 
-// One refinement level of the progressive sequence (DESIGN.md §3), at the base settings.
+// One refinement level of the progressive sequence (docs/ARCHITECTURE.md, "The progressive plan"),
+// at the base settings.
 struct LevelRow {
   int level = 0;
   int block = 1;         // block side in pixels

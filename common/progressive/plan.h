@@ -1,5 +1,5 @@
-// The progressive plan of DESIGN.md §3: refinement levels of anchors, then sample passes, each
-// split into work units of roughly equal cost and ordered centre-out or in scanlines.
+// The progressive plan (docs/ARCHITECTURE.md): refinement levels of anchors, then sample passes,
+// each split into work units of roughly equal cost and ordered centre-out or in scanlines.
 //
 // Level l = 1..L (L = ceil(log2(max(W, H)))) uses blocks of side 2^(L-l). Each block stands for
 // its top-left pixel, its anchor; a level traces only its new anchors, so pass 0 of every pixel

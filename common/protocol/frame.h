@@ -22,9 +22,9 @@ namespace tessera {
 
 enum class MessageType : std::uint8_t {
   Hello = 1,       // worker: version, name, threads, nonce, cached bundle hashes
-  Challenge = 2,   // coordinator: version, nonce, whether a proof is required
+  Challenge = 2,   // coordinator: version, nonce, auth ("hmac-sha256", or "none" if --insecure)
   Auth = 3,        // worker: proof of the shared secret
-  Welcome = 4,     // coordinator: accepted; its own proof, heartbeat interval
+  Welcome = 4,     // coordinator: accepted; the worker's id and the coordinator's own proof
   Reject = 5,      // coordinator: refused, with a reason; the connection closes
   Heartbeat = 6,   // either side, when it has sent nothing for a while
   Job = 7,         // coordinator: a job's settings, and its bundle unless the worker has it

@@ -3,11 +3,13 @@
 //
 //   worker -> hello {version, name, threads, nonce: Nw, cached}
 //   coordinator -> challenge {version, nonce: Nc, auth: "hmac-sha256" | "none"}
-//   worker -> auth {proof: HMAC(secret, "tessera-worker|1|Nc|Nw")}
-//   coordinator -> welcome {proof: HMAC(secret, "tessera-coordinator|1|Nw|Nc"), ...} or reject
+//   worker -> auth {proof: HMAC(secret, "tessera-worker|V|Nc|Nw")}
+//   coordinator -> welcome {worker: id, proof: HMAC(secret, "tessera-coordinator|V|Nw|Nc")}
+//                  or reject {reason}
 //
-// Fresh random nonces on both sides make every proof single-use; the worker checks the
-// coordinator's proof so that nobody without the secret can feed it scenes either.
+// V is kProtocolVersion. Fresh random nonces on both sides make every proof single-use. A
+// worker given a secret checks the coordinator's proof and refuses auth "none", so that nobody
+// without the secret can feed it scenes either (worker/session/worker_session.cpp).
 #pragma once
 
 #include <string>

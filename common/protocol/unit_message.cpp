@@ -8,7 +8,8 @@
 namespace tessera {
 
 // Pixels travel as the host's float32 bytes; every supported host is little-endian x86-64
-// (DESIGN.md §2), and a big-endian build fails here rather than mixing up bytes.
+// (docs/ARCHITECTURE.md, "Determinism"), and a big-endian build fails here rather than mixing up
+// bytes.
 static_assert(std::endian::native == std::endian::little);
 static_assert(sizeof(float) == 4);
 

@@ -1,4 +1,4 @@
-// The effect set: which effects a scene calls for (DESIGN.md §2, "effects on demand"). The
+// The effect set: which effects a scene calls for (docs/ARCHITECTURE.md, "Effects on demand"). The
 // render plan is built from it, and every render reports it.
 #pragma once
 

@@ -1,7 +1,7 @@
-// The prepared, traceable scene (STYLE.md §4): built once per render (or per job on a worker)
-// from a parsed Scene: instances with inverse transforms, mesh and scene BVHs, the camera
-// frame, the decoded texture images, and the effect set that decides which work the tracer
-// does at all.
+// The prepared, traceable scene (docs/ARCHITECTURE.md, "Two scene forms"): built once per render
+// (or per job on a worker) from a parsed Scene: instances with inverse transforms, mesh and scene
+// BVHs, the camera frame, the decoded texture images, and the effect set that decides which work
+// the tracer does at all.
 #pragma once
 
 #include <memory>

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cmath>
+#include <limits>
 #include <mutex>
 #include <thread>
 
@@ -16,6 +18,14 @@ namespace tessera {
 namespace {
 
 constexpr int kTileSize = 16;
+
+// Whether a sample fits the float32 that the frame buffer, the wire and the image keep: a NaN,
+// an infinity or a finite value beyond FLT_MAX (a light of intensity 1e300 gives one) would
+// reach the image as an infinity or a NaN.
+bool fits_float(const Rgb& c) {
+  constexpr double kMax = std::numeric_limits<float>::max();
+  return std::fabs(c.r) <= kMax && std::fabs(c.g) <= kMax && std::fabs(c.b) <= kMax;
+}
 
 // Motion-blur times per camera sample: the settings' count, else the scene's; 1 when nothing
 // moves.
@@ -59,7 +69,7 @@ Rgb trace_pixel(const PreparedScene& scene, const RenderSettings& settings, Trac
       if (moving) ray.time = shutter_time(shutter, j, times, settings.jitter, rng.next());
       ++stats.camera_rays;
       Rgb c = tracer.trace(ray, RayKind::Camera, 0, 1.0, MediumStack{}, rng);
-      if (!is_finite(c)) {
+      if (!fits_float(c)) {
         ++stats.nan_samples;  // counted and reported, never written into the image
         c = Rgb{};
       }

@@ -1,5 +1,5 @@
-// The tracer's entry points, shaped like the work (STYLE.md §5): the CLI, the worker and the
-// tests all call these, with no global state.
+// The tracer's entry points, shaped like the work (docs/ARCHITECTURE.md): the CLI, the worker and
+// the tests all call these, with no global state.
 //
 // A pixel's value depends only on the prepared scene, the settings, the pixel and the pass:
 // never on the rectangle, thread or host that computes it (render/sampler.h).

@@ -1,4 +1,4 @@
-// Counter-based random numbers (DESIGN.md §2, "Sampling"): every number is a hash of
+// Counter-based random numbers (docs/ARCHITECTURE.md, "Determinism"): every number is a hash of
 // (seed, pixel x, pixel y, sample index, dimension), so a pixel's value does not depend on
 // which thread, tile, worker or host computes it, nor on the order of pixels.
 #pragma once

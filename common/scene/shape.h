@@ -1,4 +1,5 @@
-// The generic shapes of SDL §3.3 in their own object space (DESIGN.md §2):
+// The generic shapes of SDL §3.3 in their own object space (docs/ARCHITECTURE.md, "Generic
+// shapes"):
 //   sphere: unit sphere at the origin;  cube: [-1, 1]^3;
 //   tapered cylinder: z in [0, 1], radius 1 at z = 0 and `top_radius` at z = 1 (cone: 0,
 //   cylinder: 1);  mesh: triangles of Scene::meshes[mesh];

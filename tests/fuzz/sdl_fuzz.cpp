@@ -1,25 +1,13 @@
-// libFuzzer target: SDL text, loaded, prepared and rendered at 3x2 pixels. A scene error is a
-// normal outcome; a crash, a sanitizer report or a hang is a bug. Limits are lowered so each
-// input stays fast (the defaults are tested in tests/loaders/sdl_include_test.cpp).
+// libFuzzer target: SDL text, loaded, prepared and rendered (tests/fuzz/fuzz_checks.h says what
+// is checked). A scene error is a normal outcome; a crash, a sanitizer report, a broken
+// invariant or a hang is a bug.
 #include <cstddef>
 #include <cstdint>
-#include <string>
+#include <string_view>
 
-#include "common/loaders/scene_source.h"
-#include "common/loaders/sdl_parser.h"
-#include "tests/fuzz/fuzz_render.h"
+#include "tests/fuzz/fuzz_checks.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  using namespace tessera;
-  MemorySource source;
-  source.add("scene.sdl", std::string(reinterpret_cast<const char*>(data), size));
-  sdl::Limits limits;
-  limits.max_objects = 2000;
-  limits.max_lights = 100;
-  limits.max_tokens = 1u << 20;
-  try {
-    fuzz::prepare_and_render(sdl::load_sdl_with_limits(source, "scene.sdl", limits));
-  } catch (const SceneError&) {
-  }
+  tessera::fuzz::check_sdl_input(std::string_view(reinterpret_cast<const char*>(data), size));
   return 0;
 }

@@ -1,30 +1,13 @@
-// libFuzzer target: a VRML world (plain or gzip), loaded, prepared and rendered at 3x2 pixels.
-// A scene error is a normal outcome; a crash, a sanitizer report or a hang is a bug. So that
-// each input stays fast, worlds are first parsed with lowered limits and only small ones go on
-// (the defaults are tested in tests/loaders/vrml_parser_test.cpp); the world may Inline itself.
+// libFuzzer target: a VRML world (plain or gzip), loaded, prepared and rendered
+// (tests/fuzz/fuzz_checks.h says what is checked). A scene error is a normal outcome; a crash,
+// a sanitizer report, a broken invariant or a hang is a bug.
 #include <cstddef>
 #include <cstdint>
-#include <string>
+#include <string_view>
 
-#include "common/loaders/scene_source.h"
-#include "common/loaders/vrml_lexer.h"
-#include "common/loaders/vrml_loader.h"
-#include "common/loaders/vrml_parser.h"
-#include "tests/fuzz/fuzz_render.h"
+#include "tests/fuzz/fuzz_checks.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
-  using namespace tessera;
-  const std::string bytes(reinterpret_cast<const char*>(data), size);
-  MemorySource source;
-  source.add("world.wrl", bytes);
-  vrml::ParseLimits limits;
-  limits.max_nesting = 64;
-  limits.max_nodes = 5000;
-  try {
-    vrml::parse_vrml(vrml::lex_vrml(vrml::vrml_text(bytes, "world.wrl", 1u << 20), "world.wrl"),
-                     limits);
-    fuzz::prepare_and_render(load_vrml(source, "world.wrl"));
-  } catch (const SceneError&) {
-  }
+  tessera::fuzz::check_vrml_input(std::string_view(reinterpret_cast<const char*>(data), size));
   return 0;
 }

@@ -1,4 +1,5 @@
-// A pixel's value depends only on the scene, the settings and the pixel (DESIGN.md §2).
+// A pixel's value depends only on the scene, the settings and the pixel (docs/ARCHITECTURE.md,
+// "Determinism").
 #include <gtest/gtest.h>
 
 #include "common/render/frame_buffer.h"

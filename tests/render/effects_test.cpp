@@ -1,4 +1,4 @@
-// Effects on demand: an effect the scene does not call for costs nothing (DESIGN.md §2).
+// Effects on demand: an effect the scene does not call for costs nothing (docs/ARCHITECTURE.md).
 #include <gtest/gtest.h>
 
 #include <algorithm>

@@ -1,6 +1,6 @@
 // Rays leave surfaces from origins offset by a bound on the hit point's rounding error, not by
 // a fixed epsilon: the same scene translated far away and scaled down renders the same, with
-// no acne (DESIGN.md §2; issue 2, item 7).
+// no acne (docs/ARCHITECTURE.md, "Numerical robustness"; issue 2, item 7).
 #include <gtest/gtest.h>
 
 #include <cmath>

@@ -175,8 +175,12 @@ TEST(JobMerge, FinalImageIsTheFrameBufferMean) {
     job.apply_result(u, values_for(job, u));
   job.state = JobState::Done;
   const Image final_image = job.image();
-  EXPECT_EQ(final_image, job.frame_buffer.resolve());
-  EXPECT_EQ(final_image.get(1, 1).r, static_cast<float>(101 + 0.25));  // mean of passes 0..2
+  // Pass p returned x + 100 y + 0.25 p + c for channel c: the mean of passes 0..2 adds 0.25.
+  for (int y = 0; y < 4; ++y)
+    for (int x = 0; x < 6; ++x) {
+      const Rgb expected{x + 100.0 * y + 0.25, x + 100.0 * y + 1.25, x + 100.0 * y + 2.25};
+      EXPECT_EQ(final_image.get(x, y), expected) << x << "," << y;
+    }
   EXPECT_EQ(final_image, job.display);
 }
 

@@ -9,7 +9,7 @@
 namespace tessera {
 
 const char* const kRenderCliUsage =
-    "usage: tessera-render SCENE.{sdl,wrl,wrl.gz} -o OUT.{png,exr} [options]\n"
+    "usage: tessera-render SCENE.{sdl,wrl,wrl.gz,wrz} -o OUT.{png,exr} [options]\n"
     "  --width W        image width in pixels (default 640)\n"
     "  --height H       image height in pixels (default 480)\n"
     "  --aa 1|5|9       samples per pixel per pass (default 1)\n"

@@ -104,22 +104,27 @@ void WorkerSession::on_challenge(const Frame& frame) {
   if (frame.header.at("version").get<int>() != kProtocolVersion)
     return fail("the coordinator speaks protocol version " + frame.header["version"].dump());
   coordinator_nonce_ = frame.header.at("nonce").get<std::string>();
-  required_ = frame.header.at("auth").get<std::string>() != "none";
-  const bool required = required_;
-  if (required && config_.secret.empty())
+  const std::string auth = frame.header.at("auth").get<std::string>();
+  // Whether proofs are exchanged is the worker's own decision, never the coordinator's word:
+  // a worker given a secret accepts only a coordinator that proves it knows the secret, so a
+  // peer impersonating the coordinator cannot downgrade it with auth "none".
+  if (!config_.secret.empty() && auth != "hmac-sha256")
+    return fail("the coordinator offers authentication \"" + auth +
+                "\", but this worker was given a secret and accepts only hmac-sha256");
+  if (config_.secret.empty() && auth != "none")
     return fail("the coordinator requires a shared secret (--secret or TESSERA_SECRET)");
   stage_ = Stage::Authenticating;
-  connection_->send(
-      Frame{MessageType::Auth,
-            {{"proof", required ? worker_proof(config_.secret, coordinator_nonce_, nonce_) : ""}},
-            {}});
+  connection_->send(Frame{
+      MessageType::Auth,
+      {{"proof", authenticated() ? worker_proof(config_.secret, coordinator_nonce_, nonce_) : ""}},
+      {}});
 }
 
 void WorkerSession::on_welcome(const Frame& frame) {
-  if (required_) {
+  if (authenticated()) {
     const std::string expected = coordinator_proof(config_.secret, coordinator_nonce_, nonce_);
     if (!constant_time_equal(frame.header.value("proof", std::string()), expected))
-      return fail("the coordinator does not know our secret");
+      return fail("the coordinator does not know our secret (its welcome proof is wrong)");
   }
   stage_ = Stage::Ready;
   backoff_ = kFirstBackoff;

@@ -1,7 +1,8 @@
 // The worker's side of the wire protocol: connect, hello, prove the secret, check the
 // coordinator's proof, then turn job/unit/cancel frames into render-loop calls and results into
 // frames. Reconnects with a growing delay when the connection drops; stops for good when the
-// coordinator refuses it (wrong secret or version), since retrying cannot help.
+// coordinator refuses it (wrong secret or version) or cannot prove it knows the secret, since
+// retrying cannot help.
 #pragma once
 
 #include <cstdint>
@@ -40,6 +41,8 @@ class WorkerSession {
   void on_closed(const std::string& reason);
   void retry_later();
   void fail(const std::string& reason);
+  // Proofs are exchanged exactly when this worker was given a secret.
+  bool authenticated() const { return !config_.secret.empty(); }
 
   boost::asio::io_context& io_;
   WorkerConfig config_;
@@ -49,7 +52,6 @@ class WorkerSession {
   RenderLoop loop_;
   Stage stage_ = Stage::Connecting;
   std::string nonce_, coordinator_nonce_;
-  bool required_ = true;  // the coordinator asked for proofs (it is not --insecure)
   static constexpr std::chrono::milliseconds kFirstBackoff{250};
   std::chrono::milliseconds backoff_ = kFirstBackoff;
   std::string fatal_;
