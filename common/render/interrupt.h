@@ -15,6 +15,8 @@ struct RenderInterrupt {
   const std::atomic<bool>* cancel = nullptr;              // stop once it reads true
   Clock::time_point deadline = Clock::time_point::max();  // stop once it has passed
 
+  // Whether it can ever fire.
+  bool armed() const { return cancel || deadline != Clock::time_point::max(); }
   bool requested() const {
     return (cancel && cancel->load(std::memory_order_relaxed)) ||
            (deadline != Clock::time_point::max() && Clock::now() >= deadline);

@@ -36,10 +36,11 @@ double shutter_time(double length, int j, int count, double jitter, double u) {
 // One pass of one pixel: the mean of its samples. With T motion-blur times and A samples per
 // pixel, sample k at time j of pass p has the global sample index (p * T + j) * A + k, which
 // keys its random numbers (without motion blur T is 1: p * A + k). `tracer` counts into `stats`.
-// Throws RenderInterrupted when `interrupt` has fired by the time the pixel starts.
+// Throws RenderInterrupted when `interrupt` (null when the render has none) has fired by the
+// time the pixel starts.
 Rgb trace_pixel(const PreparedScene& scene, const RenderSettings& settings, Tracer& tracer, int x,
-                int y, int pass, RenderStats& stats, const RenderInterrupt& interrupt) {
-  if (interrupt.requested()) throw RenderInterrupted();
+                int y, int pass, RenderStats& stats, const RenderInterrupt* interrupt) {
+  if (interrupt && interrupt->requested()) throw RenderInterrupted();
   const std::span<const SampleOffset> offsets = regular_sample_offsets(settings.aa_samples);
   const auto aa = static_cast<std::uint32_t>(offsets.size());
   const int times = time_samples(scene, settings);
@@ -61,7 +62,6 @@ Rgb trace_pixel(const PreparedScene& scene, const RenderSettings& settings, Trac
       Ray ray = scene.camera().ray_through(px, py, settings.width, settings.height);
       if (moving) ray.time = shutter_time(shutter, j, times, settings.jitter, rng.next());
       ++stats.camera_rays;
-      tracer.begin_sample();
       Rgb c = tracer.trace(ray, RayKind::Camera, 0, 1.0, MediumStack{}, rng);
       if (!is_finite(c)) {
         ++stats.nan_samples;  // counted and reported, never written into the image
@@ -73,7 +73,6 @@ Rgb trace_pixel(const PreparedScene& scene, const RenderSettings& settings, Trac
   const std::size_t count = static_cast<std::size_t>(aa) * static_cast<std::size_t>(times);
   stats.samples += count;
   ++stats.pixels;
-  if (tracer.take_budget_reached()) ++stats.ray_budget_pixels;
   return sum * (1.0 / static_cast<double>(count));
 }
 
@@ -105,18 +104,20 @@ void render_pass(const PreparedScene& scene, const RenderSettings& settings, con
   // One tracer for all the pixels: building it (it works out the render's effects) per pixel
   // cost 0.5 % of a render at one sample per pixel.
   Tracer tracer(scene, settings, stats, interrupt);
+  const RenderInterrupt* per_pixel = interrupt.armed() ? &interrupt : nullptr;
   std::size_t i = 0;
   for (int y = rect.y0; y < rect.y1; ++y)
     for (int x = rect.x0; x < rect.x1; ++x)
-      out[i++] = trace_pixel(scene, settings, tracer, x, y, pass, stats, interrupt);
+      out[i++] = trace_pixel(scene, settings, tracer, x, y, pass, stats, per_pixel);
 }
 
 void render_pixels(const PreparedScene& scene, const RenderSettings& settings,
                    std::span<const PixelCoord> pixels, int pass, std::span<Rgb> out,
                    RenderStats& stats, const RenderInterrupt& interrupt) {
   Tracer tracer(scene, settings, stats, interrupt);
+  const RenderInterrupt* per_pixel = interrupt.armed() ? &interrupt : nullptr;
   for (std::size_t i = 0; i < pixels.size(); ++i)
-    out[i] = trace_pixel(scene, settings, tracer, pixels[i].x, pixels[i].y, pass, stats, interrupt);
+    out[i] = trace_pixel(scene, settings, tracer, pixels[i].x, pixels[i].y, pass, stats, per_pixel);
 }
 
 Image render_image(const PreparedScene& scene, const RenderSettings& settings, int threads,

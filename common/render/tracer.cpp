@@ -82,8 +82,15 @@ void Tracer::check_interrupt() {
 }
 
 bool Tracer::cones_within_budget() {
-  if (secondary_rays() - sample_start_ < kMaxRaysPerSample) return true;
-  budget_reached_ = true;
+  if (stats_.camera_rays != budget_sample_) {  // the sample's first cone
+    budget_sample_ = stats_.camera_rays;
+    budget_start_ = secondary_rays();
+  }
+  if (secondary_rays() - budget_start_ < kMaxRaysPerSample) return true;
+  if (stats_.pixels != budget_pixel_) {
+    budget_pixel_ = stats_.pixels;
+    ++stats_.ray_budget_pixels;
+  }
   return false;
 }
 

@@ -2,7 +2,6 @@
 #pragma once
 
 #include <cstdint>
-#include <utility>
 
 #include "common/render/interrupt.h"
 #include "common/render/media.h"
@@ -20,10 +19,11 @@ class Tracer {
  public:
   // The ray budget of one pixel sample: cones branch at every glossy, translucent or
   // soft-shadowed hit, so a sample could otherwise trace cone_samples^depth rays. Once a sample
-  // has traced this many shadow, reflection and refraction rays, every further cone of it is
-  // its central ray alone. The count follows the sample's own depth-first order, so its value
-  // still depends only on the scene, the settings and the pixel. The sample scenes, at the
-  // accuracy report's reference settings, stay far below it (docs/SERVICE.md).
+  // has traced this many shadow, reflection and refraction rays since its first cone (before
+  // it the path has not branched), every further cone of it is its central ray alone. The
+  // count follows the sample's own depth-first order, so its value still depends only on the
+  // scene, the settings and the pixel. The sample scenes, at the accuracy report's reference
+  // settings, need at most 37,092 (docs/ARCHITECTURE.md).
   static constexpr std::uint64_t kMaxRaysPerSample = 1 << 20;
   // Rays between two looks at the RenderInterrupt: a few hundred microseconds of tracing.
   static constexpr int kPollRays = 256;
@@ -33,11 +33,6 @@ class Tracer {
   // fires, trace() throws RenderInterrupted.
   Tracer(const PreparedScene& scene, const RenderSettings& settings, RenderStats& stats,
          const RenderInterrupt& interrupt = {});
-
-  // Starts the ray budget of a new pixel sample.
-  void begin_sample() { sample_start_ = secondary_rays(); }
-  // Whether a sample since the last call ran out of its budget; clears it.
-  bool take_budget_reached() { return std::exchange(budget_reached_, false); }
 
   // The intensity arriving along `ray` (unit direction). `weight` is the product of the
   // reflectivities and transparencies along the path so far, compared with minReflectivity
@@ -106,7 +101,10 @@ class Tracer {
   std::uint64_t secondary_rays() const {
     return stats_.shadow_rays + stats_.reflection_rays + stats_.refraction_rays;
   }
-  // Whether a cone may have all its rays: false once the sample has spent its ray budget.
+  // Whether a cone may have all its rays: false once the sample has spent its ray budget,
+  // when it also counts the pixel in stats_.ray_budget_pixels. trace_pixel raises
+  // stats_.camera_rays once per sample and stats_.pixels once per pixel, after its samples:
+  // they tell samples and pixels apart at no cost to renders without cones.
   bool cones_within_budget();
   // Counts a ray towards the next look at the interrupt.
   void poll_interrupt() {
@@ -122,8 +120,10 @@ class Tracer {
   Illumination illuminate_;    // local_illumination for the render's effects (lighting_for)
   RenderInterrupt interrupt_;
   int poll_countdown_ = kPollRays;
-  std::uint64_t sample_start_ = 0;  // secondary_rays() when the sample began
-  bool budget_reached_ = false;
+  static constexpr std::uint64_t kNone = ~std::uint64_t{0};
+  std::uint64_t budget_sample_ = kNone;  // stats_.camera_rays of the sample being budgeted
+  std::uint64_t budget_start_ = 0;       // secondary_rays() at that sample's first cone
+  std::uint64_t budget_pixel_ = kNone;   // stats_.pixels of the last pixel counted as over it
 };
 
 }  // namespace tessera
