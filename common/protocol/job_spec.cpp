@@ -72,6 +72,7 @@ nlohmann::json to_json(const RenderStats& s) {
           {"pixels", s.pixels},
           {"samples", s.samples},
           {"nan_samples", s.nan_samples},
+          {"ray_budget_pixels", s.ray_budget_pixels},
           {"seconds", s.seconds}};
 }
 
@@ -89,6 +90,7 @@ RenderStats stats_from_json(const nlohmann::json& j) {
     s.pixels = u64("pixels");
     s.samples = u64("samples");
     s.nan_samples = u64("nan_samples");
+    s.ray_budget_pixels = u64("ray_budget_pixels");
     s.seconds = j.value("seconds", 0.0);
   } catch (const nlohmann::json::exception& e) {
     throw ProtocolError(std::string("bad statistics: ") + e.what());

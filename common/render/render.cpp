@@ -4,6 +4,7 @@
 #include <atomic>
 #include <chrono>
 #include <cmath>
+#include <exception>
 #include <limits>
 #include <mutex>
 #include <thread>
@@ -45,8 +46,11 @@ double shutter_time(double length, int j, int count, double jitter, double u) {
 // One pass of one pixel: the mean of its samples. With T motion-blur times and A samples per
 // pixel, sample k at time j of pass p has the global sample index (p * T + j) * A + k, which
 // keys its random numbers (without motion blur T is 1: p * A + k). `tracer` counts into `stats`.
+// Throws RenderInterrupted when `interrupt` (null when the render has none) has fired by the
+// time the pixel starts.
 Rgb trace_pixel(const PreparedScene& scene, const RenderSettings& settings, Tracer& tracer, int x,
-                int y, int pass, RenderStats& stats) {
+                int y, int pass, RenderStats& stats, const RenderInterrupt* interrupt) {
+  if (interrupt && interrupt->requested()) throw RenderInterrupted();
   const std::span<const SampleOffset> offsets = regular_sample_offsets(settings.aa_samples);
   const auto aa = static_cast<std::uint32_t>(offsets.size());
   const int times = time_samples(scene, settings);
@@ -105,26 +109,30 @@ EffectSet render_effects(const PreparedScene& scene, const RenderSettings& setti
 }
 
 void render_pass(const PreparedScene& scene, const RenderSettings& settings, const PixelRect& rect,
-                 int pass, std::span<Rgb> out, RenderStats& stats) {
+                 int pass, std::span<Rgb> out, RenderStats& stats,
+                 const RenderInterrupt& interrupt) {
   // One tracer for all the pixels: building it (it works out the render's effects) per pixel
   // cost 0.5 % of a render at one sample per pixel.
-  Tracer tracer(scene, settings, stats);
+  Tracer tracer(scene, settings, stats, interrupt);
+  const RenderInterrupt* per_pixel = interrupt.armed() ? &interrupt : nullptr;
   std::size_t i = 0;
   for (int y = rect.y0; y < rect.y1; ++y)
     for (int x = rect.x0; x < rect.x1; ++x)
-      out[i++] = trace_pixel(scene, settings, tracer, x, y, pass, stats);
+      out[i++] = trace_pixel(scene, settings, tracer, x, y, pass, stats, per_pixel);
 }
 
 void render_pixels(const PreparedScene& scene, const RenderSettings& settings,
                    std::span<const PixelCoord> pixels, int pass, std::span<Rgb> out,
-                   RenderStats& stats) {
-  Tracer tracer(scene, settings, stats);
+                   RenderStats& stats, const RenderInterrupt& interrupt) {
+  Tracer tracer(scene, settings, stats, interrupt);
+  const RenderInterrupt* per_pixel = interrupt.armed() ? &interrupt : nullptr;
   for (std::size_t i = 0; i < pixels.size(); ++i)
-    out[i] = trace_pixel(scene, settings, tracer, pixels[i].x, pixels[i].y, pass, stats);
+    out[i] = trace_pixel(scene, settings, tracer, pixels[i].x, pixels[i].y, pass, stats, per_pixel);
 }
 
 Image render_image(const PreparedScene& scene, const RenderSettings& settings, int threads,
-                   RenderStats& stats, const ProgressFn& progress) {
+                   RenderStats& stats, const ProgressFn& progress,
+                   const RenderInterrupt& interrupt) {
   const auto start = std::chrono::steady_clock::now();
   if (threads <= 0) threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   const int tiles_x = (settings.width + kTileSize - 1) / kTileSize;
@@ -136,26 +144,37 @@ Image render_image(const PreparedScene& scene, const RenderSettings& settings, i
   FrameBuffer frame(settings.width, settings.height);
   std::atomic<long long> next{0}, done{0};
   std::mutex stats_mutex;
+  // The first exception of any thread (RenderInterrupted, or running out of memory): the
+  // others take no further tile, and it is rethrown once they have all stopped.
+  std::exception_ptr failure;
+  std::atomic<bool> failed{false};
   auto work = [&] {
     RenderStats local;
     std::vector<Rgb> values(kTileSize * kTileSize);
-    for (long long t; (t = next.fetch_add(1)) < tile_count;) {
-      const int tx = static_cast<int>(t % tiles_x), ty = static_cast<int>(t / tiles_x);
-      const PixelRect rect{tx * kTileSize, ty * kTileSize,
-                           std::min(settings.width, (tx + 1) * kTileSize),
-                           std::min(settings.height, (ty + 1) * kTileSize)};
-      for (int pass = 0; pass < settings.passes; ++pass) {
-        render_pass(scene, settings, rect, pass, values, local);
-        std::size_t i = 0;
-        for (int y = rect.y0; y < rect.y1; ++y)
-          for (int x = rect.x0; x < rect.x1; ++x, ++i) {
-            const float rgb[3] = {static_cast<float>(values[i].r), static_cast<float>(values[i].g),
-                                  static_cast<float>(values[i].b)};
-            frame.add_pass(x, y, rgb);
-          }
+    try {
+      for (long long t; !failed && (t = next.fetch_add(1)) < tile_count;) {
+        const int tx = static_cast<int>(t % tiles_x), ty = static_cast<int>(t / tiles_x);
+        const PixelRect rect{tx * kTileSize, ty * kTileSize,
+                             std::min(settings.width, (tx + 1) * kTileSize),
+                             std::min(settings.height, (ty + 1) * kTileSize)};
+        for (int pass = 0; pass < settings.passes; ++pass) {
+          render_pass(scene, settings, rect, pass, values, local, interrupt);
+          std::size_t i = 0;
+          for (int y = rect.y0; y < rect.y1; ++y)
+            for (int x = rect.x0; x < rect.x1; ++x, ++i) {
+              const float rgb[3] = {static_cast<float>(values[i].r),
+                                    static_cast<float>(values[i].g),
+                                    static_cast<float>(values[i].b)};
+              frame.add_pass(x, y, rgb);
+            }
+        }
+        const long long finished = done.fetch_add(1) + 1;
+        if (progress) progress(finished, tile_count);
       }
-      const long long finished = done.fetch_add(1) + 1;
-      if (progress) progress(finished, tile_count);
+    } catch (...) {
+      failed = true;
+      const std::lock_guard lock(stats_mutex);
+      if (!failure) failure = std::current_exception();
     }
     const std::lock_guard lock(stats_mutex);
     stats += local;
@@ -164,6 +183,7 @@ Image render_image(const PreparedScene& scene, const RenderSettings& settings, i
   for (int i = 1; i < threads; ++i) pool.emplace_back(work);
   work();
   for (std::thread& t : pool) t.join();
+  if (failure) std::rethrow_exception(failure);
   Image image = frame.resolve();
   if (settings.normalize_colors) post_normalize(image, settings.normalize_brightness);
   stats.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

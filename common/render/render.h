@@ -3,12 +3,19 @@
 //
 // A pixel's value depends only on the prepared scene, the settings, the pixel and the pass:
 // never on the rectangle, thread or host that computes it (render/sampler.h).
+//
+// Every entry point takes an optional RenderInterrupt (render/interrupt.h): when its cancel
+// flag is set or its deadline passes, the render stops within milliseconds, even inside a
+// pixel, and throws RenderInterrupted; nothing of the unfinished pixels is returned. Each pixel
+// sample is also bounded by Tracer::kMaxRaysPerSample rays (render/tracer.h), counted in
+// RenderStats::ray_budget_pixels, so a pixel's cost has a ceiling whatever the scene.
 #pragma once
 
 #include <functional>
 #include <span>
 
 #include "common/image/image.h"
+#include "common/render/interrupt.h"
 #include "common/render/prepared_scene.h"
 #include "common/render/settings.h"
 #include "common/render/stats.h"
@@ -32,7 +39,8 @@ EffectSet render_effects(const PreparedScene& scene, const RenderSettings& setti
 // the calling thread; out[(y - y0) * width + (x - x0)] receives the pass's mean colour.
 // Adds to `stats` (rays, tests, samples; not seconds).
 void render_pass(const PreparedScene& scene, const RenderSettings& settings, const PixelRect& rect,
-                 int pass, std::span<Rgb> out, RenderStats& stats);
+                 int pass, std::span<Rgb> out, RenderStats& stats,
+                 const RenderInterrupt& interrupt = {});
 
 // Traces the listed pixels (x, y) of one pass, for the progressive scheduler whose units are
 // sparse anchors; same values as render_pass.
@@ -41,13 +49,14 @@ struct PixelCoord {
 };
 void render_pixels(const PreparedScene& scene, const RenderSettings& settings,
                    std::span<const PixelCoord> pixels, int pass, std::span<Rgb> out,
-                   RenderStats& stats);
+                   RenderStats& stats, const RenderInterrupt& interrupt = {});
 
 // Renders the whole image with `threads` threads (0 = all cores): settings.passes passes,
 // averaged, then post-normalized when the settings ask for it (§4.6). `progress(done, total)` is
 // called from worker threads with counts of tiles.
 using ProgressFn = std::function<void(long long done, long long total)>;
 Image render_image(const PreparedScene& scene, const RenderSettings& settings, int threads,
-                   RenderStats& stats, const ProgressFn& progress = {});
+                   RenderStats& stats, const ProgressFn& progress = {},
+                   const RenderInterrupt& interrupt = {});
 
 }  // namespace tessera

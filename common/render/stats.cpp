@@ -13,6 +13,7 @@ RenderStats& RenderStats::operator+=(const RenderStats& o) {
   pixels += o.pixels;
   samples += o.samples;
   nan_samples += o.nan_samples;
+  ray_budget_pixels += o.ray_budget_pixels;
   seconds += o.seconds;
   return *this;
 }

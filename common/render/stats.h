@@ -16,7 +16,10 @@ struct RenderStats {
   std::uint64_t pixels = 0;
   std::uint64_t samples = 0;
   std::uint64_t nan_samples = 0;  // samples that came out NaN or infinite (counted, then zeroed)
-  double seconds = 0;             // wall time of the render or unit
+  // Pixels with a sample that spent its ray budget (Tracer::kMaxRaysPerSample), whose later
+  // cones were narrowed to their central rays.
+  std::uint64_t ray_budget_pixels = 0;
+  double seconds = 0;  // wall time of the render or unit
 
   RenderStats& operator+=(const RenderStats& o);
 };

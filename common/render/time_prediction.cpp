@@ -28,22 +28,42 @@ std::vector<PixelCoord> probe_pixel_order(int width, int height, int max_pixels)
 
 CostProbe probe_render_cost(const PreparedScene& scene, const RenderSettings& settings,
                             const ProbeBudget& budget) {
+  using Clock = std::chrono::steady_clock;
   CostProbe probe;
   RenderStats stats;
   Rgb value;
   const std::vector<PixelCoord> order =
       probe_pixel_order(settings.width, settings.height, budget.max_pixels);
+  const auto begin = Clock::now();
+  const RenderInterrupt interrupt{
+      .deadline = begin + std::chrono::duration_cast<Clock::duration>(
+                              std::chrono::duration<double>(budget.max_total_seconds))};
   // The first rays through a freshly prepared scene pay its page faults and cold caches, which
   // a worker pays once per job, not per pixel: a few pixels warm them up untimed.
   constexpr std::size_t kWarmUpPixels = 16;
-  for (std::size_t i = 0; i < std::min(kWarmUpPixels, order.size()); ++i)
-    render_pixels(scene, settings, {&order[i], 1}, 0, {&value, 1}, stats);
-  const auto start = std::chrono::steady_clock::now();
-  for (const PixelCoord& pixel : order) {
-    render_pixels(scene, settings, {&pixel, 1}, 0, {&value, 1}, stats);
-    ++probe.pixels;
-    probe.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    if (probe.seconds > budget.max_seconds) break;
+  const std::size_t warm_up = std::min(kWarmUpPixels, order.size());
+  long long finished = 0;  // warm-up included, for a probe cut short
+  auto pixel_start = begin;
+  try {
+    for (std::size_t i = 0; i < warm_up; ++i, ++finished) {
+      pixel_start = Clock::now();
+      render_pixels(scene, settings, {&order[i], 1}, 0, {&value, 1}, stats, interrupt);
+    }
+    const auto start = Clock::now();
+    for (const PixelCoord& pixel : order) {
+      pixel_start = Clock::now();
+      render_pixels(scene, settings, {&pixel, 1}, 0, {&value, 1}, stats, interrupt);
+      ++finished;
+      ++probe.pixels;
+      probe.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+      if (probe.seconds > budget.max_seconds) break;
+    }
+  } catch (const RenderInterrupted&) {
+    const auto now = Clock::now();
+    probe.cut_short = true;
+    probe.pixels = finished;
+    probe.seconds = std::chrono::duration<double>(now - begin).count();
+    probe.unfinished_pixel_seconds = std::chrono::duration<double>(now - pixel_start).count();
   }
   return probe;
 }

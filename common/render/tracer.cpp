@@ -66,13 +66,33 @@ Rgb blurred(const Vec3& axis, double strength, int count, const Vec3& surface_no
 
 }  // namespace
 
-Tracer::Tracer(const PreparedScene& scene, const RenderSettings& settings, RenderStats& stats)
+Tracer::Tracer(const PreparedScene& scene, const RenderSettings& settings, RenderStats& stats,
+               const RenderInterrupt& interrupt)
     : scene_(scene),
       stats_(stats),
       effects_(render_effects(scene, settings)),
       cone_samples_(settings.cone_samples),
       shadow_cone_radius_(settings.shadow_jitter / 2),
-      illuminate_(lighting_for(effects_)) {}
+      illuminate_(lighting_for(effects_)),
+      interrupt_(interrupt) {}
+
+void Tracer::check_interrupt() {
+  poll_countdown_ = kPollRays;
+  if (interrupt_.requested()) throw RenderInterrupted();
+}
+
+bool Tracer::cones_within_budget() {
+  if (stats_.camera_rays != budget_sample_) {  // the sample's first cone
+    budget_sample_ = stats_.camera_rays;
+    budget_start_ = secondary_rays();
+  }
+  if (secondary_rays() - budget_start_ < kMaxRaysPerSample) return true;
+  if (stats_.pixels != budget_pixel_) {
+    budget_pixel_ = stats_.pixels;
+    ++stats_.ray_budget_pixels;
+  }
+  return false;
+}
 
 // The local_illumination compiled for the render's shadow mode and lights, chosen once per
 // tracer and called through a pointer: a branch per hit for each would cost more.
@@ -113,6 +133,7 @@ std::optional<WorldHit> Tracer::first_hit(const Ray& ray) {
 
 double Tracer::shadow_factor(const Feeler& feeler) {
   ++stats_.shadow_rays;
+  poll_interrupt();
   const Ray& ray = feeler.ray;
   const std::vector<Instance>& instances = scene_.instances();
   const std::vector<SceneObject>& objects = scene_.scene().objects;
@@ -202,7 +223,8 @@ inline Tracer::Feeler Tracer::feeler(const Hit& hit, bool directional, const Vec
 
 double Tracer::soft_visibility(const Hit& hit, const Light& light, const Vec3& l, double distance,
                                SampleStream& rng) {
-  return Cone(l, shadow_cone_radius_).mean<double>(cone_samples_, rng, [&](const Vec3& d) {
+  const int count = cones_within_budget() ? cone_samples_ : 1;
+  return Cone(l, shadow_cone_radius_).mean<double>(count, rng, [&](const Vec3& d) {
     return shadow_factor(feeler(hit, light.is_directional, d, hit.world.point + d * distance));
   });
 }
@@ -275,7 +297,7 @@ Rgb Tracer::reflection(const Ray& ray, const Hit& hit, const Material& m, const 
                        int depth, double weight, const MediumStack& media, SampleStream& rng) {
   const Vec3 mirror = normalize_or(reflect(ray.direction, normal), ray.direction);  // eq. 4.13
   const double epsilon = scene_.scene().globals.reflectivity_epsilon;
-  const bool glossy = effects_.has(Effect::Gloss) && m.gloss_strength > 0;
+  const bool glossy = effects_.has(Effect::Gloss) && m.gloss_strength > 0 && cones_within_budget();
   const double ray_weight = weight * m.reflectivity / (glossy ? cone_samples_ : 1);
   const auto trace_along = [&](const Vec3& direction) {
     ++stats_.reflection_rays;
@@ -310,7 +332,8 @@ Rgb Tracer::transmission(const Ray& ray, const Hit& hit, const Material& m, cons
       after = media;
     }
   }
-  const bool translucent = effects_.has(Effect::Translucency) && m.translucency_strength > 0;
+  const bool translucent =
+      effects_.has(Effect::Translucency) && m.translucency_strength > 0 && cones_within_budget();
   const double ray_weight = weight * m.transparency / (translucent ? cone_samples_ : 1);
   const auto trace_along = [&](const Vec3& d) {
     ++stats_.refraction_rays;
@@ -346,6 +369,7 @@ Rgb Tracer::apply_atmosphere(const Rgb& color, double distance) const {
 
 Rgb Tracer::trace(const Ray& ray_in, RayKind kind, int depth, double weight,
                   const MediumStack& media_in, SampleStream& rng) {
+  poll_interrupt();
   const Scene& scene = scene_.scene();
   const SceneGlobals& g = scene.globals;
   const EffectSet& effects = effects_;

@@ -1,6 +1,9 @@
 // Recursive ray tracing with the lighting model of `002_…` chapter 4 (eq. 4.1-4.24).
 #pragma once
 
+#include <cstdint>
+
+#include "common/render/interrupt.h"
 #include "common/render/media.h"
 #include "common/render/prepared_scene.h"
 #include "common/render/sampler.h"
@@ -14,9 +17,22 @@ enum class RayKind { Camera, Reflected, Refracted };
 
 class Tracer {
  public:
+  // The ray budget of one pixel sample: cones branch at every glossy, translucent or
+  // soft-shadowed hit, so a sample could otherwise trace cone_samples^depth rays. Once a sample
+  // has traced this many shadow, reflection and refraction rays since its first cone (before
+  // it the path has not branched), every further cone of it is its central ray alone. The
+  // count follows the sample's own depth-first order, so its value still depends only on the
+  // scene, the settings and the pixel. The sample scenes, at the accuracy report's reference
+  // settings, need at most 37,092 (docs/ARCHITECTURE.md).
+  static constexpr std::uint64_t kMaxRaysPerSample = 1 << 20;
+  // Rays between two looks at the RenderInterrupt: a few hundred microseconds of tracing.
+  static constexpr int kPollRays = 256;
+
   // Renders with the effects render_effects(scene, settings) names; `settings` gives the
-  // cone samples and the soft-shadow cone.
-  Tracer(const PreparedScene& scene, const RenderSettings& settings, RenderStats& stats);
+  // cone samples and the soft-shadow cone. `interrupt` is polled every kPollRays rays; when it
+  // fires, trace() throws RenderInterrupted.
+  Tracer(const PreparedScene& scene, const RenderSettings& settings, RenderStats& stats,
+         const RenderInterrupt& interrupt = {});
 
   // The intensity arriving along `ray` (unit direction). `weight` is the product of the
   // reflectivities and transparencies along the path so far, compared with minReflectivity
@@ -82,6 +98,19 @@ class Tracer {
   // Eq. 4.20-4.23: depth cueing and fog over the distance the ray travelled.
   Rgb apply_atmosphere(const Rgb& color, double distance) const;
   Vec3 spawn_origin(const Hit& hit, const Vec3& direction, double epsilon) const;
+  std::uint64_t secondary_rays() const {
+    return stats_.shadow_rays + stats_.reflection_rays + stats_.refraction_rays;
+  }
+  // Whether a cone may have all its rays: false once the sample has spent its ray budget,
+  // when it also counts the pixel in stats_.ray_budget_pixels. trace_pixel raises
+  // stats_.camera_rays once per sample and stats_.pixels once per pixel, after its samples:
+  // they tell samples and pixels apart at no cost to renders without cones.
+  bool cones_within_budget();
+  // Counts a ray towards the next look at the interrupt.
+  void poll_interrupt() {
+    if (--poll_countdown_ == 0) check_interrupt();
+  }
+  void check_interrupt();
 
   const PreparedScene& scene_;
   RenderStats& stats_;
@@ -89,6 +118,12 @@ class Tracer {
   int cone_samples_;
   double shadow_cone_radius_;  // r_c of eq. 4.25
   Illumination illuminate_;    // local_illumination for the render's effects (lighting_for)
+  RenderInterrupt interrupt_;
+  int poll_countdown_ = kPollRays;
+  static constexpr std::uint64_t kNone = ~std::uint64_t{0};
+  std::uint64_t budget_sample_ = kNone;  // stats_.camera_rays of the sample being budgeted
+  std::uint64_t budget_start_ = 0;       // secondary_rays() at that sample's first cone
+  std::uint64_t budget_pixel_ = kNone;   // stats_.pixels of the last pixel counted as over it
 };
 
 }  // namespace tessera

@@ -3,6 +3,7 @@
 #include <cstdio>
 
 #include "common/render/render.h"
+#include "common/render/tracer.h"
 
 namespace tessera {
 
@@ -32,6 +33,12 @@ void print_report(const PreparedScene& prepared, const RenderSettings& settings,
   if (stats.nan_samples > 0)
     std::printf("warning: %llu samples were not finite and were written as black\n",
                 static_cast<unsigned long long>(stats.nan_samples));
+  if (stats.ray_budget_pixels > 0)
+    std::printf(
+        "warning: %llu pixels reached the ray budget of %llu rays a sample; their further cones "
+        "were narrowed to their central rays\n",
+        static_cast<unsigned long long>(stats.ray_budget_pixels),
+        static_cast<unsigned long long>(Tracer::kMaxRaysPerSample));
 }
 
 }  // namespace tessera

@@ -19,6 +19,8 @@ constexpr std::size_t kCachedBundles = 8;
 }
 
 // A job as this worker holds it: the bundle, and the scene prepared once, on first use.
+// `cancelled` is also the flag its units' renders poll (render/interrupt.h), so cancel_job and
+// clear() stop a unit in the middle of a pixel.
 struct PreparedJob {
   std::int64_t id = 0;
   JobSpec spec;
@@ -36,7 +38,10 @@ struct PreparedJob {
         MemorySource source(bundle->files);
         const std::optional<SceneFormat> format = scene_format_named(bundle->format);
         if (!format) throw std::runtime_error("unknown scene format \"" + bundle->format + "\"");
+        // TODO(issue 16 §2): once the loaders take a LoadBudget, pass it {cancel: &cancelled}
+        // here, so that cancelling stops a long load as it stops a render.
         scene = std::make_unique<Scene>(load_scene(source, bundle->main, *format));
+        if (cancelled) return;  // the job went while loading: skip building its BVH
         apply_overrides(*scene, spec.overrides);
         prepared = std::make_unique<PreparedScene>(*scene, spec.settings.bvh);
       } catch (const std::exception& e) {
@@ -54,6 +59,7 @@ RenderLoop::~RenderLoop() {
   {
     std::lock_guard lock(mutex_);
     stopping_ = true;
+    for (auto& [id, job] : jobs_) job->cancelled = true;  // stops the units being traced
     queue_.clear();
   }
   wake_.notify_all();
@@ -136,6 +142,7 @@ void RenderLoop::run() {
 void RenderLoop::render(const Task& task) {
   PreparedJob& job = *task.job;
   job.prepare();
+  if (job.cancelled) return;
   if (!job.prepared) {
     if (!job.failure_reported.exchange(true)) {
       spdlog::warn("job {}: {}", job.id, job.error);
@@ -150,7 +157,10 @@ void RenderLoop::render(const Task& task) {
   std::vector<Rgb> colours(pixels.size());
   RenderStats stats;
   try {
-    render_pixels(*job.prepared, job.spec.settings, coords, task.pass, colours, stats);
+    render_pixels(*job.prepared, job.spec.settings, coords, task.pass, colours, stats,
+                  {.cancel = &job.cancelled});
+  } catch (const RenderInterrupted&) {
+    return;  // cancelled: the coordinator expects nothing more of this job
   } catch (const std::exception& e) {
     if (!job.failure_reported.exchange(true))
       sink_(Frame{MessageType::JobFailed, {{"job", job.id}, {"error", e.what()}}, {}});
