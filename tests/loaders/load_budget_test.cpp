@@ -10,6 +10,7 @@
 
 #include "common/loaders/load_budget.h"
 #include "common/loaders/scene_loader.h"
+#include "common/loaders/vrml_parser.h"
 #include "tests/loaders/loader_test_util.h"
 
 namespace tessera::test {
@@ -252,6 +253,12 @@ TEST(LoadBudget, NodesNestingAndMemory) {
                           "] } } } Background { skyAngle [" + numbers + "] }";
   EXPECT_EQ(world_limit(big), "loaded");
   EXPECT_EQ(world_limit(big, with(&LoadBudget::max_bytes_produced, 4u << 20)), "bytes_produced");
+  // The parsed values count on top of their tokens, at least 8 bytes a number.
+  LoadMeter meter{LoadBudget{}};
+  const vrml::LexedFile lexed = vrml::lex_vrml(kHeader + big, "w.wrl", meter);
+  const std::uint64_t tokens = meter.total(LoadLimit::BytesProduced);
+  vrml::parse_vrml(lexed, meter);
+  EXPECT_GE(meter.total(LoadLimit::BytesProduced) - tokens, 99'999 * sizeof(double));
 }
 
 TEST(LoadBudget, ADeadlineStopsABombPromptly) {
