@@ -19,12 +19,14 @@ SceneFormat scene_format_of(const std::filesystem::path& file) {
   return SceneFormat::Sdl;
 }
 
-Scene load_scene(const SceneSource& source, const std::string& path, SceneFormat format) {
-  return format == SceneFormat::Vrml ? load_vrml(source, path) : load_sdl(source, path);
+Scene load_scene(const SceneSource& source, const std::string& path, SceneFormat format,
+                 const LoadBudget& budget) {
+  return format == SceneFormat::Vrml ? load_vrml(source, path, budget)
+                                     : load_sdl(source, path, budget);
 }
 
-Scene load_scene_file(const std::filesystem::path& file) {
-  return load_scene(folder_of(file), file.filename().string(), scene_format_of(file));
+Scene load_scene_file(const std::filesystem::path& file, const LoadBudget& budget) {
+  return load_scene(folder_of(file), file.filename().string(), scene_format_of(file), budget);
 }
 
 }  // namespace tessera

@@ -6,6 +6,7 @@
 #include <string>
 #include <string_view>
 
+#include "common/loaders/load_budget.h"
 #include "common/loaders/scene_source.h"
 #include "common/scene/scene.h"
 
@@ -19,11 +20,13 @@ std::optional<SceneFormat> scene_format_named(std::string_view name);
 // The format a file name implies: VRML for .wrl, .wrl.gz and .wrz, SDL otherwise.
 SceneFormat scene_format_of(const std::filesystem::path& file);
 
-// Loads the scene at root-relative `path` of `source` with the loader of `format`. Throws
-// SceneError naming file, line and column.
-Scene load_scene(const SceneSource& source, const std::string& path, SceneFormat format);
+// Loads the scene at root-relative `path` of `source` with the loader of `format`, all of its
+// files together within `budget`. Throws SceneError naming file, line and column;
+// LoadBudgetExceeded (a SceneError) naming the limit the scene went over, or the deadline.
+Scene load_scene(const SceneSource& source, const std::string& path, SceneFormat format,
+                 const LoadBudget& budget = {});
 
 // Convenience for the command line: the file's folder is the root, its name picks the format.
-Scene load_scene_file(const std::filesystem::path& file);
+Scene load_scene_file(const std::filesystem::path& file, const LoadBudget& budget = {});
 
 }  // namespace tessera

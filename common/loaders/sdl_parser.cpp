@@ -35,7 +35,7 @@ using MeshLoader = Mesh (*)(std::string_view text, const std::string& file);
 
 class LoadContext {
  public:
-  LoadContext(const SceneSource& source, const Limits& limits) : source_(source), limits_(limits) {}
+  LoadContext(const SceneSource& source, LoadMeter& meter) : source_(source), meter_(meter) {}
 
   Scene load(const std::string& path) {
     const SourceLocation start{path, 1, 1};
@@ -51,7 +51,8 @@ class LoadContext {
   }
 
   Scene& scene() { return scene_; }
-  const Limits& limits() const { return limits_; }
+  LoadMeter& meter() { return meter_; }
+  const LoadBudget& budget() const { return meter_.budget(); }
   std::unordered_map<std::string, Macro>& macros() { return macros_; }
   const std::string& path_of(const Token& token) const { return files_[token.file]->path; }
   SourceLocation location(const Token& token) const {
@@ -62,15 +63,16 @@ class LoadContext {
   }
 
   void count_token(const Token& token) {
-    if (++tokens_ > limits_.max_tokens) {
-      fail(token, "the scene is too large: more than " + std::to_string(limits_.max_tokens) +
-                      " tokens to parse, counting includes and macro uses");
-    }
+    meter_.add(LoadLimit::Tokens, 1, [&] { return location(token); });
   }
+  // An include or a macro use: a replay, nested in those being read.
   void enter_nesting(const Token& at) {
-    if (++nesting_ > limits_.max_nesting) {
-      fail(at, "include and use are nested too deeply (more than " +
-                   std::to_string(limits_.max_nesting) + " levels)");
+    meter_.add(LoadLimit::UseReplays, 1, [&] { return location(at); });
+    const std::uint64_t limit = budget().max_replay_nesting;
+    if (++nesting_ > limit) {
+      meter_.fail(
+          LoadLimit::ReplayNesting, location(at),
+          "include and use are nested too deeply (more than " + std::to_string(limit) + " levels)");
     }
   }
   void leave_nesting() { --nesting_; }
@@ -84,9 +86,10 @@ class LoadContext {
   };
   const std::vector<OpenCsg>& open_csg() const { return open_csg_; }
   void begin_csg(CsgOperation operation, const Token& keyword) {
-    if (open_csg_.size() >= limits_.max_csg_depth) {
-      fail(keyword, "boolean objects are nested too deeply (more than " +
-                        std::to_string(limits_.max_csg_depth) + " levels)");
+    if (open_csg_.size() >= budget().max_csg_depth) {
+      meter_.fail(LoadLimit::CsgDepth, location(keyword),
+                  "boolean objects are nested too deeply (more than " +
+                      std::to_string(budget().max_csg_depth) + " levels)");
     }
     open_csg_.push_back({operation, keyword, std::nullopt});
   }
@@ -99,6 +102,7 @@ class LoadContext {
         node.left = index;
         return;
       }
+      meter_.add_object(location(node.keyword));
       scene_.objects.push_back({CsgShape{node.operation, *node.left, index}, Affine::identity(),
                                 Material{}, location(node.keyword), std::nullopt});
       index = static_cast<std::uint32_t>(scene_.objects.size() - 1);
@@ -108,9 +112,9 @@ class LoadContext {
 
   void warn(const std::string& warning) {
     if (!warning_set_.insert(warning).second) return;
-    if (scene_.warnings.size() < limits_.max_warnings) {
+    if (scene_.warnings.size() < budget().max_warnings) {
       scene_.warnings.push_back(warning);
-    } else if (scene_.warnings.size() == limits_.max_warnings) {
+    } else if (scene_.warnings.size() == budget().max_warnings) {
       scene_.warnings.push_back("further warnings are omitted");
     }
   }
@@ -137,6 +141,7 @@ class LoadContext {
     const std::string bytes = read(path, location(name), "mesh file");
     Mesh mesh = loader(bytes, path);
     if (mesh.triangles.empty()) fail(name, "mesh " + in_quotes(path) + " has no triangles");
+    meter_.add_mesh(mesh, location(name));
     scene_.meshes.push_back(std::move(mesh));
     mesh_ids_.emplace(path, scene_.meshes.size() - 1);
     return scene_.meshes.size() - 1;
@@ -145,13 +150,15 @@ class LoadContext {
   void image(const std::string& path, const Token& name) {
     if (!image_paths_.insert(path).second) return;
     std::string bytes = read(path, location(name), "image file");
+    meter_.add(LoadLimit::BytesProduced, bytes.size(), location(name));  // kept in the scene
     scene_.images.push_back({path, std::move(bytes), location(name)});
   }
 
-  std::size_t built_in_mesh(const std::string& name, Mesh (*make)()) {
+  std::size_t built_in_mesh(const std::string& name, Mesh (*make)(), const SourceLocation& at) {
     const auto known = built_in_mesh_ids_.find(name);
     if (known != built_in_mesh_ids_.end()) return known->second;
     scene_.meshes.push_back(make());
+    meter_.add_mesh(scene_.meshes.back(), at);
     built_in_mesh_ids_.emplace(name, scene_.meshes.size() - 1);
     return scene_.meshes.size() - 1;
   }
@@ -160,12 +167,14 @@ class LoadContext {
   std::string read(const std::string& path, const SourceLocation& at, const std::string& kind) {
     std::optional<std::string> bytes = source_.read(path);
     if (!bytes) throw SceneError(at, kind + " " + in_quotes(path) + " not found");
-    const std::size_t limit = limits_.max_file_bytes;
+    const std::uint64_t limit = budget().max_file_bytes;
     if (bytes->size() > limit) {
       const std::string size = limit % (1u << 20) == 0 ? std::to_string(limit >> 20) + " MiB"
                                                        : std::to_string(limit) + " bytes";
-      throw SceneError(at, kind + " " + in_quotes(path) + " is larger than " + size);
+      meter_.fail(LoadLimit::FileBytes, at,
+                  kind + " " + in_quotes(path) + " is larger than " + size);
     }
+    meter_.add(LoadLimit::BytesRead, bytes->size(), at);
     return std::move(*bytes);
   }
 
@@ -179,13 +188,15 @@ class LoadContext {
     file->text = read(path, at, kind);
     const auto id = static_cast<std::uint32_t>(files_.size());
     file->lexed = lex_sdl(file->text, id);
+    meter_.add(LoadLimit::BytesProduced,
+               file->text.size() + file->lexed.tokens.size() * sizeof(Token), at);
     files_.push_back(std::move(file));
     file_ids_.emplace(path, id);
     return *files_.back();
   }
 
   const SceneSource& source_;
-  Limits limits_;
+  LoadMeter& meter_;
   Scene scene_;
   std::vector<std::unique_ptr<SourceFile>> files_;  // indexed by Token::file
   std::unordered_map<std::string, std::uint32_t> file_ids_;
@@ -196,8 +207,7 @@ class LoadContext {
   std::vector<std::string> include_chain_;  // files being parsed, outermost first
   std::vector<OpenCsg> open_csg_;
   std::unordered_set<std::string> warning_set_;
-  int nesting_ = 0;
-  std::uint64_t tokens_ = 0;
+  std::uint64_t nesting_ = 0;
 };
 
 // ---------------------------------------------------------------------------------------------
@@ -369,9 +379,10 @@ Rgb FileParser::color(const char* r, const char* g, const char* b) {
 // FileParser: effects of statements
 
 void FileParser::push_ct() {
-  const std::size_t limit = context_.limits().max_push_depth;
+  const std::uint64_t limit = context_.budget().max_push_depth;
   if (ct_stack_.size() >= limit) {
-    fail(keyword_, "too many nested 'push' (more than " + std::to_string(limit) + ")");
+    context_.meter().fail(LoadLimit::PushDepth, location(keyword_),
+                          "too many nested 'push' (more than " + std::to_string(limit) + ")");
   }
   ct_stack_.push_back(ct_);
 }
@@ -401,10 +412,7 @@ void FileParser::add_object(const ShapeGeometry& geometry) {
                        ": an algebraic surface is clipped to a box in world space, not a solid");
   }
   Scene& s = scene();
-  const std::size_t limit = context_.limits().max_objects;
-  if (s.objects.size() >= limit) {
-    fail(keyword_, "too many objects (more than " + std::to_string(limit) + ")");
-  }
+  context_.meter().add_object(location(keyword_));
   std::optional<ObjectMotion> motion;
   if (motion_.enabled) {
     if (std::holds_alternative<AlgebraicSurface>(geometry))
@@ -428,12 +436,8 @@ void FileParser::refuse_in_csg() const {
 
 void FileParser::add_light(const Light& light) {
   refuse_in_csg();
-  Scene& s = scene();
-  const std::size_t limit = context_.limits().max_lights;
-  if (s.lights.size() >= limit) {
-    fail(keyword_, "too many lights (more than " + std::to_string(limit) + ")");
-  }
-  s.lights.push_back(light);
+  context_.meter().add_light(location(keyword_));
+  scene().lights.push_back(light);
 }
 
 std::string FileParser::resolve(const Token& name) {
@@ -470,7 +474,7 @@ std::size_t FileParser::mesh(const Token& name) {
 void FileParser::image(const std::string& path, const Token& name) { context_.image(path, name); }
 
 std::size_t FileParser::built_in_mesh(Mesh (*make)()) {
-  return context_.built_in_mesh(std::string(keyword_name_), make);
+  return context_.built_in_mesh(std::string(keyword_name_), make, location(keyword_));
 }
 
 void FileParser::include(const Token& name) { context_.include(resolve(name), name, keyword_); }
@@ -547,12 +551,6 @@ void FileParser::validate_csg() const {
               csg_at(context_, open.back().keyword));
 }
 
-Scene load_sdl_with_limits(const SceneSource& source, const std::string& path,
-                           const Limits& limits) {
-  LoadContext context(source, limits);
-  return context.load(path);
-}
-
 }  // namespace tessera::sdl
 
 // ---------------------------------------------------------------------------------------------
@@ -560,12 +558,13 @@ Scene load_sdl_with_limits(const SceneSource& source, const std::string& path,
 
 namespace tessera {
 
-Scene load_sdl(const SceneSource& source, const std::string& path) {
-  return sdl::load_sdl_with_limits(source, path, sdl::Limits{});
+Scene load_sdl(const SceneSource& source, const std::string& path, const LoadBudget& budget) {
+  LoadMeter meter(budget);
+  return sdl::LoadContext(source, meter).load(path);
 }
 
-Scene load_sdl_file(const std::filesystem::path& file) {
-  return load_sdl(folder_of(file), file.filename().string());
+Scene load_sdl_file(const std::filesystem::path& file, const LoadBudget& budget) {
+  return load_sdl(folder_of(file), file.filename().string(), budget);
 }
 
 }  // namespace tessera

@@ -9,24 +9,12 @@
 #include <string_view>
 #include <vector>
 
+#include "common/loaders/load_budget.h"
 #include "common/loaders/scene_source.h"
 #include "common/loaders/sdl_lexer.h"
 #include "common/scene/scene.h"
 
 namespace tessera::sdl {
-
-// Limits that keep hostile scenes from hurting the service. load_sdl uses the defaults;
-// tests lower them to reach them cheaply.
-struct Limits {
-  int max_nesting = 64;                    // include and use replays, nested, together
-  std::size_t max_objects = 1'000'000;     // shapes in the scene
-  std::size_t max_lights = 1'000'000;      // lights in the scene
-  std::size_t max_file_bytes = 16u << 20;  // per SDL or mesh file
-  std::uint64_t max_tokens = 64ull << 20;  // parsed in all, replays and includes counted
-  std::size_t max_push_depth = 65'536;     // CTs saved by push
-  std::size_t max_csg_depth = 256;         // boolean objects awaiting children, nested
-  std::size_t max_warnings = 100;
-};
 
 class LoadContext;  // what one load shares across files (sdl_parser.cpp)
 struct SourceFile;
@@ -143,10 +131,6 @@ class FileParser {
   std::optional<Token> last_camera_position_;  // the last eyePoint or viewPoint
   std::optional<Token> up_direction_;
 };
-
-// load_sdl with chosen limits.
-Scene load_sdl_with_limits(const SceneSource& source, const std::string& path,
-                           const Limits& limits);
 
 // ---- The keyword table (sdl_keywords.cpp)
 

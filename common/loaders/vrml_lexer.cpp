@@ -16,7 +16,7 @@ bool is_punct(char c) { return c == '{' || c == '}' || c == '[' || c == ']'; }
 
 }  // namespace
 
-std::string vrml_text(const std::string& bytes, const std::string& path, std::size_t max_bytes) {
+std::string vrml_text(const std::string& bytes, const std::string& path, LoadMeter& meter) {
   if (bytes.size() < 2 || static_cast<unsigned char>(bytes[0]) != 0x1f ||
       static_cast<unsigned char>(bytes[1]) != 0x8b)
     return bytes;
@@ -33,18 +33,26 @@ std::string vrml_text(const std::string& bytes, const std::string& path, std::si
     stream.next_out = reinterpret_cast<Bytef*>(buffer);
     stream.avail_out = sizeof buffer;
     status = inflate(&stream, Z_NO_FLUSH);
-    out.append(buffer, sizeof buffer - stream.avail_out);
-    if (out.size() > max_bytes) status = Z_MEM_ERROR;
+    const std::size_t made = sizeof buffer - stream.avail_out;
+    try {
+      meter.add(LoadLimit::BytesRead, made, at);
+    } catch (...) {
+      inflateEnd(&stream);
+      throw;
+    }
+    out.append(buffer, made);
   }
   inflateEnd(&stream);
-  if (out.size() > max_bytes)
-    throw SceneError(
-        at, "the gzip stream inflates to more than " + std::to_string(max_bytes) + " bytes");
   if (status != Z_STREAM_END) throw SceneError(at, "the gzip stream is corrupt or truncated");
   return out;
 }
 
 LexedFile lex_vrml(std::string_view text, const std::string& path) {
+  LoadMeter meter{LoadBudget{}};
+  return lex_vrml(text, path, meter);
+}
+
+LexedFile lex_vrml(std::string_view text, const std::string& path, LoadMeter& meter) {
   if (!text.starts_with(kHeader)) {
     const std::string found = text.starts_with("#VRML V1.0") ? " (VRML 1.0 is not supported)" : "";
     throw SceneError({path, 1, 1}, "expected the header '#VRML V2.0 utf8'" + found);
@@ -53,6 +61,15 @@ LexedFile lex_vrml(std::string_view text, const std::string& path) {
   out.path = path;
   LineCursor at;
   std::size_t i = 0;
+  // A token and its share of the vector's spare capacity, and its text beyond the string's
+  // own buffer.
+  const auto keep = [&](Token&& token) {
+    const std::size_t heap = token.text.size() > 15 ? token.text.size() + 1 : 0;
+    meter.add(LoadLimit::BytesProduced, 2 * sizeof(Token) + heap, [&] {
+      return SourceLocation{path, token.line, token.column};
+    });
+    out.tokens.push_back(std::move(token));
+  };
   while (i < text.size()) {
     const char c = text[i];
     if (at.skip_line_break(text, i)) continue;
@@ -61,7 +78,7 @@ LexedFile lex_vrml(std::string_view text, const std::string& path) {
     } else if (c == '#') {  // the header is a comment too
       skip_to_line_end(text, i);
     } else if (is_punct(c)) {
-      out.tokens.push_back({Token::Kind::Punct, std::string(1, c), at.line, at.column(i)});
+      keep({Token::Kind::Punct, std::string(1, c), at.line, at.column(i)});
       ++i;
     } else if (c == '"') {
       Token token{Token::Kind::String, "", at.line, at.column(i)};
@@ -75,14 +92,14 @@ LexedFile lex_vrml(std::string_view text, const std::string& path) {
         token.text += text[i++];
       }
       ++i;
-      out.tokens.push_back(std::move(token));
+      keep(std::move(token));
     } else {
       const std::size_t begin = i;
       while (i < text.size() && !is_space(text[i]) && !is_punct(text[i]) && text[i] != '#' &&
              text[i] != '"')
         ++i;
-      out.tokens.push_back({Token::Kind::Word, std::string(text.substr(begin, i - begin)), at.line,
-                            at.column(begin)});
+      keep({Token::Kind::Word, std::string(text.substr(begin, i - begin)), at.line,
+            at.column(begin)});
     }
   }
   out.end_line = at.line;

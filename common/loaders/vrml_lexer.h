@@ -8,6 +8,7 @@
 #include <string_view>
 #include <vector>
 
+#include "common/loaders/load_budget.h"
 #include "common/scene/source_location.h"
 
 namespace tessera::vrml {
@@ -26,12 +27,15 @@ struct LexedFile {
   int end_line = 1, end_column = 1;  // just past the last byte, for "unexpected end of file"
 };
 
-// The bytes of a .wrl file as text: inflated when they start with the gzip magic 1f 8b (at most
-// `max_bytes` once inflated). Throws SceneError at `path`:1:1 for a corrupt or oversized stream.
-std::string vrml_text(const std::string& bytes, const std::string& path, std::size_t max_bytes);
+// The bytes of a .wrl file as text: inflated when they start with the gzip magic 1f 8b, the
+// inflated bytes counted as read by `meter` as they come. Throws SceneError at `path`:1:1 for a
+// corrupt stream, LoadBudgetExceeded for one that inflates beyond the budget.
+std::string vrml_text(const std::string& bytes, const std::string& path, LoadMeter& meter);
 
-// Checks the `#VRML V2.0 utf8` header and splits the rest into tokens. Throws SceneError with
-// the location of a missing header or an unterminated string.
+// Checks the `#VRML V2.0 utf8` header and splits the rest into tokens, their memory counted by
+// `meter`. Throws SceneError with the location of a missing header or an unterminated string.
+LexedFile lex_vrml(std::string_view text, const std::string& path, LoadMeter& meter);
+// With the default budget.
 LexedFile lex_vrml(std::string_view text, const std::string& path);
 
 }  // namespace tessera::vrml

@@ -5,13 +5,15 @@
 
 #include <string>
 
+#include "common/loaders/load_budget.h"
 #include "common/loaders/scene_source.h"
 #include "common/scene/scene.h"
 
 namespace tessera {
 
-// Parses the world at root-relative `path` of `source`, with its Inlines. Throws SceneError
-// naming file, line, column and what was expected.
-Scene load_vrml(const SceneSource& source, const std::string& path);
+// Parses the world at root-relative `path` of `source`, with its Inlines (each file parsed once
+// and shared). Throws SceneError naming file, line, column and what was expected;
+// LoadBudgetExceeded when the world goes over `budget`.
+Scene load_vrml(const SceneSource& source, const std::string& path, const LoadBudget& budget = {});
 
 }  // namespace tessera

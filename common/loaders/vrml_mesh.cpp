@@ -330,6 +330,24 @@ NodePtr extrusion_face_set(const Node& extrusion) {
   return out;
 }
 
+std::uint64_t generated_triangles(const Node& node) {
+  // In doubles, which cannot overflow here, then capped.
+  double rows = 0, columns = 0, caps = 0;
+  if (node.type == "ElevationGrid") {
+    rows = sf_float(node, "xDimension", 0) - 1;
+    columns = sf_float(node, "zDimension", 0) - 1;
+  } else if (node.type == "Extrusion") {
+    const FieldValue* spine = node.field("spine");
+    const FieldValue* section = node.field("crossSection");
+    rows = (spine ? static_cast<double>(spine->numbers.size() / 3) : 2) - 1;
+    columns = (section ? static_cast<double>(section->numbers.size() / 2) : 5) - 1;
+    caps = 2 * (columns + 1);
+  }
+  const double triangles = 2 * std::max(rows, 0.0) * std::max(columns, 0.0) + caps;
+  return triangles >= 1e18 ? std::uint64_t{1'000'000'000'000'000'000}
+                           : static_cast<std::uint64_t>(triangles);
+}
+
 std::vector<std::array<std::uint32_t, 3>> triangulate_polygon(const std::vector<Vec3>& polygon) {
   std::vector<std::array<std::uint32_t, 3>> out;
   if (polygon.size() < 3) return out;

@@ -38,6 +38,9 @@ struct CornerAttributes {
 // texture coordinates, so that one path meshes all three.
 NodePtr elevation_grid_face_set(const Node& grid);
 NodePtr extrusion_face_set(const Node& extrusion);
+// At least as many triangles as either of them makes of `node`, from its fields' sizes alone,
+// so that a budget can refuse a grid or an extrusion before it is made.
+std::uint64_t generated_triangles(const Node& node);
 
 // The mesh of an IndexedFaceSet node (empty without coordinates), with the `wanted` corner
 // attributes. Throws SceneError at the index field for an index out of range.

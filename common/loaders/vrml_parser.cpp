@@ -20,6 +20,7 @@ struct Proto {
   std::map<std::string, ProtoField> interface;
   std::vector<NodePtr> body;  // the first node is what an instance renders as
   bool external = false;
+  std::uint64_t nested_instances = 0;  // PROTO instances its body holds, each made anew
 };
 
 bool is_number_start(const Token& t) {
@@ -28,10 +29,22 @@ bool is_number_start(const Token& t) {
   return (c >= '0' && c <= '9') || c == '+' || c == '-' || c == '.';
 }
 
+// Approximate memory of parsed values and nodes (LoadBudget::max_bytes_produced): the
+// containers' own sizes, a map entry's overhead, and what lies on the heap.
+constexpr std::uint64_t kHeapString = 16;                // beyond std::string's own buffer
+constexpr std::uint64_t kNodeBytes = sizeof(Node) + 32;  // and make_shared's control block
+
+std::uint64_t field_bytes(const FieldValue& v) {
+  std::uint64_t bytes = sizeof(FieldValue) + sizeof(std::string) + 48 +
+                        v.numbers.size() * sizeof(double) + v.nodes.size() * sizeof(NodePtr);
+  for (const std::string& text : v.strings) bytes += sizeof(std::string) + text.size();
+  return bytes;
+}
+
 class Parser {
  public:
-  Parser(const LexedFile& file, const ParseLimits& limits, ParsedWorld& world)
-      : file_(file), limits_(limits), world_(world) {}
+  Parser(const LexedFile& file, LoadMeter& meter, ParsedWorld& world)
+      : file_(file), meter_(meter), world_(world) {}
 
   void run() {
     while (!at_end())
@@ -68,10 +81,14 @@ class Parser {
     if (t.kind != Token::Kind::Punct || t.text != punct)
       fail(t, "expected '" + std::string(punct) + "' " + what + ", found " + in_quotes(t.text));
   }
+  SourceLocation last_location() const { return location(file_.tokens[next_ - 1]); }
   void count_node() {
-    if (++nodes_ > limits_.max_nodes)
-      fail(file_.tokens[next_ - 1],
-           "the world has more than " + std::to_string(limits_.max_nodes) + " nodes");
+    const auto at = [this] { return last_location(); };
+    meter_.add(LoadLimit::Nodes, 1, at);
+    meter_.add(LoadLimit::BytesProduced, kNodeBytes + file_.path.size() + kHeapString, at);
+  }
+  void count_bytes(std::uint64_t bytes) {
+    meter_.add(LoadLimit::BytesProduced, bytes, [this] { return last_location(); });
   }
 
   // ---- Statements (§5.7): a node, PROTO, EXTERNPROTO or ROUTE. Null for what is not drawn.
@@ -116,8 +133,9 @@ class Parser {
   }
 
   NodePtr node_body(const Token& type) {
-    if (++depth_ > limits_.max_nesting)
-      fail(type, "nodes nest deeper than " + std::to_string(limits_.max_nesting));
+    if (++depth_ > meter_.budget().max_node_nesting)
+      meter_.fail(LoadLimit::NodeNesting, location(type),
+                  "nodes nest deeper than " + std::to_string(meter_.budget().max_node_nesting));
     count_node();
     NodePtr out;
     if (const auto declared = protos_.find(type.text); declared != protos_.end()) {
@@ -159,7 +177,9 @@ class Parser {
         continue;
       }
       if (!field) fail(name, "unknown field " + in_quotes(name.text) + " of " + type.text);
-      node->fields[name.text] = field_value(field->type, name.text + " of " + type.text);
+      FieldValue& value = node->fields[name.text];
+      value = field_value(field->type, name.text + " of " + type.text);
+      count_bytes(field_bytes(value));
     }
     take("}");
     return node;
@@ -349,9 +369,11 @@ class Parser {
     outer_defs.swap(defs_);
     Proto* outer_proto = proto_;
     proto_ = &proto;
+    const std::uint64_t instances_before = meter_.total(LoadLimit::ProtoInstances);
     while (!peek_is("}"))
       if (NodePtr node = statement()) proto.body.push_back(std::move(node));
     take("}");
+    proto.nested_instances = meter_.total(LoadLimit::ProtoInstances) - instances_before;
     proto_ = outer_proto;
     defs_.swap(outer_defs);
     protos_[proto.name] = std::move(proto);
@@ -370,6 +392,9 @@ class Parser {
   }
 
   NodePtr proto_instance(Proto& proto, const Token& type) {
+    // The body's own instances were expanded when it was parsed; each instance copies them.
+    meter_.add(LoadLimit::ProtoInstances, 1 + proto.nested_instances,
+               [&] { return location(type); });
     expect("{", "after " + in_quotes(type.text));
     std::map<std::string, FieldValue> values;
     std::map<std::string, std::string> relinks;  // instance field -> enclosing PROTO's field
@@ -403,6 +428,7 @@ class Parser {
     if (!node) return nullptr;  // a node that is not drawn
     if (const auto done = copies.find(node.get()); done != copies.end()) return done->second;
     count_node();
+    for (const auto& [name, field] : node->fields) count_bytes(field_bytes(field));
     auto copy = std::make_shared<Node>(*node);
     copy->is_links.clear();
     for (auto& [name, field] : copy->fields)
@@ -419,11 +445,10 @@ class Parser {
   }
 
   const LexedFile& file_;
-  const ParseLimits& limits_;
+  LoadMeter& meter_;
   ParsedWorld& world_;
   std::size_t next_ = 0;
-  int depth_ = 0;
-  std::size_t nodes_ = 0;
+  std::uint64_t depth_ = 0;
   std::map<std::string, NodePtr> defs_;
   std::map<std::string, Proto> protos_;
   Proto* proto_ = nullptr;  // the PROTO whose body is being parsed
@@ -431,10 +456,15 @@ class Parser {
 
 }  // namespace
 
-ParsedWorld parse_vrml(const LexedFile& file, const ParseLimits& limits) {
+ParsedWorld parse_vrml(const LexedFile& file, LoadMeter& meter) {
   ParsedWorld world;
-  Parser(file, limits, world).run();
+  Parser(file, meter, world).run();
   return world;
+}
+
+ParsedWorld parse_vrml(const LexedFile& file, const LoadBudget& budget) {
+  LoadMeter meter(budget);
+  return parse_vrml(file, meter);
 }
 
 }  // namespace tessera::vrml

@@ -9,15 +9,11 @@
 #include <string>
 #include <vector>
 
+#include "common/loaders/load_budget.h"
 #include "common/loaders/vrml_lexer.h"
 #include "common/loaders/vrml_nodes.h"
 
 namespace tessera::vrml {
-
-struct ParseLimits {
-  int max_nesting = 256;              // nodes inside nodes
-  std::size_t max_nodes = 4'000'000;  // parsed and made by PROTO expansion, together
-};
 
 struct ParsedWorld {
   std::vector<NodePtr> roots;
@@ -26,7 +22,11 @@ struct ParsedWorld {
   std::vector<std::string> warnings;       // located, one per EXTERNPROTO
 };
 
-// Throws SceneError at the offending token: "file:line:column: what was expected".
-ParsedWorld parse_vrml(const LexedFile& file, const ParseLimits& limits = {});
+// Throws SceneError at the offending token: "file:line:column: what was expected". Nodes (parsed
+// and made by PROTO expansion), PROTO instances, nesting and the memory of the nodes count
+// against `meter`'s budget.
+ParsedWorld parse_vrml(const LexedFile& file, LoadMeter& meter);
+// With its own meter of `budget`.
+ParsedWorld parse_vrml(const LexedFile& file, const LoadBudget& budget = {});
 
 }  // namespace tessera::vrml

@@ -3,10 +3,12 @@
 #include <algorithm>
 #include <cmath>
 #include <map>
+#include <memory>
 #include <numbers>
 #include <optional>
 #include <span>
 #include <string>
+#include <unordered_set>
 #include <variant>
 #include <vector>
 
@@ -20,11 +22,6 @@
 namespace tessera {
 namespace vrml {
 namespace {
-
-constexpr std::size_t kMaxFileBytes = 16u << 20;      // a .wrl file as stored
-constexpr std::size_t kMaxInflatedBytes = 64u << 20;  // a .wrl.gz once inflated
-constexpr std::size_t kMaxObjects = 1'000'000;        // shapes, USE replays counted
-constexpr int kMaxInlineDepth = 16;
 
 double degrees(double radians) { return radians * 180 / std::numbers::pi; }
 
@@ -48,35 +45,53 @@ struct BoundingSphere {
 
 class Converter {
  public:
-  Converter(const SceneSource& source, const std::string& path) : source_(source), path_(path) {}
+  Converter(const SceneSource& source, const std::string& path, LoadMeter& meter)
+      : source_(source), path_(path), meter_(meter) {}
 
   Scene run() {
-    world(path_, Affine::identity(), 0, {path_, 1, 1});
+    const SourceLocation start{path_, 1, 1};
+    const ParsedWorld* parsed = parsed_world(path_, start);
+    if (!parsed) throw SceneError(start, "cannot read " + quoted(path_));
+    world(*parsed, path_, Affine::identity(), 0);
     finish();
     return std::move(scene_);
   }
 
  private:
   // ---- Files
-  void world(const std::string& path, const Affine& ct, int depth, const SourceLocation& from) {
-    if (depth > kMaxInlineDepth)
-      throw SceneError(from, "Inlines nest deeper than " + std::to_string(kMaxInlineDepth));
-    const std::optional<std::string> bytes = source_.read(path);
-    if (!bytes) throw SceneError(from, "cannot read " + quoted(path));
-    if (bytes->size() > kMaxFileBytes)
-      throw SceneError(
-          from, quoted(path) + " is larger than " + std::to_string(kMaxFileBytes) + " bytes");
-    const LexedFile file = lex_vrml(vrml_text(*bytes, path, kMaxInflatedBytes), path);
-    const ParsedWorld parsed = parse_vrml(file);
-    for (const auto& [name, count] : parsed.ignored) ignored_[name] += count;
-    for (const auto& [name, count] : parsed.unsupported) unsupported_[name] += count;
-    for (const std::string& w : parsed.warnings) scene_.warnings.push_back(w);
+  // The world of the file at `path`, read, lexed and parsed once per load however many Inlines
+  // name it; null when the source has no such file.
+  const ParsedWorld* parsed_world(const std::string& path, const SourceLocation& from) {
+    if (const auto known = worlds_.find(path); known != worlds_.end()) return known->second.get();
+    const std::optional<std::string> bytes = read(path, from);
+    if (!bytes) return nullptr;
+    auto parsed = std::make_unique<const ParsedWorld>(
+        parse_vrml(lex_vrml(vrml_text(*bytes, path, meter_), path, meter_), meter_));
+    for (const auto& [name, count] : parsed->ignored) ignored_[name] += count;
+    for (const auto& [name, count] : parsed->unsupported) unsupported_[name] += count;
+    for (const std::string& w : parsed->warnings) scene_.warnings.push_back(w);
+    return worlds_.emplace(path, std::move(parsed)).first->second.get();
+  }
+
+  // A file's roots are a group: the Inline's children.
+  void world(const ParsedWorld& parsed, const std::string& path, const Affine& ct, int depth) {
     const std::string outer = file_;
     file_ = path;
-    group(parsed.roots, ct, depth);  // a file's roots are a group: the Inline's children
+    group(parsed.roots, ct, depth);
     file_ = outer;
-    // Billboards and the mesh cache hold nodes by address until the end.
-    roots_.insert(roots_.end(), parsed.roots.begin(), parsed.roots.end());
+  }
+
+  // The bytes of a file the world names (a world or an image), counted as read; nullopt when
+  // there is no such file.
+  std::optional<std::string> read(const std::string& path, const SourceLocation& from) {
+    std::optional<std::string> bytes = source_.read(path);
+    if (!bytes) return bytes;
+    const std::uint64_t limit = meter_.budget().max_file_bytes;
+    if (bytes->size() > limit)
+      meter_.fail(LoadLimit::FileBytes, from,
+                  quoted(path) + " is larger than " + std::to_string(limit) + " bytes");
+    meter_.add(LoadLimit::BytesRead, bytes->size(), from);
+    return bytes;
   }
 
   static std::string quoted(const std::string& path) { return "'" + path + "'"; }
@@ -89,6 +104,9 @@ class Converter {
     open_groups_.push_back({static_cast<std::uint32_t>(scene_.objects.size()), {}, {}});
     for (const NodePtr& c : nodes) {
       if (!c) continue;  // a node that is not drawn
+      // A node walked again (USE, or a file Inlined again) is walked in full each time: count
+      // every such visit, so that a DAG that doubles at every level stops at once.
+      if (!visited_.insert(c.get()).second) meter_.add(LoadLimit::UseReplays, 1, c->where);
       const std::size_t lights = scene_.lights.size();
       child(*c, ct, depth);
       if (c->type == "DirectionalLight" && scene_.lights.size() > lights)
@@ -169,10 +187,15 @@ class Converter {
   void inline_world(const Node& n, const Affine& ct, int depth) {
     const FieldValue* url = n.field("url");
     if (!url) return;
+    const std::uint64_t max_depth = meter_.budget().max_inline_depth;
+    if (static_cast<std::uint64_t>(depth) + 1 > max_depth)
+      meter_.fail(LoadLimit::InlineDepth, n.where,
+                  "Inlines nest deeper than " + std::to_string(max_depth));
     for (const std::string& name : url->strings) {
       const std::optional<std::string> path = resolve_scene_path(file_, name);
-      if (path && source_.read(*path)) {
-        world(*path, ct, depth + 1, n.where);
+      if (const ParsedWorld* parsed = path ? parsed_world(*path, n.where) : nullptr) {
+        meter_.add(LoadLimit::InlineExpansions, 1, n.where);
+        world(*parsed, *path, ct, depth + 1);
         return;
       }
     }
@@ -244,9 +267,13 @@ class Converter {
   std::pair<std::optional<std::size_t>, bool> mesh(const Node& n, CornerAttributes wanted) {
     if (const auto made = meshes_.find({&n, wanted}); made != meshes_.end()) return made->second;
     NodePtr generated;
-    if (n.type == "ElevationGrid") generated = elevation_grid_face_set(n);
-    if (n.type == "Extrusion") generated = extrusion_face_set(n);
+    if (n.type == "ElevationGrid" || n.type == "Extrusion") {
+      // Their meshes grow with the product of two fields' sizes: check before making them.
+      meter_.ensure_room(LoadLimit::Triangles, generated_triangles(n), n.where);
+      generated = n.type == "ElevationGrid" ? elevation_grid_face_set(n) : extrusion_face_set(n);
+    }
     FaceSetMesh made = face_set_mesh(generated ? *generated : n, wanted);
+    meter_.add_mesh(made.mesh, n.where);
     std::pair<std::optional<std::size_t>, bool> out{std::nullopt, made.smooth};
     if (!made.mesh.triangles.empty()) {
       out.first = scene_.meshes.size();
@@ -258,9 +285,7 @@ class Converter {
 
   void add(const ShapeGeometry& geometry, const Affine& to_world, const Material& material,
            const Node& at) {
-    if (scene_.objects.size() == kMaxObjects)
-      throw SceneError(at.where,
-                       "the world has more than " + std::to_string(kMaxObjects) + " shapes");
+    meter_.add_object(at.where);
     scene_.objects.push_back({geometry, to_world, material, at.where, std::nullopt});
   }
 
@@ -334,13 +359,11 @@ class Converter {
     for (const std::string& name :
          t.field("url") ? t.field("url")->strings : std::vector<std::string>{}) {
       const std::optional<std::string> path = resolve_scene_path(file_, name);
-      std::optional<std::string> bytes;
-      if (path) bytes = source_.read(*path);
-      if (!bytes) continue;
-      if (bytes->size() > kMaxFileBytes)
-        throw SceneError(
-            t.where, quoted(*path) + " is larger than " + std::to_string(kMaxFileBytes) + " bytes");
-      if (!images_.contains(*path)) {
+      if (!path) continue;
+      if (!images_.contains(*path)) {  // read once, however many shapes it textures
+        std::optional<std::string> bytes = read(*path, t.where);
+        if (!bytes) continue;
+        meter_.add(LoadLimit::BytesProduced, bytes->size(), t.where);  // kept in the scene
         images_[*path] = is_intensity_image(*bytes, *path);
         scene_.images.push_back({*path, std::move(*bytes), t.where});
       }
@@ -361,6 +384,7 @@ class Converter {
   // ---- Lights (§6.16, §6.36, §6.43)
   void light(const Node& n, const Affine& ct) {
     if (!sf_bool(n, "on", true)) return;
+    meter_.add_light(n.where);
     const double intensity = std::clamp(sf_float(n, "intensity", 1), 0.0, 1.0);
     const Rgb color = sf_color(n, "color", {1, 1, 1}) * intensity;
     ambient_ += color * std::clamp(sf_float(n, "ambientIntensity", 0), 0.0, 1.0);
@@ -582,7 +606,12 @@ class Converter {
 
   const SceneSource& source_;
   const std::string path_;
-  std::string file_;  // the file being converted, for resolving Inline urls
+  LoadMeter& meter_;
+  // Every file's parsed world by path, alive for the whole conversion: Billboards and the mesh
+  // cache hold nodes by address until the end.
+  std::map<std::string, std::unique_ptr<const ParsedWorld>> worlds_;
+  std::unordered_set<const Node*> visited_;  // nodes the walk has been through
+  std::string file_;                         // the file being converted, for resolving Inline urls
   Scene scene_;
   std::map<std::string, int> ignored_, unsupported_;
   struct Billboard {
@@ -600,7 +629,6 @@ class Converter {
     std::vector<std::size_t> lights, billboards;
   };
   std::vector<OpenGroup> open_groups_;
-  std::vector<NodePtr> roots_;          // every file's, alive for the whole conversion
   std::map<std::string, bool> images_;  // in Scene::images: whether an intensity image
   std::map<std::pair<const Node*, CornerAttributes>, std::pair<std::optional<std::size_t>, bool>>
       meshes_;
@@ -614,8 +642,9 @@ class Converter {
 }  // namespace
 }  // namespace vrml
 
-Scene load_vrml(const SceneSource& source, const std::string& path) {
-  return vrml::Converter(source, path).run();
+Scene load_vrml(const SceneSource& source, const std::string& path, const LoadBudget& budget) {
+  LoadMeter meter(budget);
+  return vrml::Converter(source, path, meter).run();
 }
 
 }  // namespace tessera

@@ -23,10 +23,8 @@
 #include "common/loaders/hill_mesh_loader.h"
 #include "common/loaders/obj_loader.h"
 #include "common/loaders/scene_source.h"
-#include "common/loaders/sdl_parser.h"
-#include "common/loaders/vrml_lexer.h"
+#include "common/loaders/sdl_loader.h"
 #include "common/loaders/vrml_loader.h"
-#include "common/loaders/vrml_parser.h"
 #include "common/render/prepared_scene.h"
 #include "common/render/render.h"
 #include "common/scene/source_location.h"
@@ -146,14 +144,14 @@ inline void check_scene(const Scene& scene) {
 inline bool check_sdl_input(std::string_view bytes) {
   MemorySource source;
   source.add("scene.sdl", std::string(bytes));
-  // Lowered limits keep each input fast (the defaults are tested in
-  // tests/loaders/sdl_include_test.cpp).
-  sdl::Limits limits;
-  limits.max_objects = 2000;
-  limits.max_lights = 100;
-  limits.max_tokens = 1u << 20;
+  // A lowered budget keeps each input fast (the defaults are tested in
+  // tests/loaders/load_budget_test.cpp).
+  LoadBudget budget;
+  budget.max_objects = 2000;
+  budget.max_lights = 100;
+  budget.max_tokens = 1u << 20;
   try {
-    check_scene(sdl::load_sdl_with_limits(source, "scene.sdl", limits));
+    check_scene(load_sdl(source, "scene.sdl", budget));
   } catch (const SceneError&) {
     return false;
   }
@@ -185,20 +183,18 @@ inline bool check_mesh_input(std::string_view bytes) {
   return true;
 }
 
-// A world, plain or gzip. So that each input stays fast it is first parsed with lowered limits
-// and only small worlds go on (the defaults are tested in tests/loaders/vrml_parser_test.cpp);
-// the world may Inline itself.
+// A world, plain or gzip, loaded with a lowered budget so that each input stays fast (the
+// defaults are tested in tests/loaders/load_budget_test.cpp); the world may Inline itself.
 inline bool check_vrml_input(std::string_view bytes) {
   const std::string world(bytes);
   MemorySource source;
   source.add("world.wrl", world);
-  vrml::ParseLimits limits;
-  limits.max_nesting = 64;
-  limits.max_nodes = 5000;
+  LoadBudget budget;
+  budget.max_node_nesting = 64;
+  budget.max_nodes = 5000;
+  budget.max_bytes_read = 1u << 20;
   try {
-    vrml::parse_vrml(vrml::lex_vrml(vrml::vrml_text(world, "world.wrl", 1u << 20), "world.wrl"),
-                     limits);
-    check_scene(load_vrml(source, "world.wrl"));
+    check_scene(load_vrml(source, "world.wrl", budget));
   } catch (const SceneError&) {
     return false;
   }

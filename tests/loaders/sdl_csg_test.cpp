@@ -86,8 +86,9 @@ TEST(SdlCsg, AlgebraicSurfacesAreRefusedAsChildren) {
 TEST(SdlCsg, NestingDepthIsLimited) {
   std::string text;
   for (int i = 0; i < 300; ++i) text += "union ";
-  EXPECT_TRUE(fails_at(text, 1, 1 + 6 * 256,
-                       "boolean objects are nested too deeply (more than 256 levels)"));
+  EXPECT_TRUE(
+      fails_at(text, 1, 1 + 6 * 256,
+               "boolean objects are nested too deeply (more than 256 levels) (limit csg_depth)"));
 }
 
 }  // namespace

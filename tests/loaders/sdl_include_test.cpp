@@ -128,16 +128,21 @@ TEST(SdlInclude, NestingIsLimitedTo64) {
   files["f64.sdl"] = "include f65.sdl";
   files["f65.sdl"] = "sphere";
   EXPECT_TRUE(fails_with("include f1.sdl", "f64.sdl", 1, 1,
-                         "include and use are nested too deeply (more than 64 levels)", files));
+                         "include and use are nested too deeply (more than 64 levels) (limit "
+                         "replay_nesting)",
+                         files));
 }
 
 TEST(SdlLimits, FilesLargerThan16MiBAreRefused) {
   const std::string big(16u * 1024 * 1024 + 1, ' ');
   EXPECT_TRUE(fails_at("sphere\ninclude big.sdl", 2, 9,
-                       "included file 'big.sdl' is larger than 16 MiB", {{"big.sdl", big}}));
-  EXPECT_TRUE(fails_at("mesh big.obj 1", 1, 6, "mesh file 'big.obj' is larger than 16 MiB",
+                       "included file 'big.sdl' is larger than 16 MiB (limit file_bytes)",
+                       {{"big.sdl", big}}));
+  EXPECT_TRUE(fails_at("mesh big.obj 1", 1, 6,
+                       "mesh file 'big.obj' is larger than 16 MiB (limit file_bytes)",
                        {{"big.obj", big}}));
-  EXPECT_TRUE(fails_at(big, 1, 1, "scene file 'scene.sdl' is larger than 16 MiB"));
+  EXPECT_TRUE(
+      fails_at(big, 1, 1, "scene file 'scene.sdl' is larger than 16 MiB (limit file_bytes)"));
   // Exactly 16 MiB is allowed.
   EXPECT_NO_THROW(load_text("include ok.sdl", {{"ok.sdl", std::string(16u << 20, '\n')}}));
 }
@@ -155,12 +160,12 @@ TEST(SdlLimits, MissingTopLevelFile) {
 }
 
 // The other limits, lowered so that tests reach them cheaply.
-::testing::AssertionResult fails_with_limits(const std::string& text, const sdl::Limits& limits,
+::testing::AssertionResult fails_with_limits(const std::string& text, const LoadBudget& limits,
                                              int line, int column, const std::string& message) {
   MemorySource source;
   source.add("scene.sdl", text);
   try {
-    sdl::load_sdl_with_limits(source, "scene.sdl", limits);
+    load_sdl(source, "scene.sdl", limits);
   } catch (const SceneError& e) {
     if (e.where().line == line && e.where().column == column && e.message() == message) {
       return ::testing::AssertionSuccess();
@@ -171,16 +176,16 @@ TEST(SdlLimits, MissingTopLevelFile) {
 }
 
 TEST(SdlLimits, ObjectsLightsPushesAndTokens) {
-  sdl::Limits limits;
+  LoadBudget limits;
   limits.max_objects = 3;
   EXPECT_TRUE(fails_with_limits("sphere sphere\nsphere cube", limits, 2, 8,
-                                "too many objects (more than 3)"));
+                                "the scene expands to more than 3 objects (limit objects)"));
   limits.max_lights = 1;
   EXPECT_TRUE(fails_with_limits("light 0 0 0 1 1 1 light 0 0 0 1 1 1", limits, 1, 19,
-                                "too many lights (more than 1)"));
+                                "the scene expands to more than 1 lights (limit lights)"));
   limits.max_push_depth = 2;
   EXPECT_TRUE(fails_with_limits("push pop push push push", limits, 1, 20,
-                                "too many nested 'push' (more than 2)"));
+                                "too many nested 'push' (more than 2) (limit push_depth)"));
   // Macros that double at every level would replay 2^30 tokens: the token budget stops them.
   std::string doubling = "def m0 { push pop }\n";
   for (int i = 1; i <= 30; ++i) {
@@ -188,27 +193,27 @@ TEST(SdlLimits, ObjectsLightsPushesAndTokens) {
     doubling += "def m" + std::to_string(i) + " { use " + prev + " use " + prev + " }\n";
   }
   doubling += "use m30";
-  limits = sdl::Limits{};
+  limits = LoadBudget{};
   limits.max_tokens = 1000;
   MemorySource source;
   source.add("scene.sdl", doubling);
   try {
-    sdl::load_sdl_with_limits(source, "scene.sdl", limits);
+    load_sdl(source, "scene.sdl", limits);
     ADD_FAILURE() << "no error";
   } catch (const SceneError& e) {
     EXPECT_EQ(e.message(),
-              "the scene is too large: more than 1000 tokens to parse, counting includes and "
-              "macro uses");
+              "the scene expands to more than 1000 tokens to parse, counting includes and "
+              "macro uses (limit tokens)");
   }
 }
 
 TEST(SdlLimits, WarningsAreCapped) {
-  sdl::Limits limits;
+  LoadBudget limits;
   limits.max_warnings = 2;
   MemorySource source;
   source.add("scene.sdl", "include a.sdl");
   source.add("a.sdl", "background 0 0 0 background 0 0 0 showExtents 1 showExtents 0");
-  const Scene scene = sdl::load_sdl_with_limits(source, "scene.sdl", limits);
+  const Scene scene = load_sdl(source, "scene.sdl", limits);
   ASSERT_EQ(scene.warnings.size(), 3u);
   EXPECT_EQ(scene.warnings[2], "further warnings are omitted");
 }

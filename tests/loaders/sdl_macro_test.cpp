@@ -105,8 +105,9 @@ TEST(SdlMacros, NestingIsLimitedTo64Replays) {
   };
   EXPECT_EQ(load_text(chain(63)).objects.size(), 64u);
   // The 65th nested `use` is the one in m0's user, m1, at line 2, column 10.
-  EXPECT_TRUE(
-      fails_at(chain(64), 2, 10, "include and use are nested too deeply (more than 64 levels)"));
+  EXPECT_TRUE(fails_at(
+      chain(64), 2, 10,
+      "include and use are nested too deeply (more than 64 levels) (limit replay_nesting)"));
 }
 
 }  // namespace

@@ -210,12 +210,18 @@ TEST(VrmlParser, GzipStreamsAreInflated) {
   const std::string text = std::string(kVrmlHeader) + "Shape { geometry Sphere {} }\n";
   const std::string packed = gzip(text);
   ASSERT_EQ(static_cast<unsigned char>(packed[0]), 0x1f);
-  EXPECT_EQ(vrml::vrml_text(packed, "w.wrl.gz", 1 << 20), text);
+  LoadMeter meter{LoadBudget{}};
+  EXPECT_EQ(vrml::vrml_text(packed, "w.wrl.gz", meter), text);
+  EXPECT_EQ(meter.total(LoadLimit::BytesRead), text.size());  // inflated bytes are counted
   MemorySource source;
   source.add("w.wrl.gz", packed);
   EXPECT_EQ(load_vrml(source, "w.wrl.gz").objects.size(), 1u);
-  EXPECT_THROW(vrml::vrml_text(packed, "w.wrl.gz", 10), SceneError);  // inflates too far
-  EXPECT_THROW(vrml::vrml_text(packed.substr(0, packed.size() / 2), "w.wrl.gz", 1 << 20),
+  LoadBudget small;
+  small.max_bytes_read = 10;
+  LoadMeter small_meter(small);
+  EXPECT_THROW(vrml::vrml_text(packed, "w.wrl.gz", small_meter),
+               LoadBudgetExceeded);  // inflates too far
+  EXPECT_THROW(vrml::vrml_text(packed.substr(0, packed.size() / 2), "w.wrl.gz", meter),
                SceneError);  // truncated
 }
 
