@@ -254,6 +254,7 @@ void Api::predict(HttpRequest& request, const Query& query, HttpRespond& respond
               return json_response(
                   200, {{"predicted_seconds", p.seconds ? nlohmann::json(*p.seconds) : nullptr},
                         {"seconds_per_pixel_pass", job->seconds_per_pixel_pass},
+                        {"lower_bound", job->probe_cut_short},
                         {"pixel_passes", pixel_passes},
                         {"threads", p.threads},
                         {"calibration", p.factor},

@@ -81,9 +81,14 @@ json settings_from_query(const std::map<std::string, std::string>& query) {
   return s;
 }
 
+// The scene's name in the bundle when the request gives none: what error messages call it.
+std::string default_main(const std::string& format) {
+  return format == "vrml" ? "scene.wrl" : "scene.sdl";
+}
+
 struct Submission {
   std::map<std::string, std::string> files;
-  std::string main = "scene.sdl";
+  std::string main = default_main("sdl");
   std::string format = "sdl";
   json settings = json::object();
 };
@@ -98,7 +103,7 @@ Submission read_json_submission(std::string_view body,
     if (!known.count(key)) throw bad_request("unknown field \"" + key + "\"");
   Submission sub;
   sub.format = get_string(j, "format", "sdl");
-  sub.main = get_string(j, "main", "scene.sdl");
+  sub.main = get_string(j, "main", default_main(sub.format));
   if (j.contains("files")) {
     if (!j["files"].is_object()) throw bad_request("files must map paths to file contents");
     for (const auto& [path, bytes] : j["files"].items()) {
@@ -159,7 +164,7 @@ Submission read_multipart_submission(std::string_view body, const std::string& b
     throw ApiError(400, "bad_bundle", e.what());
   }
   Submission sub;
-  std::optional<std::string> scene;
+  std::optional<std::string> scene, main;
   for (FormPart& part : parts) {
     if (part.name == "scene") {
       scene = std::move(part.data);
@@ -168,7 +173,7 @@ Submission read_multipart_submission(std::string_view body, const std::string& b
       if (!sub.settings.is_object())
         throw ApiError(400, "bad_json", "settings is not a JSON object");
     } else if (part.name == "main") {
-      sub.main = part.data;
+      main = part.data;
     } else if (part.name == "format") {
       sub.format = part.data;
     } else if (part.name == "file" && part.filename) {
@@ -177,9 +182,24 @@ Submission read_multipart_submission(std::string_view body, const std::string& b
       throw bad_request("unknown form field \"" + part.name + "\"");
     }
   }
+  sub.main = main.value_or(default_main(sub.format));
   if (scene) sub.files[sub.main] = std::move(*scene);
   if (!sub.files.count(sub.main)) throw bad_request("the form has no scene (field \"scene\")");
   return sub;
+}
+
+// A scene that produces more than the load budget allows: 413 when it is a limit on bytes
+// (what the request would make the coordinator hold), else 422; located where it was passed.
+ApiError over_load_budget(const LoadBudgetExceeded& e) {
+  const LoadLimit limit = e.limit();
+  const bool bytes = limit == LoadLimit::BytesRead || limit == LoadLimit::BytesProduced ||
+                     limit == LoadLimit::FileBytes;
+  return ApiError(bytes ? 413 : 422, "over_budget", e.what(),
+                  {{"limit", e.limit_name()},
+                   {"value", e.limit_value()},
+                   {"file", e.where().file},
+                   {"line", e.where().line},
+                   {"column", e.where().column}});
 }
 
 // The one place where a request's budget meets the loader and the probe.
@@ -194,8 +214,10 @@ void check_scene(const Submission& sub, const std::optional<std::filesystem::pat
   std::optional<DirectorySource> folder;
   if (scenes_dir) folder.emplace(*scenes_dir);
   RecordingSource source(submitted, folder ? &*folder : nullptr);
+  LoadBudget load_budget;  // the defaults of docs/SERVICE.md's "Load budget", and our deadline
+  load_budget.deadline = budget.deadline;
   try {
-    Scene scene = load_scene(source, sub.main, *scene_format_named(sub.format));
+    Scene scene = load_scene(source, sub.main, *scene_format_named(sub.format), load_budget);
     budget.check("loading the scene");
     apply_overrides(scene, out.spec.overrides);
     if (scene.globals.max_recursion_depth > limits.max_depth)
@@ -204,12 +226,16 @@ void check_scene(const Submission& sub, const std::optional<std::filesystem::pat
     const PreparedScene prepared(scene, out.spec.settings.bvh);
     budget.check("preparing the scene");
     out.effects = render_effects(prepared, out.spec.settings).names();
-    out.seconds_per_pixel_pass =
-        probe_render_cost(prepared, out.spec.settings).seconds_per_pixel_pass();
+    const CostProbe probe = probe_render_cost(prepared, out.spec.settings);
+    out.seconds_per_pixel_pass = probe.seconds_per_pixel_pass();
+    out.probe_cut_short = probe.cut_short;
     budget.check("the cost probe");
     out.plan.unit_pixels = unit_pixels_for_cost(out.seconds_per_pixel_pass);
     out.warnings = scene.warnings;
     for (const auto& u : prepared.unsupported()) out.warnings.push_back(u);
+  } catch (const LoadBudgetExceeded& e) {
+    if (e.limit() == LoadLimit::Deadline) throw budget.over_time("loading the scene");
+    throw over_load_budget(e);
   } catch (const SceneError& e) {
     throw ApiError(400, "scene_error", e.what(),
                    {{"file", e.where().file},

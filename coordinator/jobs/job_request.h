@@ -25,6 +25,7 @@ struct JobRequest {
   int priority = 1;
   std::vector<std::string> effects, warnings;
   double seconds_per_pixel_pass = 0;  // measured by a probe on the coordinator (issue 5)
+  bool probe_cut_short = false;       // the probe hit its deadline: the cost is a lower bound
 };
 
 struct JobUpload {

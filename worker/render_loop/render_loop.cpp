@@ -38,9 +38,10 @@ struct PreparedJob {
         MemorySource source(bundle->files);
         const std::optional<SceneFormat> format = scene_format_named(bundle->format);
         if (!format) throw std::runtime_error("unknown scene format \"" + bundle->format + "\"");
-        // TODO(issue 16 §2): once the loaders take a LoadBudget, pass it {cancel: &cancelled}
-        // here, so that cancelling stops a long load as it stops a render.
-        scene = std::make_unique<Scene>(load_scene(source, bundle->main, *format));
+        // Cancelling stops a long load as it stops a render.
+        LoadBudget budget;
+        budget.cancel = &cancelled;
+        scene = std::make_unique<Scene>(load_scene(source, bundle->main, *format, budget));
         if (cancelled) return;  // the job went while loading: skip building its BVH
         apply_overrides(*scene, spec.overrides);
         prepared = std::make_unique<PreparedScene>(*scene, spec.settings.bvh);
