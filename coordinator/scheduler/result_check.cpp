@@ -1,6 +1,7 @@
 #include "coordinator/scheduler/result_check.h"
 
 #include <cmath>
+#include <cstdint>
 
 #include "common/protocol/frame.h"
 #include "common/protocol/job_spec.h"
@@ -35,9 +36,12 @@ std::vector<float> checked_pixels(const std::string& payload, long long pixels) 
 
 RenderStats checked_stats(const nlohmann::json& stats, long long pixels, double wall_seconds) {
   if (!stats.is_object()) throw ProtocolError("statistics are not an object");
-  // Parsed as unsigned, a negative count would wrap around to an absurd one: refuse it here.
+  // Read as unsigned, a negative count would wrap around to an absurd one: refuse it here.
+  auto non_negative_integer = [](const nlohmann::json& v) {
+    return v.is_number_unsigned() || (v.is_number_integer() && v.get<std::int64_t>() >= 0);
+  };
   for (const char* key : kCounts)
-    if (stats.contains(key) && !stats[key].is_number_unsigned())
+    if (stats.contains(key) && !non_negative_integer(stats[key]))
       throw ProtocolError(std::string("statistic ") + key + " is not a non-negative integer");
   if (stats.contains("seconds") && !stats["seconds"].is_number())
     throw ProtocolError("statistic seconds is not a number");

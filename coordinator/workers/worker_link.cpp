@@ -70,7 +70,11 @@ void WorkerLink::on_frame(const Frame& frame) {
       return scheduler_.on_job_failed(id_, frame);
     connection_->close(std::string("unexpected ") + to_string(frame.type) + " frame");
   } catch (const std::exception& e) {  // ProtocolError or a mistyped JSON field
-    spdlog::warn("worker {} ({}): {}", id_, connection_->peer(), e.what());
+    if (stage_ == Stage::Ready)
+      spdlog::warn("worker {} ({}): {}", id_, connection_->peer(), e.what());
+    else if (auto suppressed = port_->reject_log.allow())  // a stranger may repeat it at will
+      spdlog::warn("worker port: {}: {}{}", connection_->peer(), e.what(),
+                   suppressed_note(*suppressed));
     connection_->close(e.what());
   }
 }

@@ -164,6 +164,7 @@ TEST_F(SchedulerTest, AJobFailsWhenASecondWorkerReportsItAndOnlyThatJob) {
   EXPECT_EQ(bad.state, JobState::Running);  // one worker's word
   report_failure(a, bad, "scene.sdl:1:1: broken");
   EXPECT_EQ(bad.state, JobState::Running);  // nor twice the same worker's
+  EXPECT_EQ(bad.warnings.size(), 1u);
   report_failure(b, bad, "out of memory");
   EXPECT_EQ(bad.state, JobState::Failed);
   EXPECT_EQ(bad.error, "worker w: scene.sdl:1:1: broken; also worker w: out of memory");
@@ -273,6 +274,8 @@ TEST_F(SchedulerTest, ResultsThatBreakARuleAreRefusedAndChangeNothing) {
       {"negative seconds", with_stat("seconds", -1.0)},
       {"rays beyond any machine", with_stat("reflection_rays", 1e15)},
   };
+  // Cancelled, the other job would drop late results silently, but not one it never sent.
+  ASSERT_TRUE(scheduler_.cancel(other.id));
   for (const auto& [name, frame] : forged) {
     EXPECT_THROW(scheduler_.on_result(w.id, frame), ProtocolError) << name;
     EXPECT_EQ(job.done_cost, 0) << name;
