@@ -272,7 +272,7 @@ TEST_F(SchedulerTest, ResultsThatBreakARuleAreRefusedAndChangeNothing) {
       {"more NaN samples than samples", with_stat("nan_samples", 1u << 30)},
       {"seconds beyond the wall time", with_stat("seconds", 3600.0)},
       {"negative seconds", with_stat("seconds", -1.0)},
-      {"rays beyond any machine", with_stat("reflection_rays", 1e15)},
+      {"rays beyond any machine", with_stat("reflection_rays", std::uint64_t{1} << 50)},
   };
   // Cancelled, the other job would drop late results silently, but not one it never sent.
   ASSERT_TRUE(scheduler_.cancel(other.id));
