@@ -28,9 +28,9 @@ constexpr const char* kCounts[] = {
 std::vector<float> checked_pixels(const std::string& payload, long long pixels) {
   std::vector<float> values = unpack_floats(payload, static_cast<std::size_t>(pixels) * 3);
   for (std::size_t i = 0; i < values.size(); ++i)
-    if (!std::isfinite(values[i]) || values[i] < 0)
+    if (!std::isfinite(values[i]))
       throw ProtocolError("pixel value " + std::to_string(values[i]) + " at " +
-                          std::to_string(i / 3) + " is not finite and non-negative");
+                          std::to_string(i / 3) + " is not finite");
   return values;
 }
 

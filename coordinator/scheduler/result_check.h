@@ -13,8 +13,10 @@
 
 namespace tessera {
 
-// The unit's `pixels` × 3 float32 values, each finite and not negative (the tracer zeroes
-// non-finite samples and every colour it reads is non-negative).
+// The unit's `pixels` × 3 float32 values, each finite (the tracer zeroes non-finite samples).
+// Negative values are let through: an honest worker renders them for a VRML world with
+// negative colours (the VRML loader takes them as written, tessera-render writes them), and
+// refusing them would drop every worker that takes such a job, again and again.
 std::vector<float> checked_pixels(const std::string& payload, long long pixels);
 
 // The statistics of a unit of `pixels` pixels that was sent `wall_seconds` ago: counts are

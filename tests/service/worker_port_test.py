@@ -5,7 +5,7 @@ handshake but send forged results and failures. The real coordinator, worker and
 run as processes on loopback, as in service_test.py, whose helpers this uses.
 
 usage: worker_port_test.py --build BUILD_DIR --source SOURCE_DIR CASE
-CASE: caps | deadline | results | emfile
+CASE: caps | deadline | results | negative_colours | emfile
 """
 import argparse
 import hashlib
@@ -299,6 +299,30 @@ def case_results():
             svc.assert_identical(path, os.path.join(tmp, "cli.exr"))
         names_left = sorted(w["name"] for w in service.get("/api/workers"))
         assert names_left == ["failing", "real"], names_left
+
+
+def case_negative_colours():
+    """Negative pixel values are honest: a VRML world may have negative colours. The job
+    finishes bit-identical to tessera-render and no worker is dropped for it."""
+    world = "#VRML V2.0 utf8\nBackground { skyColor [-1 -0.5 0.25] }\n"
+    settings = {"width": 16, "height": 16}
+    with tempfile.TemporaryDirectory() as tmp, Service() as service:
+        service.worker("real")
+        service.wait_workers(1)
+        body = json.dumps({"scene": world, "format": "vrml", "settings": settings}).encode()
+        status, _, reply = service.request("POST", "/api/jobs", body,
+                                           {"Content-Type": "application/json"})
+        assert status == 201, (status, reply)
+        job = json.loads(reply)
+        assert service.wait_job(job["id"], timeout=20)["state"] == "done"
+        assert service.get("/api/workers")[0]["units_done"] > 0
+        assert "left" not in coordinator_log(service)  # "worker N ... left; units re-queued"
+        path = os.path.join(tmp, "world.wrl")
+        with open(path, "w") as f:
+            f.write(world)
+        service.exr(job["id"], os.path.join(tmp, "svc.exr"))
+        svc.render_cli(path, settings, os.path.join(tmp, "cli.exr"))
+        svc.assert_identical(os.path.join(tmp, "svc.exr"), os.path.join(tmp, "cli.exr"))
 
 
 def case_emfile():
