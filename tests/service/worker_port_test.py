@@ -195,7 +195,7 @@ def case_caps():
         service.wait_workers(1)
         # 36 refusals in a burst make one log line, not 36.
         refusals = coordinator_log(service).count("refused a connection")
-        assert refusals == 1, refusals
+        assert 1 <= refusals <= 2, refusals  # 2 if the burst spans a second
         print("%d of 100 closed at once; GET /api/workers in %.1f ms" % (closed, seconds * 1e3))
 
 
@@ -231,8 +231,9 @@ def case_results():
         service.worker("real")
         service.wait_workers(len(names) + 1)
         scene = open(svc.demo_scene()).read()
-        # Enough units for every fake's slots and the real worker's.
-        big = dict(SETTINGS, width=320, height=240)
+        # Enough units for every fake's slots and the real worker's: units are sized to about
+        # 20 ms of the probe's cost, so a costlier pixel (aa 9) makes more of them.
+        big = dict(SETTINGS, width=320, height=240, aa=9)
         first = service.submit(scene, big)
         units = {n: fakes[n].next_unit() for n in names}
         time.sleep(0.2)  # every fake has all the units it will get of the first job
