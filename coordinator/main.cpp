@@ -66,7 +66,7 @@ int main(int argc, char** argv) {
   try {
     asio::io_context io;
     JobStore jobs(options.limits.max_jobs);
-    Scheduler scheduler(jobs, {.max_job_seconds = options.limits.max_job_seconds});
+    Scheduler scheduler({.max_job_seconds = options.limits.max_job_seconds});
     const auto address = asio::ip::make_address(options.bind);
     WorkerListener workers(io, {address, options.worker_port}, {options.secret, options.insecure},
                            scheduler, options.timing);

@@ -2,6 +2,5 @@
 # Configures and builds Tessera in build/ (optimized, with debug info). Usage: scripts/build.sh
 set -euo pipefail
 cd "$(dirname "$0")/.."
-jobs=$(nproc)
-cmake -S . -B build -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo >/dev/null
-cmake --build build -j"$jobs"
+scripts/configure.sh build -DCMAKE_BUILD_TYPE=RelWithDebInfo
+cmake --build build -j"$(nproc)"

@@ -9,8 +9,8 @@
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${1:-20}
-cmake -S . -B build-fuzz -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ \
-  -DTESSERA_FUZZ=ON >/dev/null
+scripts/configure.sh build-fuzz -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_COMPILER=clang++ \
+  -DTESSERA_FUZZ=ON
 cmake --build build-fuzz -j"$(nproc)" --target fuzz_sdl fuzz_mesh fuzz_vrml
 
 corpus=build-fuzz/corpus

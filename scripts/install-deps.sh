@@ -5,11 +5,15 @@ set -euo pipefail
 
 packages=(
   # build
-  cmake ninja-build g++ clang-format
+  cmake ninja-build g++ clang-format ccache
   # fuzzing (scripts/fuzz.sh): clang and its libFuzzer runtime
   clang libclang-rt-14-dev
   # libraries (DESIGN.md §6)
   libboost-dev nlohmann-json3-dev libopenimageio-dev libspdlog-dev zlib1g-dev
+  libssl-dev        # SHA-256, HMAC (libcrypto)
+  libarchive-dev    # tar bundles
+  libcli11-dev      # command lines
+  libsqlite3-dev    # the coordinator's job store
   libgtest-dev libgmock-dev libbenchmark-dev
   # tools used by tests and benchmarks; chromium and node drive the web page's test
   openimageio-tools python3 curl chromium

@@ -1,14 +1,15 @@
-// Command line of tessera-worker: --coordinator HOST:PORT [--secret S] [--threads N]
+// Command line of tessera-worker (CLI11): --coordinator HOST:PORT [--secret S] [--threads N]
 // [--name NAME]. The secret may come from TESSERA_SECRET instead, so it stays out of `ps`.
 #pragma once
+
+#include <variant>
 
 #include "worker/session/worker_session.h"
 
 namespace tessera {
 
-extern const char* const kWorkerUsage;
-
-// Throws std::invalid_argument with a usage message.
-WorkerConfig parse_worker_options(int argc, char** argv);
+// The configuration, or the exit status to stop with: 0 after --help, 2 after a usage error
+// (both already printed).
+std::variant<WorkerConfig, int> parse_worker_options(int argc, char** argv);
 
 }  // namespace tessera

@@ -11,8 +11,10 @@ namespace tessera {
 namespace {
 
 // The degree without leading zero coefficients, so that derivatives and root counts are right.
+// Never above kMaxPolynomialDegree: GCC 12 at -O3 cannot otherwise bound the loops that read
+// c[0..degree] and warns that `p` may be read uninitialized.
 int effective_degree(const Polynomial& p) {
-  int n = p.degree;
+  int n = std::min(p.degree, kMaxPolynomialDegree);
   while (n > 0 && p.c[n] == 0) --n;
   return n;
 }

@@ -53,7 +53,7 @@ struct Prediction {
 
 class Scheduler {
  public:
-  Scheduler(JobStore& jobs, SchedulerOptions options) : jobs_(jobs), options_(options) {}
+  explicit Scheduler(SchedulerOptions options) : options_(options) {}
 
   // The caller welcomes the worker, then calls fill_slots() to give it work.
   std::int64_t add_worker(WorkerHello hello, std::shared_ptr<FrameConnection> connection);
@@ -124,7 +124,6 @@ class Scheduler {
   // the units it held.
   void withdraw(WorkerSlot& worker, JobRun& run);
 
-  JobStore& jobs_;
   SchedulerOptions options_;
   std::map<std::int64_t, JobRun> runs_;
   std::map<std::int64_t, WorkerSlot> workers_;

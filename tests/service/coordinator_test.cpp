@@ -1,55 +1,17 @@
-// Unit tests of the coordinator's pure parts: tar bundles, request targets, job requests and
+// Unit tests of the coordinator's pure parts: request targets, job requests and
 // the merge of unit results into the frame buffer and the display.
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <cstdio>
 
 #include "coordinator/http/api.h"
 #include "coordinator/jobs/api_error.h"
 #include "coordinator/jobs/job.h"
 #include "coordinator/jobs/job_request.h"
 #include "coordinator/jobs/multipart.h"
-#include "coordinator/jobs/tar_reader.h"
 
 namespace tessera {
 namespace {
-
-// One ustar entry: header block plus data padded to 512 bytes.
-std::string tar_entry(const std::string& name, const std::string& data, char type = '0',
-                      const std::string& prefix = "") {
-  std::string header(512, '\0');
-  header.replace(0, name.size(), name);
-  char size[12];
-  std::snprintf(size, sizeof size, "%011o", static_cast<unsigned>(data.size()));
-  header.replace(124, 11, size);
-  header[156] = type;
-  header.replace(257, 6, std::string("ustar\0", 6));
-  header.replace(345, prefix.size(), prefix);
-  std::string padded = data;
-  padded.resize((data.size() + 511) / 512 * 512, '\0');
-  return header + padded;
-}
-
-TEST(TarReader, ReadsFilesWithPrefixesAndLongNames) {
-  const std::string archive = tar_entry("scene.sdl", "sphere") + tar_entry("dir/", "", '5') +
-                              tar_entry("b.obj", "v 0 0 0", '0', "meshes") +
-                              tar_entry("././@LongLink", "textures/a-very-long-name.ppm", 'L') +
-                              tar_entry("ignored", "P3") + std::string(1024, '\0');
-  const auto files = read_tar(archive);
-  ASSERT_EQ(files.size(), 3u);
-  EXPECT_EQ(files.at("scene.sdl"), "sphere");
-  EXPECT_EQ(files.at("meshes/b.obj"), "v 0 0 0");
-  EXPECT_EQ(files.at("textures/a-very-long-name.ppm"), "P3");
-}
-
-TEST(TarReader, RefusesTruncatedArchives) {
-  const std::string entry = tar_entry("scene.sdl", std::string(600, 'x'));
-  EXPECT_THROW(read_tar(entry.substr(0, 700)), std::runtime_error);
-  std::string bad = tar_entry("a", "b");
-  bad[124] = 'z';
-  EXPECT_THROW(read_tar(bad), std::runtime_error);
-}
 
 TEST(SplitTarget, DecodesQueries) {
   const auto [path, query] = split_target("/api/jobs/3/image?format=exr&main=a%2Fb.sdl&x=1+2&flag");

@@ -99,8 +99,7 @@ class SchedulerTest : public ::testing::Test {
   asio::io_context io_;
   tcp::acceptor acceptor_;
   JobStore store_{16};
-  Scheduler scheduler_{store_,
-                       {.speculation_factor = 0, .min_speculation = std::chrono::milliseconds(0)}};
+  Scheduler scheduler_{{.speculation_factor = 0, .min_speculation = std::chrono::milliseconds(0)}};
   std::vector<std::unique_ptr<FakeWorker>> workers_;
 };
 

@@ -1,0 +1,554 @@
+#include "coordinator/store/job_database.h"
+
+#include <algorithm>
+#include <bit>
+#include <cctype>
+#include <cstring>
+#include <system_error>
+
+#include <nlohmann/json.hpp>
+
+#include "coordinator/store/content_files.h"
+#include "coordinator/store/sqlite.h"
+
+namespace tessera {
+
+// Payloads are the floats' native bytes; the store is read back on the machine that wrote it.
+static_assert(std::endian::native == std::endian::little, "the store's blobs are little-endian");
+
+namespace {
+
+// 'TESS': marks the database as a Tessera job store, so that another application's SQLite file
+// given as --data-dir is refused rather than written into.
+constexpr std::int64_t kApplicationId = 0x54455353;
+
+constexpr const char* kSchema = R"sql(
+CREATE TABLE bundles (
+  hash TEXT PRIMARY KEY,
+  bytes INTEGER NOT NULL
+);
+CREATE TABLE jobs (
+  id INTEGER PRIMARY KEY AUTOINCREMENT,
+  bundle_hash TEXT NOT NULL REFERENCES bundles(hash),
+  spec TEXT NOT NULL,
+  width INTEGER NOT NULL, height INTEGER NOT NULL, passes INTEGER NOT NULL,
+  progressive INTEGER NOT NULL, unit_order TEXT NOT NULL, preview TEXT NOT NULL,
+  unit_pixels INTEGER NOT NULL,
+  priority INTEGER NOT NULL,
+  effects TEXT NOT NULL, warnings TEXT NOT NULL,
+  seconds_per_pixel_pass REAL NOT NULL, uncalibrated_prediction REAL, predicted_seconds REAL,
+  prediction_threads INTEGER NOT NULL,
+  state TEXT NOT NULL, error TEXT NOT NULL,
+  created_us INTEGER NOT NULL, finished_us INTEGER
+);
+CREATE INDEX jobs_by_finish ON jobs(finished_us) WHERE finished_us IS NOT NULL;
+CREATE TABLE results (
+  job_id INTEGER NOT NULL REFERENCES jobs(id) ON DELETE CASCADE,
+  sequence INTEGER NOT NULL,
+  unit INTEGER NOT NULL,
+  payload BLOB NOT NULL,
+  stats TEXT NOT NULL,
+  worker TEXT NOT NULL,
+  PRIMARY KEY (job_id, sequence)
+);
+CREATE TABLE images (
+  job_id INTEGER NOT NULL REFERENCES jobs(id) ON DELETE CASCADE,
+  name TEXT NOT NULL,
+  bytes INTEGER NOT NULL,
+  PRIMARY KEY (job_id, name)
+);
+)sql";
+
+std::int64_t to_micros(WallClock::time_point t) {
+  return std::chrono::duration_cast<std::chrono::microseconds>(t.time_since_epoch()).count();
+}
+
+WallClock::time_point from_micros(std::int64_t us) {
+  return WallClock::time_point(
+      std::chrono::duration_cast<WallClock::duration>(std::chrono::microseconds(us)));
+}
+
+std::string describe(const std::vector<std::int64_t>& jobs) {
+  if (jobs.empty()) return "job store";
+  std::string out = jobs.size() == 1 ? "job " : "jobs ";
+  for (std::size_t i = 0; i < jobs.size(); ++i) out += (i ? ", " : "") + std::to_string(jobs[i]);
+  return out;
+}
+
+// Runs a write and turns any failure below it (SQLite, file system) into a StoreError naming
+// the jobs it was for.
+template <class Write>
+auto guarded(const std::vector<std::int64_t>& jobs, Write&& write) {
+  try {
+    return write();
+  } catch (const StoreError&) {
+    throw;
+  } catch (const sqlite::SqliteError& e) {
+    throw StoreError(jobs, e.what());
+  } catch (const std::system_error& e) {
+    throw StoreError(jobs, e.what());
+  }
+}
+
+bool is_plain_file_name(const std::string& name) {
+  if (name.empty() || name.size() > 64 || name.front() == '.') return false;
+  for (char c : name)
+    if (!(std::isalnum(static_cast<unsigned char>(c)) || c == '.' || c == '-' || c == '_'))
+      return false;
+  return true;
+}
+
+// A bundle file: the header of encode_bundle as one line of JSON, then its payload.
+std::string serialize_bundle(const Bundle& bundle) {
+  nlohmann::json header;
+  std::string payload;
+  encode_bundle(bundle, header, payload);
+  return header.dump() + '\n' + payload;
+}
+
+Bundle parse_bundle(const std::string& bytes) {
+  std::size_t newline = bytes.find('\n');
+  if (newline == std::string::npos) throw std::runtime_error("no header line");
+  return decode_bundle(nlohmann::json::parse(bytes.substr(0, newline)), bytes.substr(newline + 1));
+}
+
+}  // namespace
+
+StoreError::StoreError(std::vector<std::int64_t> jobs, const std::string& cause)
+    : std::runtime_error(describe(jobs) + ": " + cause), jobs_(std::move(jobs)), cause_(cause) {}
+
+JobDatabase::JobDatabase(const std::filesystem::path& dir, std::int64_t max_disk_bytes)
+    : dir_(dir), max_disk_bytes_(max_disk_bytes) {
+  guarded({}, [&] {
+    std::filesystem::create_directories(dir_ / "bundles");
+    std::filesystem::create_directories(dir_ / "images");
+    db_ = std::make_unique<sqlite::Connection>((dir_ / "tessera.db").string());
+    // auto_vacuum only takes effect before the first table exists: set it before the schema,
+    // so that pruned jobs give their pages back to the file system (incremental_vacuum).
+    db_->exec("PRAGMA auto_vacuum = INCREMENTAL");
+    {
+      sqlite::Statement wal(*db_, "PRAGMA journal_mode = WAL");
+      if (!wal.step() || wal.column_text(0) != "wal")
+        throw StoreError({}, dir_.string() + "/tessera.db: cannot use WAL mode");
+    }
+    // In WAL mode NORMAL loses no committed transaction when the process dies, only at a
+    // power cut (the last commits before it).
+    db_->exec("PRAGMA synchronous = NORMAL; PRAGMA foreign_keys = ON");
+
+    std::int64_t application = db_->query_int("PRAGMA application_id");
+    std::int64_t version = db_->query_int("PRAGMA user_version");
+    std::string file = (dir_ / "tessera.db").string();
+    if (application == 0 && version == 0) {
+      if (db_->query_int("SELECT count(*) FROM sqlite_schema") != 0)
+        throw StoreError({}, file + " is a SQLite database of another application");
+      sqlite::Transaction transaction(*db_);
+      db_->exec(kSchema);
+      db_->exec("PRAGMA application_id = " + std::to_string(kApplicationId) +
+                "; PRAGMA user_version = " + std::to_string(kSchemaVersion));
+      transaction.commit();
+    } else if (application != kApplicationId) {
+      throw StoreError({}, file + " is a SQLite database of another application");
+    } else if (version != kSchemaVersion) {
+      throw StoreError({}, file + " has schema version " + std::to_string(version) +
+                               "; this coordinator reads version " +
+                               std::to_string(kSchemaVersion) + " only");
+    }
+    if (max_disk_bytes_ != kUnlimited) {
+      // SQLite itself refuses to grow the file past the budget (SQLITE_FULL), so one huge
+      // transaction fails before it is written rather than at the check after it.
+      std::int64_t page = db_->query_int("PRAGMA page_size");
+      db_->exec("PRAGMA max_page_count = " +
+                std::to_string(std::max<std::int64_t>(max_disk_bytes_ / page, 1)));
+    }
+    sweep_orphans();
+  });
+}
+
+JobDatabase::~JobDatabase() = default;
+
+std::filesystem::path JobDatabase::bundle_path(const std::string& hash) const {
+  return dir_ / "bundles" / hash;
+}
+
+std::filesystem::path JobDatabase::image_path(std::int64_t job, const std::string& name) const {
+  return dir_ / "images" / std::to_string(job) / name;
+}
+
+// Files a crash left behind: temporaries, bundles written before their job's row committed,
+// images of jobs deleted before their files were.
+void JobDatabase::sweep_orphans() {
+  std::map<std::string, bool> bundles;
+  {
+    sqlite::Statement statement(*db_, "SELECT hash FROM bundles");
+    while (statement.step()) bundles[statement.column_text(0)] = true;
+  }
+  for (const auto& entry : std::filesystem::directory_iterator(dir_ / "bundles"))
+    if (!bundles.count(entry.path().filename().string())) std::filesystem::remove_all(entry);
+  std::map<std::string, bool> jobs_with_images;
+  {
+    sqlite::Statement statement(*db_, "SELECT DISTINCT job_id FROM images");
+    while (statement.step()) jobs_with_images[std::to_string(statement.column_int(0))] = true;
+  }
+  for (const auto& entry : std::filesystem::directory_iterator(dir_ / "images"))
+    if (!jobs_with_images.count(entry.path().filename().string()))
+      std::filesystem::remove_all(entry);
+}
+
+std::int64_t JobDatabase::size_locked() {
+  return (db_->query_int("PRAGMA page_count") - db_->query_int("PRAGMA freelist_count")) *
+             db_->query_int("PRAGMA page_size") +
+         db_->query_int("SELECT COALESCE(SUM(bytes), 0) FROM bundles") +
+         db_->query_int("SELECT COALESCE(SUM(bytes), 0) FROM images");
+}
+
+std::int64_t JobDatabase::size_bytes() {
+  std::lock_guard lock(mutex_);
+  return guarded({}, [&] { return size_locked(); });
+}
+
+// Inside a write transaction: the size it would leave, against the budget.
+void JobDatabase::check_budget(const std::vector<std::int64_t>& jobs) {
+  std::int64_t size = size_locked();
+  if (size > max_disk_bytes_)
+    throw StoreError(jobs, "the store would hold " + std::to_string(size) +
+                               " bytes, over its limit of " + std::to_string(max_disk_bytes_));
+}
+
+std::int64_t JobDatabase::add_job(const StoredRequest& request, WallClock::time_point created) {
+  std::lock_guard lock(mutex_);
+  std::string hash = content_hash(request.bundle);
+  std::filesystem::path file = bundle_path(hash);
+  bool wrote_file = false;
+  try {
+    return guarded({}, [&] {
+      sqlite::Statement known(*db_, "SELECT bytes FROM bundles WHERE hash = ?");
+      known.bind(1, hash);
+      std::int64_t bundle_bytes = 0;
+      if (known.step()) {
+        bundle_bytes = known.column_int(0);
+        known.reset();
+      } else {
+        std::string bytes = serialize_bundle(request.bundle);
+        write_file_atomically(file, bytes);
+        wrote_file = true;
+        bundle_bytes = static_cast<std::int64_t>(bytes.size());
+      }
+      sqlite::Transaction transaction(*db_);
+      sqlite::Statement(*db_, "INSERT OR IGNORE INTO bundles (hash, bytes) VALUES (?, ?)")
+          .bind(1, hash)
+          .bind(2, bundle_bytes)
+          .run();
+      sqlite::Statement insert(*db_, R"sql(
+        INSERT INTO jobs (bundle_hash, spec, width, height, passes, progressive, unit_order,
+          preview, unit_pixels, priority, effects, warnings, seconds_per_pixel_pass,
+          uncalibrated_prediction, predicted_seconds, prediction_threads, state, error,
+          created_us)
+        VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, 'queued', '', ?))sql");
+      const PlanOptions& plan = request.plan;
+      insert.bind(1, hash)
+          .bind(2, to_json(request.spec).dump())
+          .bind(3, std::int64_t{plan.width})
+          .bind(4, std::int64_t{plan.height})
+          .bind(5, std::int64_t{plan.passes})
+          .bind(6, std::int64_t{plan.progressive})
+          .bind(7, std::string_view(to_string(plan.order)))
+          .bind(8, std::string_view(to_string(plan.preview)))
+          .bind(9, std::int64_t{plan.unit_pixels})
+          .bind(10, std::int64_t{request.priority})
+          .bind(11, nlohmann::json(request.effects).dump())
+          .bind(12, nlohmann::json(request.warnings).dump())
+          .bind(13, request.seconds_per_pixel_pass)
+          .bind(14, request.uncalibrated_prediction)
+          .bind(15, request.predicted_seconds)
+          .bind(16, std::int64_t{request.prediction_threads})
+          .bind(17, to_micros(created))
+          .run();
+      std::int64_t id = db_->last_insert_rowid();
+      check_budget({});
+      transaction.commit();
+      next_sequence_[id] = 0;
+      return id;
+    });
+  } catch (const StoreError& e) {
+    // The row never committed: the bundle file written for it has no job.
+    if (wrote_file) std::filesystem::remove(file);
+    throw StoreError({}, "cannot store a new job (bundle " + hash + "): " + e.cause());
+  }
+}
+
+void JobDatabase::set_state(std::int64_t job, const std::string& state, const std::string& error) {
+  std::lock_guard lock(mutex_);
+  guarded({job}, [&] {
+    sqlite::Statement(*db_, "UPDATE jobs SET state = ?, error = ? WHERE id = ?")
+        .bind(1, state)
+        .bind(2, error)
+        .bind(3, job)
+        .run();
+    if (db_->changes() == 0) throw StoreError({job}, "no such job");
+  });
+}
+
+std::int64_t JobDatabase::append_result(std::int64_t job, int unit, std::span<const float> values,
+                                        const RenderStats& stats, const std::string& worker) {
+  std::lock_guard lock(mutex_);
+  auto next = next_sequence_.find(job);
+  if (next == next_sequence_.end()) {
+    // First result since open or since a failed flush: continue after what is stored.
+    std::int64_t stored = guarded({job}, [&] {
+      sqlite::Statement statement(
+          *db_,
+          "SELECT (SELECT COUNT(*) FROM jobs WHERE id = ?1), "
+          "(SELECT COALESCE(MAX(sequence) + 1, 0) FROM results WHERE job_id = ?1)");
+      statement.bind(1, job).step();
+      if (statement.column_int(0) == 0) throw StoreError({job}, "no such job");
+      return statement.column_int(1);
+    });
+    next = next_sequence_.emplace(job, stored).first;
+  }
+  std::string payload(values.size_bytes(), '\0');
+  if (!values.empty()) std::memcpy(payload.data(), values.data(), values.size_bytes());
+  queue_.push_back({job, next->second, unit, std::move(payload), to_json(stats).dump(), worker});
+  return next->second++;
+}
+
+std::size_t JobDatabase::queued() const {
+  std::lock_guard lock(mutex_);
+  return queue_.size();
+}
+
+void JobDatabase::flush() {
+  std::lock_guard lock(mutex_);
+  flush_locked();
+}
+
+void JobDatabase::flush_locked() {
+  if (queue_.empty()) return;
+  std::vector<std::int64_t> jobs;
+  for (const QueuedResult& result : queue_)
+    if (std::find(jobs.begin(), jobs.end(), result.job) == jobs.end()) jobs.push_back(result.job);
+  std::vector<QueuedResult> batch = std::move(queue_);
+  queue_.clear();
+  try {
+    guarded(jobs, [&] {
+      sqlite::Transaction transaction(*db_);
+      sqlite::Statement insert(*db_,
+                               "INSERT INTO results (job_id, sequence, unit, payload, stats, "
+                               "worker) VALUES (?, ?, ?, ?, ?, ?)");
+      for (const QueuedResult& result : batch) {
+        insert.bind(1, result.job)
+            .bind(2, result.sequence)
+            .bind(3, std::int64_t{result.unit})
+            .bind_blob(4, std::as_bytes(std::span(result.payload)))
+            .bind(5, result.stats)
+            .bind(6, result.worker)
+            .run();
+      }
+      check_budget(jobs);
+      transaction.commit();
+    });
+  } catch (const StoreError&) {
+    // The dropped results leave gaps in the sequence: start again after what is stored.
+    for (std::int64_t job : jobs) next_sequence_.erase(job);
+    throw;
+  }
+}
+
+void JobDatabase::finish_job(std::int64_t job, const std::string& state, const std::string& error,
+                             WallClock::time_point finished,
+                             const std::vector<StoredImage>& images) {
+  std::lock_guard lock(mutex_);
+  for (const StoredImage& image : images)
+    if (!is_plain_file_name(image.name))
+      throw std::invalid_argument("not a plain image file name: " + image.name);
+  flush_locked();
+  std::filesystem::path folder = dir_ / "images" / std::to_string(job);
+  try {
+    guarded({job}, [&] {
+      sqlite::Statement current(*db_, "SELECT finished_us IS NOT NULL FROM jobs WHERE id = ?");
+      current.bind(1, job);
+      if (!current.step()) throw StoreError({job}, "no such job");
+      if (current.column_int(0)) throw StoreError({job}, "already finished");
+      current.reset();
+      if (!images.empty()) std::filesystem::create_directories(folder);
+      for (const StoredImage& image : images)
+        write_file_atomically(folder / image.name, image.bytes);
+      sqlite::Transaction transaction(*db_);
+      sqlite::Statement(*db_, "UPDATE jobs SET state = ?, error = ?, finished_us = ? WHERE id = ?")
+          .bind(1, state)
+          .bind(2, error)
+          .bind(3, to_micros(finished))
+          .bind(4, job)
+          .run();
+      sqlite::Statement insert(*db_, "INSERT INTO images (job_id, name, bytes) VALUES (?, ?, ?)");
+      for (const StoredImage& image : images)
+        insert.bind(1, job)
+            .bind(2, image.name)
+            .bind(3, static_cast<std::int64_t>(image.bytes.size()))
+            .run();
+      check_budget({job});
+      transaction.commit();
+    });
+  } catch (const StoreError&) {
+    // A job that was not finished has no images: whatever is in its folder is from this call.
+    std::error_code ignored;
+    std::filesystem::remove_all(folder, ignored);
+    throw;
+  }
+  next_sequence_.erase(job);
+}
+
+std::vector<StoredJob> JobDatabase::load_all() {
+  std::lock_guard lock(mutex_);
+  return guarded({}, [&] {
+    std::vector<StoredJob> jobs;
+    std::map<std::string, Bundle> bundles;
+    sqlite::Statement select(*db_, R"sql(
+    SELECT id, bundle_hash, spec, width, height, passes, progressive, unit_order, preview,
+      unit_pixels, priority, effects, warnings, seconds_per_pixel_pass, uncalibrated_prediction,
+      predicted_seconds, prediction_threads, state, error, created_us, finished_us
+    FROM jobs ORDER BY id)sql");
+    sqlite::Statement results(*db_,
+                              "SELECT sequence, unit, payload, stats, worker FROM results "
+                              "WHERE job_id = ? ORDER BY sequence");
+    sqlite::Statement images(*db_, "SELECT name FROM images WHERE job_id = ? ORDER BY name");
+    while (select.step()) {
+      StoredJob job;
+      job.id = select.column_int(0);
+      try {
+        std::string hash = select.column_text(1);
+        auto bundle = bundles.find(hash);
+        if (bundle == bundles.end()) {
+          Bundle parsed = parse_bundle(read_whole_file(bundle_path(hash)));
+          if (content_hash(parsed) != hash)
+            throw std::runtime_error("its content does not match its hash");
+          bundle = bundles.emplace(hash, std::move(parsed)).first;
+        }
+        StoredRequest& request = job.request;
+        request.bundle = bundle->second;
+        request.spec = job_spec_from_json(nlohmann::json::parse(select.column_text(2)));
+        request.plan.width = static_cast<int>(select.column_int(3));
+        request.plan.height = static_cast<int>(select.column_int(4));
+        request.plan.passes = static_cast<int>(select.column_int(5));
+        request.plan.progressive = select.column_int(6) != 0;
+        request.plan.order = parse_unit_order(select.column_text(7));
+        request.plan.preview = parse_preview_mode(select.column_text(8));
+        request.plan.unit_pixels = select.column_int(9);
+        request.priority = static_cast<int>(select.column_int(10));
+        request.effects =
+            nlohmann::json::parse(select.column_text(11)).get<std::vector<std::string>>();
+        request.warnings =
+            nlohmann::json::parse(select.column_text(12)).get<std::vector<std::string>>();
+        request.seconds_per_pixel_pass = select.column_double(13);
+        if (!select.is_null(14)) request.uncalibrated_prediction = select.column_double(14);
+        if (!select.is_null(15)) request.predicted_seconds = select.column_double(15);
+        request.prediction_threads = static_cast<int>(select.column_int(16));
+        job.state = select.column_text(17);
+        job.error = select.column_text(18);
+        job.created = from_micros(select.column_int(19));
+        if (!select.is_null(20)) job.finished = from_micros(select.column_int(20));
+
+        results.bind(1, job.id);
+        while (results.step()) {
+          StoredResult& result = job.results.emplace_back();
+          result.sequence = results.column_int(0);
+          result.unit = static_cast<int>(results.column_int(1));
+          std::span<const std::byte> payload = results.column_blob(2);
+          if (payload.size() % sizeof(float) != 0)
+            throw std::runtime_error("result " + std::to_string(result.sequence) +
+                                     " has a payload of " + std::to_string(payload.size()) +
+                                     " bytes, not whole floats");
+          result.values.resize(payload.size() / sizeof(float));
+          if (!payload.empty()) std::memcpy(result.values.data(), payload.data(), payload.size());
+          result.stats = stats_from_json(nlohmann::json::parse(results.column_text(3)));
+          result.worker = results.column_text(4);
+        }
+        results.reset();
+        images.bind(1, job.id);
+        while (images.step()) job.images.push_back(images.column_text(0));
+        images.reset();
+      } catch (const StoreError&) {
+        throw;
+      } catch (const std::exception& e) {
+        throw StoreError({job.id}, std::string("cannot be read back: ") + e.what());
+      }
+      jobs.push_back(std::move(job));
+    }
+    return jobs;
+  });
+}
+
+std::vector<JobListing> JobDatabase::list(int limit, std::int64_t after_id) {
+  std::lock_guard lock(mutex_);
+  return guarded({}, [&] {
+    std::vector<JobListing> out;
+    sqlite::Statement select(*db_, R"sql(
+      SELECT id, state, error, created_us, finished_us,
+        (SELECT COUNT(*) FROM results WHERE job_id = jobs.id)
+      FROM jobs WHERE id > ? ORDER BY id LIMIT ?)sql");
+    select.bind(1, after_id).bind(2, std::int64_t{limit});
+    while (select.step()) {
+      JobListing& row = out.emplace_back();
+      row.id = select.column_int(0);
+      row.state = select.column_text(1);
+      row.error = select.column_text(2);
+      row.created = from_micros(select.column_int(3));
+      if (!select.is_null(4)) row.finished = from_micros(select.column_int(4));
+      row.results = select.column_int(5);
+    }
+    return out;
+  });
+}
+
+// Deletes a job's rows, and its bundle's row when no other job shares it, in one transaction;
+// then the files, which a crash between the two leaves as orphans for the next open.
+void JobDatabase::delete_job_locked(std::int64_t job) {
+  std::vector<std::string> unused_bundles;
+  guarded({job}, [&] {
+    sqlite::Transaction transaction(*db_);
+    sqlite::Statement(*db_, "DELETE FROM jobs WHERE id = ?").bind(1, job).run();
+    sqlite::Statement orphans(
+        *db_,
+        "DELETE FROM bundles WHERE hash NOT IN (SELECT bundle_hash FROM jobs) RETURNING hash");
+    while (orphans.step()) unused_bundles.push_back(orphans.column_text(0));
+    transaction.commit();
+  });
+  std::error_code ignored;
+  std::filesystem::remove_all(dir_ / "images" / std::to_string(job), ignored);
+  for (const std::string& hash : unused_bundles)
+    std::filesystem::remove(bundle_path(hash), ignored);
+  next_sequence_.erase(job);
+  std::erase_if(queue_, [&](const QueuedResult& result) { return result.job == job; });
+}
+
+std::vector<std::int64_t> JobDatabase::prune(WallClock::time_point now,
+                                             std::chrono::seconds keep_finished,
+                                             std::int64_t max_disk_bytes) {
+  std::lock_guard lock(mutex_);
+  std::vector<std::int64_t> deleted;
+  guarded({}, [&] {
+    std::vector<std::int64_t> expired;
+    {
+      sqlite::Statement select(
+          *db_, "SELECT id FROM jobs WHERE finished_us < ? ORDER BY finished_us, id");
+      select.bind(1, to_micros(now - keep_finished));
+      while (select.step()) expired.push_back(select.column_int(0));
+    }
+    for (std::int64_t job : expired) {
+      delete_job_locked(job);
+      deleted.push_back(job);
+    }
+    sqlite::Statement oldest(
+        *db_, "SELECT id FROM jobs WHERE finished_us IS NOT NULL ORDER BY finished_us, id LIMIT 1");
+    while (size_locked() > max_disk_bytes) {
+      if (!oldest.step()) break;  // only unfinished jobs are left
+      std::int64_t job = oldest.column_int(0);
+      oldest.reset();
+      delete_job_locked(job);
+      deleted.push_back(job);
+    }
+    if (!deleted.empty()) db_->exec("PRAGMA incremental_vacuum");
+  });
+  return deleted;
+}
+
+}  // namespace tessera
