@@ -142,9 +142,9 @@ void HttpServer::on_accept(beast::error_code ec, tcp::socket socket) {
   if (ec) {
     // At the descriptor limit accept fails at once, again and again: wait, doubling the wait.
     const auto delay = accept_backoff_.next();
-    if (const auto skipped = accept_errors_.admit())
-      spdlog::warn("HTTP accept failed: {} (retrying in {} ms; {} more failures not logged)",
-                   ec.message(), delay.count(), *skipped);
+    if (const auto suppressed = accept_errors_.allow())
+      spdlog::warn("HTTP accept failed: {} (retrying in {} ms){}", ec.message(), delay.count(),
+                   suppressed_note(*suppressed));
     retry_.expires_after(delay);
     retry_.async_wait([this](beast::error_code wait_ec) {
       if (!wait_ec) accept();
@@ -153,9 +153,9 @@ void HttpServer::on_accept(beast::error_code ec, tcp::socket socket) {
   }
   accept_backoff_.reset();
   if (*open_ >= options_.max_connections) {
-    if (const auto skipped = refused_.admit())
-      spdlog::warn("refused an HTTP connection: {} are open, the limit (+{} more not logged)",
-                   options_.max_connections, *skipped);
+    if (const auto suppressed = refused_.allow())
+      spdlog::warn("refused an HTTP connection: {} are open, the limit{}", options_.max_connections,
+                   suppressed_note(*suppressed));
     beast::error_code ignored;
     socket.close(ignored);
   } else {

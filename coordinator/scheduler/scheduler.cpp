@@ -5,6 +5,7 @@
 #include <spdlog/spdlog.h>
 
 #include "common/protocol/unit_message.h"
+#include "coordinator/scheduler/result_check.h"
 
 namespace tessera {
 
@@ -13,6 +14,9 @@ namespace {
 double seconds_since(Clock::time_point t, Clock::time_point now) {
   return std::chrono::duration<double>(now - t).count();
 }
+
+// A worker's error message is kept and shown; a hostile one could be megabytes.
+constexpr std::size_t kMaxWorkerError = 1000;
 
 }  // namespace
 
@@ -91,10 +95,17 @@ void Scheduler::tick() {
   for (const auto& [id, run] : runs_)
     if (run.job->started && seconds_since(*run.job->started, now) > options_.max_job_seconds)
       expired.push_back(id);
-  for (std::int64_t id : expired)
-    finish(runs_.at(id), JobState::Failed,
-           "time limit of " + std::to_string(static_cast<int>(options_.max_job_seconds)) +
-               " s exceeded");
+  const std::string limit =
+      "time limit of " + std::to_string(static_cast<int>(options_.max_job_seconds)) + " s";
+  for (std::int64_t id : expired) {
+    JobRun& run = runs_.at(id);
+    // A failure one worker reported and no other confirmed (none took the job in time).
+    finish(
+        run, JobState::Failed,
+        run.first_failure.empty()
+            ? limit + " exceeded"
+            : run.first_failure + " (not confirmed by a second worker within the " + limit + ")");
+  }
   fill_slots();
 }
 
@@ -119,7 +130,9 @@ void Scheduler::fill_slots() {
 bool Scheduler::dispatch_one(WorkerSlot& w) {
   JobRun* best = nullptr;
   for (auto& [id, run] : runs_)
-    if (dispatchable(run) && (!best || run.virtual_time < best->virtual_time)) best = &run;
+    if (dispatchable(run) && !run.failed_on.count(w.id) &&
+        (!best || run.virtual_time < best->virtual_time))
+      best = &run;
   if (!best) return speculate(w);
   const int unit = best->pending.front();
   best->pending.pop_front();
@@ -135,6 +148,7 @@ bool Scheduler::speculate(WorkerSlot& w) {
   JobRun* pick_run = nullptr;
   int pick = -1;
   for (auto& [id, run] : runs_) {
+    if (run.failed_on.count(w.id)) continue;
     long long units_done = 0;
     for (const auto& t : run.job->stage_timing) units_done += t.units_done;
     const double mean =
@@ -169,6 +183,7 @@ void Scheduler::send_unit(WorkerSlot& w, JobRun& run, int unit) {
     }
     w.connection->send(open);
     w.open_jobs.insert(job.id);
+    w.jobs_sent.insert(job.id);
   }
   const WorkUnit& wu = job.plan.units[unit];
   w.connection->send(Frame{MessageType::Unit,
@@ -191,11 +206,13 @@ void Scheduler::send_unit(WorkerSlot& w, JobRun& run, int unit) {
 
 void Scheduler::on_result(std::int64_t worker, const Frame& frame) {
   WorkerSlot& w = workers_.at(worker);
-  // Everything is checked before anything changes: a malformed result costs the worker its
-  // connection, and remove_worker() then re-queues all of its units, this one included.
+  // Everything is checked before anything changes: a result that breaks a rule costs the worker
+  // its connection, and remove_worker() then re-queues all of its units, this one included.
   const auto job_id = frame.header.at("job").get<std::int64_t>();
   const int unit = frame.header.at("unit").get<int>();
-  const RenderStats stats = stats_from_json(frame.header.at("stats"));
+  if (!w.jobs_sent.count(job_id))
+    throw ProtocolError("result for job " + std::to_string(job_id) +
+                        ", which was never sent to this worker");
   auto it = runs_.find(job_id);
   if (it == runs_.end()) {  // finished or cancelled meanwhile
     w.in_flight.erase({job_id, unit});
@@ -203,17 +220,25 @@ void Scheduler::on_result(std::int64_t worker, const Frame& frame) {
   }
   JobRun& run = it->second;
   Job& job = *run.job;
+  if (run.failed_on.count(worker)) {
+    ++w.dropped_results;  // rendered before the job was taken from it after its failure report
+    return;
+  }
   if (unit < 0 || unit >= static_cast<int>(run.units.size()))
     throw ProtocolError("result for unknown unit " + std::to_string(unit));
   const auto sent = w.in_flight.find({job_id, unit});
-  if (sent == w.in_flight.end()) {
-    ++w.dropped_results;  // rendered for an earlier connection of this worker: stale
-    return;
-  }
+  if (sent == w.in_flight.end())
+    throw ProtocolError("result for unit " + std::to_string(unit) + " of job " +
+                        std::to_string(job_id) + ", which this worker does not hold");
   const WorkUnit& wu = job.plan.units[unit];
-  const std::vector<float> values =
-      unpack_floats(frame.payload, static_cast<std::size_t>(wu.cost) * 3);
-  w.pipeline.observe(seconds_since(sent->second, Clock::now()), stats.seconds);
+  const auto now = Clock::now();
+  if (frame.header.contains("count") && frame.header["count"] != wu.cost)
+    throw ProtocolError("result of " + frame.header["count"].dump() + " pixels for a unit of " +
+                        std::to_string(wu.cost));
+  const RenderStats stats =
+      checked_stats(frame.header.at("stats"), wu.cost, seconds_since(sent->second, now));
+  const std::vector<float> values = checked_pixels(frame.payload, wu.cost);
+  w.pipeline.observe(seconds_since(sent->second, now), stats.seconds);
   w.in_flight.erase(sent);
   UnitRun& r = run.units[unit];
   std::erase(r.holders, worker);
@@ -236,29 +261,49 @@ void Scheduler::on_result(std::int64_t worker, const Frame& frame) {
   job.tiles.push_back({wu.pixels.rect, wu.stage, worker});
   StageTiming& timing = job.stage_timing[wu.stage];
   timing.units_done += 1;
-  timing.last_result = Clock::now();
+  timing.last_result = now;
   if (job.done_cost == job.plan.total_cost) finish(run, JobState::Done);
   fill_slots();
 }
 
 void Scheduler::on_job_failed(std::int64_t worker, const Frame& frame) {
+  WorkerSlot& w = workers_.at(worker);
   const auto job_id = frame.header.at("job").get<std::int64_t>();
+  if (!w.jobs_sent.count(job_id))
+    throw ProtocolError("job_failed for job " + std::to_string(job_id) +
+                        ", which was never sent to this worker");
   auto it = runs_.find(job_id);
   if (it == runs_.end()) return;
+  JobRun& run = it->second;
   if (frame.header.value("missing_bundle", false)) {
     // The worker evicted the bundle since it last announced it: it dropped the job and the
     // units sent with it. Take them back and open the job again, this time with the bundle.
-    WorkerSlot& w = workers_.at(worker);
-    w.bundles.erase(it->second.job->hash);
+    w.bundles.erase(run.job->hash);
     w.open_jobs.erase(job_id);
     const int requeued = take_back_units(w, [&](std::int64_t job) { return job == job_id; });
     spdlog::info("worker {} no longer holds the bundle of job {}; {} units re-queued", worker,
                  job_id, requeued);
     return fill_slots();
   }
-  finish(it->second, JobState::Failed,
-         "worker " + workers_.at(worker).hello.name + ": " +
-             frame.header.value("error", std::string()));
+  const std::string report = "worker " + w.hello.name + ": " +
+                             frame.header.value("error", std::string()).substr(0, kMaxWorkerError);
+  if (!run.failed_on.insert(worker).second) return;  // it said so already
+  if (run.failed_on.size() == 1) {
+    // A scene that crashes one worker is not one worker's word: let another try.
+    run.first_failure = report;
+    run.job->warnings.push_back(report + " (the job goes on with the other workers)");
+    spdlog::warn("job {}: {}; its units go to other workers", job_id, report);
+    withdraw(w, run);
+    return fill_slots();
+  }
+  finish(run, JobState::Failed, run.first_failure + "; also " + report);
+}
+
+void Scheduler::withdraw(WorkerSlot& w, JobRun& run) {
+  const std::int64_t job_id = run.job->id;
+  if (w.open_jobs.erase(job_id))
+    w.connection->send(Frame{MessageType::Cancel, {{"job", job_id}}, {}});
+  take_back_units(w, [&](std::int64_t job) { return job == job_id; });
 }
 
 void Scheduler::finish(JobRun& run, JobState state, const std::string& error) {

@@ -3,6 +3,8 @@
 // worker's units, and near the end of a stage sends a straggling unit to an idle worker too:
 // the first result wins and a late duplicate is dropped. Sample passes after the first wait
 // for the previous pass, so each pixel's passes reach the frame buffer in pass order.
+// Workers are not believed blindly: a result must answer a unit sent to that worker and pass
+// result_check.h, and a job fails only when two workers report it failing (docs/PROTOCOL.md).
 // Everything runs on the coordinator's single io thread.
 #pragma once
 
@@ -57,8 +59,13 @@ class Scheduler {
   std::int64_t add_worker(WorkerHello hello, std::shared_ptr<FrameConnection> connection);
   void fill_slots();
   void remove_worker(std::int64_t worker);
-  // Throw ProtocolError (or a JSON error) for a malformed frame; the caller drops the worker.
+  // Throw ProtocolError (or a JSON error) for a malformed or forged frame: a result for a unit
+  // or job never sent to this worker, or one that fails result_check.h; a job_failed for a job
+  // never sent to it. The caller drops the worker, which re-queues its units. Late duplicates
+  // and results for jobs finished meanwhile are dropped silently.
   void on_result(std::int64_t worker, const Frame& frame);
+  // The first worker to report a job failing loses the job (its units go to the others); the
+  // job fails when a second worker reports it too, or at the time limit with the first report.
   void on_job_failed(std::int64_t worker, const Frame& frame);
 
   void add_job(Job& job);
@@ -85,6 +92,10 @@ class Scheduler {
     std::vector<UnitRun> units;
     std::set<int> in_flight;  // the speculation candidates, without scanning every unit
     double virtual_time = 0;  // fair share: advances by cost / priority per dispatch
+    // Workers (connections) that reported the job failing, and the first one's message: one
+    // worker's word does not fail a job, and the job is not sent to them again.
+    std::set<std::int64_t> failed_on;
+    std::string first_failure;
   };
   struct WorkerSlot {
     std::int64_t id = 0;
@@ -92,6 +103,7 @@ class Scheduler {
     std::shared_ptr<FrameConnection> connection;
     std::set<std::string> bundles;
     std::set<std::int64_t> open_jobs;
+    std::set<std::int64_t> jobs_sent;  // every job opened on this connection, finished or not
     std::map<std::pair<std::int64_t, int>, Clock::time_point> in_flight;  // (job, unit): sent
     WorkerPipeline pipeline{1};
     long long units_done = 0, pixels_done = 0;
@@ -108,6 +120,9 @@ class Scheduler {
   // queues (unless another worker holds them too); returns how many.
   int take_back_units(WorkerSlot& worker, const std::function<bool(std::int64_t)>& of_job);
   void finish(JobRun& run, JobState state, const std::string& error = {});
+  // Takes the job away from a worker that reported it failing: cancels it there and re-queues
+  // the units it held.
+  void withdraw(WorkerSlot& worker, JobRun& run);
 
   SchedulerOptions options_;
   std::map<std::int64_t, JobRun> runs_;

@@ -19,21 +19,45 @@ constexpr std::size_t kMaxCachedHashes = 64;
 }  // namespace
 
 WorkerLink::WorkerLink(tcp::socket socket, const WorkerAuth& auth, Scheduler& scheduler,
-                       ConnectionTiming timing)
-    : connection_(std::make_shared<FrameConnection>(std::move(socket), kHandshakeLimits, timing)),
+                       ConnectionTiming timing, std::shared_ptr<WorkerPortState> port,
+                       std::chrono::milliseconds handshake_deadline)
+    : deadline_(socket.get_executor()),
+      connection_(std::make_shared<FrameConnection>(std::move(socket), kHandshakeLimits, timing)),
       auth_(auth),
-      scheduler_(scheduler) {}
+      scheduler_(scheduler),
+      port_(std::move(port)),
+      handshake_deadline_(handshake_deadline) {}
 
 void WorkerLink::start() {
   auto self = shared_from_this();
+  ++port_->unauthenticated;
+  counted_ = true;
   connection_->start([self](Frame f) { self->on_frame(f); },
                      [self](const std::string& reason) {
                        if (self->stage_ == Stage::Ready) {
                          spdlog::info("worker {}: {}", self->id_, reason);
                          self->scheduler_.remove_worker(self->id_);
                        }
+                       self->leave_unauthenticated();
+                       self->deadline_.cancel();
                        self->connection_.reset();  // breaks the cycle through the handlers
                      });
+  // Heartbeats keep a connection open, so only this deadline keeps a stranger from holding a
+  // socket forever.
+  deadline_.expires_after(handshake_deadline_);
+  deadline_.async_wait([self](boost::system::error_code ec) {
+    if (ec || self->stage_ == Stage::Ready || !self->connection_) return;
+    if (auto suppressed = self->port_->timeout_log.allow())
+      spdlog::warn("worker port: {} did not authenticate within {} ms; closed{}",
+                   self->connection_->peer(), self->handshake_deadline_.count(),
+                   suppressed_note(*suppressed));
+    self->connection_->close("handshake deadline passed");
+  });
+}
+
+void WorkerLink::leave_unauthenticated() {
+  if (counted_) --port_->unauthenticated;
+  counted_ = false;
 }
 
 void WorkerLink::on_frame(const Frame& frame) {
@@ -46,7 +70,11 @@ void WorkerLink::on_frame(const Frame& frame) {
       return scheduler_.on_job_failed(id_, frame);
     connection_->close(std::string("unexpected ") + to_string(frame.type) + " frame");
   } catch (const std::exception& e) {  // ProtocolError or a mistyped JSON field
-    spdlog::warn("worker {} ({}): {}", id_, connection_->peer(), e.what());
+    if (stage_ == Stage::Ready)
+      spdlog::warn("worker {} ({}): {}", id_, connection_->peer(), e.what());
+    else if (auto suppressed = port_->reject_log.allow())  // a stranger may repeat it at will
+      spdlog::warn("worker port: {}: {}{}", connection_->peer(), e.what(),
+                   suppressed_note(*suppressed));
     connection_->close(e.what());
   }
 }
@@ -84,6 +112,8 @@ void WorkerLink::on_auth(const Frame& frame) {
       std::chrono::duration<double>(std::chrono::steady_clock::now() - challenge_sent_).count();
   connection_->set_limits(kWorkerLimits);
   stage_ = Stage::Ready;
+  leave_unauthenticated();
+  deadline_.cancel();
   id_ = scheduler_.add_worker(hello_, connection_);
   connection_->send(Frame{
       MessageType::Welcome,
@@ -94,24 +124,52 @@ void WorkerLink::on_auth(const Frame& frame) {
 }
 
 void WorkerLink::reject(const std::string& reason) {
-  spdlog::warn("refused worker from {}: {}", connection_->peer(), reason);
+  if (auto suppressed = port_->reject_log.allow())
+    spdlog::warn("refused worker from {}: {}{}", connection_->peer(), reason,
+                 suppressed_note(*suppressed));
   connection_->send(Frame{MessageType::Reject, {{"reason", reason}}, {}});
   connection_->close_after_flush(reason);
 }
 
 WorkerListener::WorkerListener(asio::io_context& io, const tcp::endpoint& endpoint, WorkerAuth auth,
-                               Scheduler& scheduler, ConnectionTiming timing)
-    : acceptor_(io, endpoint), auth_(std::move(auth)), scheduler_(scheduler), timing_(timing) {
+                               Scheduler& scheduler, ConnectionTiming timing,
+                               WorkerPortLimits limits)
+    : acceptor_(io, endpoint),
+      retry_(io),
+      auth_(std::move(auth)),
+      scheduler_(scheduler),
+      timing_(timing),
+      limits_(limits) {
   accept();
 }
 
 void WorkerListener::accept() {
   acceptor_.async_accept([this](boost::system::error_code ec, tcp::socket socket) {
-    if (!ec)
-      std::make_shared<WorkerLink>(std::move(socket), auth_, scheduler_, timing_)->start();
-    else
-      spdlog::warn("worker accept: {}", ec.message());
-    if (acceptor_.is_open()) accept();
+    if (!acceptor_.is_open() || ec == asio::error::operation_aborted) return;
+    if (ec) {  // EMFILE and the like: the next accept would fail at once too
+      const auto delay = backoff_.next();
+      if (auto suppressed = accept_log_.allow())
+        spdlog::warn("worker port: accept failed: {}; retrying in {} ms{}", ec.message(),
+                     delay.count(), suppressed_note(*suppressed));
+      retry_.expires_after(delay);
+      retry_.async_wait([this](boost::system::error_code wait_ec) {
+        if (!wait_ec) accept();
+      });
+      return;
+    }
+    backoff_.reset();
+    if (state_->unauthenticated >= limits_.max_unauthenticated) {
+      if (auto suppressed = state_->refused_log.allow())
+        spdlog::warn("worker port: refused a connection: {} unauthenticated connections open{}",
+                     state_->unauthenticated, suppressed_note(*suppressed));
+      boost::system::error_code ignored;
+      socket.close(ignored);
+    } else {
+      std::make_shared<WorkerLink>(std::move(socket), auth_, scheduler_, timing_, state_,
+                                   limits_.handshake_deadline)
+          ->start();
+    }
+    accept();
   });
 }
 

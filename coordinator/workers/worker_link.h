@@ -1,14 +1,21 @@
 // The coordinator's side of one worker connection: the versioned handshake and the
 // challenge/response (common/protocol/handshake.h), then results and failures handed to the
 // scheduler. A peer that breaks the protocol is dropped; it never takes the coordinator down.
+// Until it has authenticated a peer is a stranger: it counts against a cap and must finish the
+// handshake before a deadline (WorkerPortLimits, docs/SECURITY.md).
 #pragma once
 
 #include <chrono>
+#include <cstddef>
 #include <cstdint>
 #include <memory>
 #include <string>
 
+#include <boost/asio/steady_timer.hpp>
+
 #include "common/protocol/connection.h"
+#include "coordinator/net/backoff.h"
+#include "coordinator/net/log_limiter.h"
 #include "coordinator/scheduler/scheduler.h"
 
 namespace tessera {
@@ -18,10 +25,27 @@ struct WorkerAuth {
   bool insecure = false;  // --insecure: no proofs at all
 };
 
+// What a peer that has not authenticated may hold of the coordinator.
+struct WorkerPortLimits {
+  // Sockets between accept and welcome; beyond it new connections are closed at once.
+  std::size_t max_unauthenticated = 64;
+  // From accept to authenticated; heartbeats do not extend it.
+  std::chrono::milliseconds handshake_deadline{5000};
+};
+
+// Shared by the listener and its links (a link may outlive the listener at shutdown).
+struct WorkerPortState {
+  std::size_t unauthenticated = 0;
+  // One line a second per kind of event a stranger can repeat at will: connections refused
+  // at the cap, handshakes past the deadline, handshakes rejected (wrong secret, version...).
+  LogLimiter refused_log, timeout_log, reject_log;
+};
+
 class WorkerLink : public std::enable_shared_from_this<WorkerLink> {
  public:
   WorkerLink(boost::asio::ip::tcp::socket socket, const WorkerAuth& auth, Scheduler& scheduler,
-             ConnectionTiming timing);
+             ConnectionTiming timing, std::shared_ptr<WorkerPortState> port,
+             std::chrono::milliseconds handshake_deadline);
   void start();
 
  private:
@@ -30,10 +54,16 @@ class WorkerLink : public std::enable_shared_from_this<WorkerLink> {
   void on_hello(const Frame& frame);
   void on_auth(const Frame& frame);
   void reject(const std::string& reason);
+  // Stops counting this link as a stranger (authenticated or closed); idempotent.
+  void leave_unauthenticated();
 
+  boost::asio::steady_timer deadline_;  // before connection_: built from the socket's executor
   std::shared_ptr<FrameConnection> connection_;
   const WorkerAuth& auth_;
   Scheduler& scheduler_;
+  std::shared_ptr<WorkerPortState> port_;
+  std::chrono::milliseconds handshake_deadline_;
+  bool counted_ = false;
   Stage stage_ = Stage::Hello;
   std::string nonce_, worker_nonce_;
   std::chrono::steady_clock::time_point challenge_sent_;  // times the handshake's round trip
@@ -45,15 +75,21 @@ class WorkerLink : public std::enable_shared_from_this<WorkerLink> {
 class WorkerListener {
  public:
   WorkerListener(boost::asio::io_context& io, const boost::asio::ip::tcp::endpoint& endpoint,
-                 WorkerAuth auth, Scheduler& scheduler, ConnectionTiming timing);
+                 WorkerAuth auth, Scheduler& scheduler, ConnectionTiming timing,
+                 WorkerPortLimits limits = {});
   unsigned short port() const { return acceptor_.local_endpoint().port(); }
 
  private:
   void accept();
   boost::asio::ip::tcp::acceptor acceptor_;
+  boost::asio::steady_timer retry_;
+  Backoff backoff_;
+  LogLimiter accept_log_;
   WorkerAuth auth_;
   Scheduler& scheduler_;
   ConnectionTiming timing_;
+  WorkerPortLimits limits_;
+  std::shared_ptr<WorkerPortState> state_ = std::make_shared<WorkerPortState>();
 };
 
 }  // namespace tessera

@@ -1,6 +1,6 @@
 // Unit tests of the coordinator's pure parts: request targets, job requests, the
-// merge of unit results into the frame buffer and the display, what finished jobs keep, who
-// may submit, and the accept backoff and log limiter.
+// merge of unit results into the frame buffer and the display, what finished jobs keep, and who
+// may submit.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -11,8 +11,6 @@
 #include "coordinator/jobs/job.h"
 #include "coordinator/jobs/job_request.h"
 #include "coordinator/jobs/multipart.h"
-#include "coordinator/net/backoff.h"
-#include "coordinator/net/log_limiter.h"
 #include "coordinator/scheduler/scheduler.h"
 
 namespace tessera {
@@ -283,26 +281,6 @@ TEST(SubmitPolicy, ForeignOriginsAreRefusedUnlessAllowed) {
   // The origin is checked before the token: a foreign page is refused even with it.
   policy.api_token = "t";
   EXPECT_EQ(refusal(policy, state_change("h", "https://evil.example", "Bearer t"), "::1"), 403);
-}
-
-TEST(Backoff, DoublesUpToItsCapAndResets) {
-  Backoff b(std::chrono::milliseconds(50), std::chrono::milliseconds(1000));
-  std::vector<long> delays;
-  for (int i = 0; i < 7; ++i) delays.push_back(static_cast<long>(b.next().count()));
-  EXPECT_EQ(delays, (std::vector<long>{50, 100, 200, 400, 800, 1000, 1000}));
-  b.reset();
-  EXPECT_EQ(b.next().count(), 50);
-}
-
-TEST(LogLimiter, OneLinePerIntervalCountingTheRest) {
-  LogLimiter limiter(std::chrono::seconds(1));
-  const auto t0 = LogLimiter::Clock::time_point{} + std::chrono::hours(1);
-  EXPECT_EQ(limiter.admit(t0), 0);
-  for (int i = 1; i <= 999; ++i)
-    EXPECT_FALSE(limiter.admit(t0 + std::chrono::microseconds(999'000 * i / 999 - 1)));
-  EXPECT_EQ(limiter.admit(t0 + std::chrono::seconds(1)), 999);
-  EXPECT_FALSE(limiter.admit(t0 + std::chrono::milliseconds(1500)));
-  EXPECT_EQ(limiter.admit(t0 + std::chrono::seconds(3)), 1);
 }
 
 }  // namespace

@@ -4,6 +4,7 @@
 
 #include <gtest/gtest.h>
 
+#include <limits>
 #include <map>
 
 #include "common/protocol/unit_message.h"
@@ -21,6 +22,7 @@ struct FakeWorker {
   FrameDecoder decoder;
   std::vector<Frame> jobs;   // job frames received, in order
   std::vector<Frame> units;  // unit frames received, in order
+  std::vector<Frame> cancels;
 };
 
 class SchedulerTest : public ::testing::Test {
@@ -70,16 +72,28 @@ class SchedulerTest : public ::testing::Test {
           w->units.push_back(std::move(*f));
         else if (f->type == MessageType::Job)
           w->jobs.push_back(std::move(*f));
+        else if (f->type == MessageType::Cancel)
+          w->cancels.push_back(std::move(*f));
     }
   }
 
+  // What an honest worker sends for a unit of `pixels` pixels.
+  static Frame result(const Job& job, int unit, float value = 0.5f) {
+    const long long pixels = job.plan.units[unit].cost;
+    RenderStats stats;
+    stats.pixels = stats.samples = stats.camera_rays = static_cast<std::uint64_t>(pixels);
+    return Frame{MessageType::Result,
+                 {{"job", job.id}, {"unit", unit}, {"count", pixels}, {"stats", to_json(stats)}},
+                 pack_floats(std::vector<float>(static_cast<std::size_t>(pixels) * 3, value))};
+  }
+
   void send_result(FakeWorker& w, const Frame& unit_frame, const Job& job) {
-    const int unit = unit_frame.header["unit"].get<int>();
-    const std::vector<float> values(static_cast<std::size_t>(job.plan.units[unit].cost) * 3, 0.5f);
-    scheduler_.on_result(w.id,
-                         Frame{MessageType::Result,
-                               {{"job", job.id}, {"unit", unit}, {"stats", to_json(RenderStats{})}},
-                               pack_floats(values)});
+    scheduler_.on_result(w.id, result(job, unit_frame.header["unit"].get<int>()));
+  }
+
+  void report_failure(FakeWorker& w, const Job& job, const std::string& error) {
+    scheduler_.on_job_failed(
+        w.id, Frame{MessageType::JobFailed, {{"job", job.id}, {"error", error}}, {}});
   }
 
   asio::io_context io_;
@@ -139,17 +153,139 @@ TEST_F(SchedulerTest, AWorkerThatEvictedTheBundleGetsItAgainWithItsUnits) {
   EXPECT_EQ(unit_indices(w.units, 0, 3), unit_indices(w.units, 3, 6));
 }
 
-TEST_F(SchedulerTest, AJobFailedOnAWorkerFailsThatJobOnly) {
+TEST_F(SchedulerTest, AJobFailsWhenASecondWorkerReportsItAndOnlyThatJob) {
   Job& bad = add_job(64, 64, 1, 2);
   Job& good = add_job(64, 64, 1);
+  FakeWorker& a = add_worker(1);
+  FakeWorker& b = add_worker(1);
+  drain();
+  report_failure(a, bad, "scene.sdl:1:1: broken");
+  EXPECT_EQ(bad.state, JobState::Running);  // one worker's word
+  report_failure(a, bad, "scene.sdl:1:1: broken");
+  EXPECT_EQ(bad.state, JobState::Running);  // nor twice the same worker's
+  EXPECT_EQ(bad.warnings.size(), 1u);
+  report_failure(b, bad, "out of memory");
+  EXPECT_EQ(bad.state, JobState::Failed);
+  EXPECT_EQ(bad.error, "worker w: scene.sdl:1:1: broken; also worker w: out of memory");
+  EXPECT_NE(good.state, JobState::Failed);
+}
+
+TEST_F(SchedulerTest, AFailureReportTakesTheJobFromThatWorkerOnly) {
+  Job& job = add_job(64, 64, 1);
+  FakeWorker& a = add_worker(1);
+  drain();
+  ASSERT_EQ(a.units.size(), 2u);
+  FakeWorker& b = add_worker(1);
+  drain();
+  report_failure(a, job, "broken");
+  drain();
+  ASSERT_EQ(a.cancels.size(), 1u);
+  EXPECT_EQ(a.cancels[0].header["job"], job.id);
+  EXPECT_EQ(scheduler_.workers_json()[0]["in_flight"], 0);
+  // A result the reporting worker had already rendered is dropped, not held against it.
+  const long long done = job.done_cost;
+  EXPECT_NO_THROW(send_result(a, a.units[0], job));
+  EXPECT_EQ(job.done_cost, done);
+  // The other worker renders the whole job, the taken-back units included; none go back to a.
+  std::set<int> got;
+  for (std::size_t i = 0; i < b.units.size() && i < 400; ++i) {
+    got.insert(b.units[i].header["unit"].get<int>());
+    send_result(b, b.units[i], job);
+    drain();
+  }
+  EXPECT_EQ(job.state, JobState::Done);
+  EXPECT_EQ(a.units.size(), 2u);
+  for (const auto& f : a.units) EXPECT_TRUE(got.count(f.header["unit"].get<int>()));
+}
+
+TEST_F(SchedulerTest, WithOneWorkerAFailureWaitsForASecondUntilTheTimeLimit) {
+  Job& job = add_job(64, 64, 1);
   FakeWorker& w = add_worker(1);
   drain();
-  scheduler_.on_job_failed(
-      w.id,
-      Frame{MessageType::JobFailed, {{"job", bad.id}, {"error", "scene.sdl:1:1: broken"}}, {}});
-  EXPECT_EQ(bad.state, JobState::Failed);
-  EXPECT_NE(bad.error.find("broken"), std::string::npos);
-  EXPECT_NE(good.state, JobState::Failed);
+  report_failure(w, job, "broken");
+  scheduler_.tick();
+  drain();
+  EXPECT_EQ(job.state, JobState::Running);
+  EXPECT_EQ(w.units.size(), 2u);  // nothing more of it goes back to the reporting worker
+  ASSERT_EQ(job.warnings.size(), 1u);
+  EXPECT_NE(job.warnings[0].find("broken"), std::string::npos);
+  job.started = Clock::now() - std::chrono::hours(1);  // past the time limit
+  scheduler_.tick();
+  EXPECT_EQ(job.state, JobState::Failed);
+  EXPECT_EQ(job.error,
+            "worker w: broken (not confirmed by a second worker within the time limit of 600 s)");
+}
+
+TEST_F(SchedulerTest, AJobFailedForAJobNeverSentIsRefused) {
+  Job& sent = add_job(64, 64, 1);
+  FakeWorker& w = add_worker(1);  // its slots fill with the first job's units
+  Job& other = add_job(64, 64, 1);
+  drain();
+  ASSERT_EQ(w.jobs.size(), 1u);
+  EXPECT_THROW(report_failure(w, other, "broken"), ProtocolError);
+  EXPECT_EQ(other.state, JobState::Queued);
+  EXPECT_TRUE(other.warnings.empty());
+  EXPECT_EQ(sent.state, JobState::Running);
+}
+
+TEST_F(SchedulerTest, ResultsThatBreakARuleAreRefusedAndChangeNothing) {
+  Job& job = add_job(64, 64, 1);
+  FakeWorker& w = add_worker(1);
+  Job& other = add_job(64, 64, 1);  // never sent to w: its slots are full
+  drain();
+  ASSERT_EQ(w.units.size(), 2u);
+  const int unit = w.units[0].header["unit"].get<int>();
+  const std::set<int> held = unit_indices(w.units, 0, 2);
+  int unsent = 0;
+  while (held.count(unsent)) ++unsent;
+  const Frame good = result(job, unit);
+  const float nan = std::numeric_limits<float>::quiet_NaN();
+  const float inf = std::numeric_limits<float>::infinity();
+  auto with_pixel = [&](float v) {
+    Frame f = good;
+    std::vector<float> values = unpack_floats(f.payload, f.payload.size() / 4);
+    values[4] = v;
+    f.payload = pack_floats(values);
+    return f;
+  };
+  auto with_stat = [&](const char* key, const nlohmann::json& value) {
+    Frame f = good;
+    f.header["stats"][key] = value;
+    return f;
+  };
+  Frame short_payload = good;
+  short_payload.payload.resize(short_payload.payload.size() - 12);
+  Frame miscounted = good;
+  miscounted.header["count"] = 1;
+  const std::map<std::string, Frame> forged = {
+      {"NaN pixel", with_pixel(nan)},
+      {"infinite pixel", with_pixel(inf)},
+      {"one pixel short", short_payload},
+      {"wrong count", miscounted},
+      {"unit never sent", result(job, unsent)},
+      {"job never sent", result(other, 0)},
+      {"negative count", with_stat("shadow_rays", -1)},
+      {"fractional count", with_stat("samples", 1.5)},
+      {"pixels not the unit's", with_stat("pixels", 1)},
+      {"more NaN samples than samples", with_stat("nan_samples", 1u << 30)},
+      {"seconds beyond the wall time", with_stat("seconds", 3600.0)},
+      {"negative seconds", with_stat("seconds", -1.0)},
+      {"rays beyond any machine", with_stat("reflection_rays", std::uint64_t{1} << 50)},
+  };
+  // Cancelled, the other job would drop late results silently, but not one it never sent.
+  ASSERT_TRUE(scheduler_.cancel(other.id));
+  for (const auto& [name, frame] : forged) {
+    EXPECT_THROW(scheduler_.on_result(w.id, frame), ProtocolError) << name;
+    EXPECT_EQ(job.done_cost, 0) << name;
+    EXPECT_EQ(other.done_cost, 0) << name;
+  }
+  EXPECT_EQ(job.stats.camera_rays, 0u);
+  // The honest result passes every check, and only once. A negative value is honest: a VRML
+  // world may have negative colours.
+  const Frame honest = with_pixel(-0.25f);
+  EXPECT_NO_THROW(scheduler_.on_result(w.id, honest));
+  EXPECT_EQ(job.done_cost, job.plan.units[unit].cost);
+  EXPECT_THROW(scheduler_.on_result(w.id, honest), ProtocolError);
 }
 
 TEST_F(SchedulerTest, StragglersAreDuplicatedAndTheLateResultDropped) {
