@@ -16,6 +16,7 @@
 
 #include "common/protocol/handshake.h"
 #include "coordinator/http/api.h"
+#include "coordinator/metrics/service_metrics.h"
 #include "coordinator/options.h"
 #include "coordinator/workers/local_workers.h"
 #include "coordinator/workers/worker_link.h"
@@ -68,13 +69,26 @@ int main(int argc, char** argv) {
   try {
     asio::io_context io;
     JobStore jobs(options.limits.max_jobs);
-    Scheduler scheduler({.max_job_seconds = options.limits.max_job_seconds});
+    MetricsRegistry registry;
+    ServiceMetrics metrics(registry);
+    Scheduler scheduler({.max_job_seconds = options.limits.max_job_seconds, .metrics = &metrics});
+    registry.add_collector([&] {
+      std::map<JobState, int> by_state;
+      for (JobState state : {JobState::Queued, JobState::Running, JobState::Done, JobState::Failed,
+                             JobState::Cancelled})
+        by_state[state] = 0;
+      for (const auto& [id, job] : jobs.all()) ++by_state[job->state];
+      for (const auto& [state, count] : by_state) metrics.jobs.with({to_string(state)}).set(count);
+      const Scheduler::WorkerTotals totals = scheduler.worker_totals();
+      metrics.workers.set(totals.workers);
+      metrics.worker_threads.set(totals.threads);
+    });
     const auto address = asio::ip::make_address(options.bind);
     WorkerListener workers(io, {address, options.worker_port}, {options.secret, options.insecure},
                            scheduler, options.timing);
     // A few submissions may wait for a thread; beyond that they get 503 at once.
     IntakePool intake(io, options.intake_threads, options.intake_threads + 8);
-    Api api(io, jobs, scheduler, intake,
+    Api api(io, jobs, scheduler, intake, metrics,
             {options.limits, options.scenes_dir, options.web_dir, options.submit,
              static_cast<double>(options.max_intake_seconds), options.max_jobs_per_client});
     HttpServer http(

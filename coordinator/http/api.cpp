@@ -85,6 +85,12 @@ void Api::handle(HttpRequest request, const boost::asio::ip::tcp::endpoint& peer
                  HttpRespond respond) {
   const auto target = request.target();
   auto [path, query] = split_target(std::string_view(target.data(), target.size()));
+  metrics_.http_received_bytes.add(static_cast<double>(request.body().size()));
+  respond = [this, route = route_label(path), inner = std::move(respond)](HttpResponse response) {
+    metrics_.http_requests.with({route, std::to_string(response.result_int())}).add();
+    metrics_.http_sent_bytes.add(static_cast<double>(response.body().size()));
+    inner(std::move(response));
+  };
   try {
     const auto method = request.method();
     if (method == http::verb::post || method == http::verb::delete_)
@@ -100,6 +106,14 @@ void Api::route(HttpRequest& request, const std::string& path, const Query& quer
                 const std::string& client, HttpRespond& respond) {
   const auto method = request.method();
   const auto now = Clock::now();
+  if (path == "/metrics") {
+    if (method != http::verb::get) throw ApiError(405, "method_not_allowed", "GET /metrics");
+    HttpResponse res{http::status::ok, request.version()};
+    res.set(http::field::content_type, "text/plain; version=0.0.4; charset=utf-8");
+    res.set(http::field::cache_control, "no-store");
+    res.body() = metrics_.registry.expose();
+    return respond(std::move(res));
+  }
   if (!path.starts_with("/api/")) {
     if (method != http::verb::get && method != http::verb::head)
       throw ApiError(405, "method_not_allowed", "the page only answers GET");

@@ -17,6 +17,7 @@
 #include "coordinator/http/submit_policy.h"
 #include "coordinator/jobs/job_store.h"
 #include "coordinator/jobs/limits.h"
+#include "coordinator/metrics/service_metrics.h"
 #include "coordinator/scheduler/scheduler.h"
 
 namespace tessera {
@@ -33,8 +34,13 @@ struct ApiConfig {
 class Api {
  public:
   Api(boost::asio::io_context& io, JobStore& jobs, Scheduler& scheduler, IntakePool& pool,
-      ApiConfig config)
-      : io_(io), jobs_(jobs), scheduler_(scheduler), pool_(pool), config_(std::move(config)) {}
+      ServiceMetrics& metrics, ApiConfig config)
+      : io_(io),
+        jobs_(jobs),
+        scheduler_(scheduler),
+        pool_(pool),
+        metrics_(metrics),
+        config_(std::move(config)) {}
   // On the io thread; `respond` is called once, at once or when the pool's work is done.
   void handle(HttpRequest request, const boost::asio::ip::tcp::endpoint& peer, HttpRespond respond);
 
@@ -61,6 +67,7 @@ class Api {
   JobStore& jobs_;
   Scheduler& scheduler_;
   IntakePool& pool_;
+  ServiceMetrics& metrics_;
   ApiConfig config_;
   // The last encoding per job and format (polling pages ask for the same version many
   // times); requests for a version being encoded wait for that one encoding.

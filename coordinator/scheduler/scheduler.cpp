@@ -62,6 +62,7 @@ int Scheduler::take_back_units(WorkerSlot& w, const std::function<bool(std::int6
       ++requeued;
     }
   }
+  if (options_.metrics) options_.metrics->units_requeued.add(requeued);
   return requeued;
 }
 
@@ -192,6 +193,7 @@ void Scheduler::send_unit(WorkerSlot& w, JobRun& run, int unit) {
                             {"pass", job.plan.stages[wu.stage].pass},
                             {"pixels", unit_pixels_to_json(wu.pixels)}},
                            {}});
+  if (options_.metrics) options_.metrics->units_dispatched.add();
   UnitRun& r = run.units[unit];
   if (r.holders.empty()) r.dispatched = now;
   r.holders.push_back(w.id);
@@ -238,7 +240,8 @@ void Scheduler::on_result(std::int64_t worker, const Frame& frame) {
   const RenderStats stats =
       checked_stats(frame.header.at("stats"), wu.cost, seconds_since(sent->second, now));
   const std::vector<float> values = checked_pixels(frame.payload, wu.cost);
-  w.pipeline.observe(seconds_since(sent->second, now), stats.seconds);
+  const Clock::time_point sent_at = sent->second;
+  w.pipeline.observe(seconds_since(sent_at, now), stats.seconds);
   w.in_flight.erase(sent);
   UnitRun& r = run.units[unit];
   std::erase(r.holders, worker);
@@ -250,6 +253,14 @@ void Scheduler::on_result(std::int64_t worker, const Frame& frame) {
   run.in_flight.erase(unit);
   job.apply_result(unit, values);
   job.stats += stats;
+  if (ServiceMetrics* m = options_.metrics) {
+    m->units_finished.add();
+    m->unit_latency.observe(seconds_since(sent_at, now));
+    m->unit_render.observe(stats.seconds);
+    m->pixels.add(static_cast<double>(wu.cost));
+    m->rays.add(static_cast<double>(stats.camera_rays + stats.shadow_rays + stats.reflection_rays +
+                                    stats.refraction_rays));
+  }
   WorkerShare& share = job.shares[worker];
   share.name = w.hello.name;
   share.units += 1;
@@ -328,9 +339,18 @@ void Scheduler::finish(JobRun& run, JobState state, const std::string& error) {
   fill_slots();
 }
 
+Scheduler::WorkerTotals Scheduler::worker_totals() const {
+  WorkerTotals t;
+  for (const auto& [id, w] : workers_) {
+    t.workers += 1;
+    t.threads += w.hello.threads;
+  }
+  return t;
+}
+
 Prediction Scheduler::predict(double seconds_per_pixel_pass, long long pixel_passes) const {
   Prediction p;
-  for (const auto& [id, w] : workers_) p.threads += w.hello.threads;
+  p.threads = worker_totals().threads;
   p.factor = calibration_.factor();
   p.overhead_seconds = calibration_.overhead_seconds();
   p.uncalibrated = predict_render_seconds(seconds_per_pixel_pass, pixel_passes, p.threads);

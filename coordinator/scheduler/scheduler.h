@@ -25,6 +25,7 @@
 #include "common/protocol/connection.h"
 #include "common/render/time_prediction.h"
 #include "coordinator/jobs/job_store.h"
+#include "coordinator/metrics/service_metrics.h"
 #include "coordinator/scheduler/worker_pipeline.h"
 
 namespace tessera {
@@ -35,6 +36,7 @@ struct SchedulerOptions {
   // at least `min_speculation`) while workers sit idle.
   double speculation_factor = 3;
   std::chrono::milliseconds min_speculation{500};
+  ServiceMetrics* metrics = nullptr;  // units, pixels and rays counted here when given
 };
 
 struct WorkerHello {
@@ -75,6 +77,10 @@ class Scheduler {
   void tick();
 
   nlohmann::json workers_json() const;
+  struct WorkerTotals {
+    int workers = 0, threads = 0;
+  };
+  WorkerTotals worker_totals() const;
   // A job's time from its probe, the threads of the connected workers and what finished
   // jobs taught (issue 5).
   Prediction predict(double seconds_per_pixel_pass, long long pixel_passes) const;

@@ -4,7 +4,7 @@ never delay status answers, finished and cancelled jobs give their memory back, 
 may submit can. The hostile inputs are generated here, small.
 
 usage: hostile_test.py --build BUILD_DIR --source SOURCE_DIR CASE
-CASE: intake | submit_rules | job_cap | memory | connections | descriptors
+CASE: intake | load_budget | submit_rules | job_cap | memory | connections | descriptors
 """
 import argparse
 import http.client

@@ -1,0 +1,104 @@
+#!/usr/bin/env python3
+"""GET /metrics while a job runs and after it (issue 17 §4): the Prometheus text parses, the
+gauges show the running job and the connected worker, and once the job is done the counters
+agree with the job's own status: units, pixel passes, rays, requests by route and status.
+
+usage: metrics_scrape_test.py --build BUILD_DIR --source SOURCE_DIR
+"""
+import argparse
+import re
+import sys
+import time
+
+import service_test
+from service_test import Service
+
+SAMPLE = re.compile(r'^([a-zA-Z_:][a-zA-Z0-9_:]*)(\{(.*)\})? (\S+)$')
+LABEL = re.compile(r'([a-zA-Z_][a-zA-Z0-9_]*)="((?:[^"\\]|\\.)*)"')
+
+
+def scrape(service):
+    """{(name, frozenset(labels)): value}, checking every line against the text format."""
+    status, headers, body = service.request("GET", "/metrics")
+    assert status == 200, status
+    assert headers["Content-Type"].startswith("text/plain; version=0.0.4"), headers
+    samples, typed = {}, {}
+    for line in body.decode().splitlines():
+        if line.startswith("# HELP "):
+            continue
+        if line.startswith("# TYPE "):
+            _, _, name, kind = line.split(" ")
+            assert kind in ("counter", "gauge", "histogram"), line
+            assert name.startswith("tessera_"), line
+            assert (kind == "counter") == name.endswith("_total"), line
+            typed[name] = kind
+            continue
+        m = SAMPLE.match(line)
+        assert m, "not a sample line: %r" % line
+        name, labels, value = m.group(1), m.group(3) or "", float(m.group(4))
+        family = re.sub(r"_(bucket|sum|count)$", "", name) if name not in typed else name
+        assert family in typed, "sample before its TYPE: %r" % line
+        samples[(name, frozenset(LABEL.findall(labels)))] = value
+    return samples
+
+
+def value(samples, name, **labels):
+    return samples[(name, frozenset(labels.items()))]
+
+
+def main():
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--build", required=True)
+    parser.add_argument("--source", required=True)
+    service_test.ARGS = parser.parse_args()
+    with Service("--local-workers", "1", "--local-threads", "1") as service:
+        service.wait_workers(1)
+        before = scrape(service)
+        assert value(before, "tessera_workers") == 1 and value(before, "tessera_worker_threads") == 1
+        assert value(before, "tessera_units_finished_total") == 0
+        with open(service_test.demo_scene()) as f:
+            scene = f.read()
+        job = service.submit(scene, {"width": 160, "height": 120, "aa": 5, "passes": 2})
+        seen_running = False
+        deadline = time.time() + 60
+        while time.time() < deadline:
+            samples = scrape(service)
+            if value(samples, "tessera_jobs", state="running") == 1:
+                seen_running = True
+                assert value(samples, "tessera_units_dispatched_total") >= \
+                    value(samples, "tessera_units_finished_total")
+            if service.get("/api/jobs/%d" % job["id"])["state"] == "done":
+                break
+            time.sleep(0.02)
+        assert seen_running, "no scrape saw the job running"
+        status = service.wait_job(job["id"])
+        after = scrape(service)
+        units = sum(row["units"] for row in status["levels_table"])
+        traced = sum(row["traced"] for row in status["levels_table"])
+        stats = status["stats"]
+        rays = sum(stats[k] for k in ("camera_rays", "shadow_rays", "reflection_rays",
+                                      "refraction_rays"))
+        print("units %d, pixel passes %d, rays %d" % (units, traced, rays))
+        assert value(after, "tessera_jobs", state="done") == 1
+        assert value(after, "tessera_jobs", state="running") == 0
+        assert value(after, "tessera_units_finished_total") == units
+        assert value(after, "tessera_units_dispatched_total") >= units
+        assert value(after, "tessera_unit_latency_seconds_count") == units
+        assert value(after, "tessera_unit_render_seconds_count") == units
+        assert value(after, "tessera_unit_latency_seconds_bucket", le="+Inf") == units
+        assert value(after, "tessera_pixels_total") == traced
+        assert value(after, "tessera_rays_total") == rays
+        assert value(after, "tessera_http_requests_total", route="/api/jobs", status="201") == 1
+        assert value(after, "tessera_http_requests_total", route="/api/jobs/{id}",
+                     status="200") >= 2
+        assert value(after, "tessera_http_requests_total", route="/metrics", status="200") >= 2
+        assert value(after, "tessera_http_received_bytes_total") > 0
+        status_code, _, _ = service.request("GET", "/api/jobs/999")
+        assert status_code == 404
+        assert value(scrape(service), "tessera_http_requests_total", route="/api/jobs/{id}",
+                     status="404") == 1
+    print("metrics passed")
+
+
+if __name__ == "__main__":
+    sys.exit(main())
