@@ -67,6 +67,8 @@ int Scheduler::take_back_units(WorkerSlot& w, const std::function<bool(std::int6
 }
 
 void Scheduler::add_job(Job& job) {
+  spdlog::info("job {} queued: {} ({}x{}, {} units)", job.id, job.bundle.main,
+               job.spec.settings.width, job.spec.settings.height, job.plan.units.size());
   JobRun& run = runs_[job.id];
   run.job = &job;
   run.units.resize(job.plan.units.size());
@@ -203,7 +205,10 @@ void Scheduler::send_unit(WorkerSlot& w, JobRun& run, int unit) {
   StageTiming& timing = job.stage_timing[wu.stage];
   if (!timing.first_dispatch) timing.first_dispatch = now;
   if (!job.started) job.started = now;
-  job.state = JobState::Running;
+  if (job.state != JobState::Running) {
+    job.state = JobState::Running;
+    spdlog::info("job {} running", job.id);
+  }
 }
 
 void Scheduler::on_result(std::int64_t worker, const Frame& frame) {
