@@ -73,8 +73,11 @@ inline void check_accepted_request(const JobRequest& request, const ServiceLimit
 inline void check_refusal(const ApiError& e) {
   require(e.status() >= 400 && e.status() <= 599, "a refusal's status is outside 400..599");
   const nlohmann::json body = e.body();
-  require(body.is_object() && body["error"].is_string() && !body["error"].empty() &&
-              body["detail"].is_string() && !body["detail"].get<std::string>().empty(),
+  const auto non_empty_string = [&](const char* key) {
+    return body.contains(key) && body.at(key).is_string() &&
+           !body.at(key).get<std::string>().empty();
+  };
+  require(body.is_object() && non_empty_string("error") && non_empty_string("detail"),
           "a refusal's body lacks \"error\" or \"detail\"");
   // As coordinator/http/http_server.cpp sends it: bytes from the request may be in the detail.
   require(!body.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace).empty(),
