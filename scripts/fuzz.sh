@@ -37,8 +37,9 @@ tests/fuzz/service_seeds.py "$corpus"
 
 export ASAN_OPTIONS=detect_leaks=1:abort_on_error=1 UBSAN_OPTIONS=print_stacktrace=1
 # The frame target's limit is 4 KB a frame (tests/fuzz/service_fuzz_checks.h): an allocation
-# of a megabyte means the decoder trusted a length it should have refused.
-declare -A extra=([worker_frames]=-malloc_limit_mb=1)
+# of a megabyte means the decoder trusted a length it should have refused; inputs up to 16 KB
+# reach frames over the limit.
+declare -A extra=([worker_frames]="-malloc_limit_mb=1 -max_len=16384")
 for target in sdl mesh vrml job_request worker_frames; do
   regressions=tests/fuzz/regressions/$target
   if [ -d "$regressions" ] && [ -n "$(ls -A "$regressions")" ]; then
