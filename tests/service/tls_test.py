@@ -22,12 +22,12 @@ import service_test
 from service_test import SETTINGS, Service, render_and_compare
 
 
-def make_certificate(folder, name):
-    """A self-signed certificate for localhost and 127.0.0.1; returns (cert, key) paths."""
+def make_certificate(folder, name, names="DNS:localhost,IP:127.0.0.1"):
+    """A self-signed certificate for `names` (subjectAltName); returns (cert, key) paths."""
     cert, key = os.path.join(folder, name + ".pem"), os.path.join(folder, name + ".key")
     subprocess.run(["openssl", "req", "-x509", "-newkey", "ec", "-pkeyopt",
                     "ec_paramgen_curve:P-256", "-nodes", "-days", "1", "-subj", "/CN=localhost",
-                    "-addext", "subjectAltName=DNS:localhost,IP:127.0.0.1", "-keyout", key,
+                    "-addext", "subjectAltName=" + names, "-keyout", key,
                     "-out", cert], check=True, capture_output=True)
     return cert, key
 
@@ -113,7 +113,8 @@ def plaintext_exchange(port, data):
 
 def case_refused():
     """A worker that trusts another CA, a plaintext worker and plaintext clients are refused on
-    both ports; none of them ever renders."""
+    both ports; none of them ever renders. A certificate for another host name is refused
+    too, though the worker trusts it."""
     with tempfile.TemporaryDirectory() as tmp:
         cert, key = make_certificate(tmp, "coordinator")
         other, _ = make_certificate(tmp, "other")
@@ -135,6 +136,13 @@ def case_refused():
             job = service.submit(open(service_test.demo_scene()).read(), SETTINGS)
             time.sleep(1.5)
             assert service.get("/api/jobs/%d" % job["id"])["progress"] == 0.0
+            assert service.get("/api/workers") == []
+        elsewhere, elsewhere_key = make_certificate(tmp, "elsewhere", "DNS:elsewhere.example")
+        with TlsService(elsewhere, elsewhere_key) as service:
+            service.context.check_hostname = False  # the test's own client, not the worker
+            service.tls_worker("wrong-name", "--tls-ca", elsewhere)
+            wait_for(lambda: "certificate verify failed" in service.log("wrong-name"),
+                     "the wrong-name worker's log line")
             assert service.get("/api/workers") == []
 
 
