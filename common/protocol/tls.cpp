@@ -1,6 +1,7 @@
 #include "common/protocol/tls.h"
 
 #include <stdexcept>
+#include <utility>
 
 #include <openssl/ssl.h>
 #include <openssl/x509v3.h>
@@ -24,6 +25,11 @@ std::shared_ptr<ssl::context> tls12_context(ssl::context::method method) {
 
 std::shared_ptr<ssl::context> make_server_tls(const std::filesystem::path& cert,
                                               const std::filesystem::path& key) {
+  // OpenSSL's own message for a missing file is only "asio.ssl error".
+  for (const auto& [flag, file] : {std::pair{"--tls-cert", cert}, std::pair{"--tls-key", key}})
+    if (!std::filesystem::is_regular_file(file))
+      throw std::runtime_error(std::string("cannot load ") + flag + " " + file.string() +
+                               ": no such file");
   auto context = tls12_context(ssl::context::tls_server);
   boost::system::error_code ec;
   context->use_certificate_chain_file(cert.string(), ec);
