@@ -15,6 +15,7 @@
 #include <nlohmann/json.hpp>
 
 #include "common/protocol/handshake.h"
+#include "common/protocol/tls.h"
 #include "coordinator/http/api.h"
 #include "coordinator/metrics/service_metrics.h"
 #include "coordinator/options.h"
@@ -84,8 +85,15 @@ int main(int argc, char** argv) {
       metrics.worker_threads.set(totals.threads);
     });
     const auto address = asio::ip::make_address(options.bind);
+    const auto tls = options.tls_cert ? make_server_tls(*options.tls_cert, *options.tls_key)
+                                      : nullptr;  // both ports plain
+    if (!tls && !address.is_loopback())
+      spdlog::warn(
+          "no --tls-cert: the worker port and the API on {} are plaintext; anyone on the "
+          "path can read scenes and images and alter results (docs/SECURITY.md)",
+          options.bind);
     WorkerListener workers(io, {address, options.worker_port}, {options.secret, options.insecure},
-                           scheduler, options.timing);
+                           scheduler, options.timing, {}, tls);
     // A few submissions may wait for a thread; beyond that they get 503 at once.
     IntakePool intake(io, options.intake_threads, options.intake_threads + 8);
     Api api(io, jobs, scheduler, intake, metrics,
@@ -93,19 +101,20 @@ int main(int argc, char** argv) {
              static_cast<double>(options.max_intake_seconds), options.max_jobs_per_client});
     HttpServer http(
         io, {address, options.http_port},
-        {options.limits.max_body_bytes, options.max_http_connections},
+        {options.limits.max_body_bytes, options.max_http_connections, tls},
         [&api](HttpRequest r, const asio::ip::tcp::endpoint& peer, HttpRespond respond) {
           api.handle(std::move(r), peer, std::move(respond));
         });
-    spdlog::info("page and API at http://{}:{}/ ; workers connect to port {}", options.bind,
-                 http.port(), workers.port());
+    spdlog::info("page and API at {}://{}:{}/ ; workers connect to port {}{}",
+                 tls ? "https" : "http", options.bind, http.port(), workers.port(),
+                 tls ? " with TLS" : "");
     if (options.port_file) write_port_file(*options.port_file, http.port(), workers.port());
     const int cores = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
     const int threads = options.local_threads > 0
                             ? options.local_threads
                             : std::max(1, cores / std::max(1, options.local_workers));
     LocalWorkers local(options.worker_binary, options.local_workers, threads, workers.port(),
-                       options.insecure ? "" : options.secret);
+                       options.insecure ? "" : options.secret, tls != nullptr);
     asio::signal_set signals(io, SIGINT, SIGTERM);
     signals.async_wait([&](boost::system::error_code, int) { io.stop(); });
     asio::steady_timer timer(io);

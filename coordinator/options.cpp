@@ -15,7 +15,8 @@ const char* const kCoordinatorUsage =
     "       [--bind ADDR] [--worker-binary PATH] [--max-job-seconds S] [--max-body-bytes N]\n"
     "       [--heartbeat-ms MS] [--silence-ms MS] [--port-file PATH] [--intake-threads N]\n"
     "       [--max-intake-seconds S] [--max-http-connections N] [--api-token T | --open-submit]\n"
-    "       [--allow-origin ORIGIN]... [--max-jobs-per-client N]";
+    "       [--allow-origin ORIGIN]... [--max-jobs-per-client N]\n"
+    "       [--tls-cert FILE --tls-key FILE]";
 
 namespace {
 
@@ -86,11 +87,18 @@ CoordinatorOptions parse_coordinator_options(int argc, char** argv) {
       o.submit.allowed_origins.push_back(value());
     else if (arg == "--max-jobs-per-client")
       o.max_jobs_per_client = static_cast<int>(parse_number(arg, value(), 1, 1024));
+    else if (arg == "--tls-cert")
+      o.tls_cert = value();
+    else if (arg == "--tls-key")
+      o.tls_key = value();
     else
       throw std::invalid_argument("unknown argument " + arg + "\n" + kCoordinatorUsage);
   }
   if (o.insecure && !o.secret.empty())
     throw std::invalid_argument(std::string("--secret and --insecure exclude each other\n") +
+                                kCoordinatorUsage);
+  if (o.tls_cert.has_value() != o.tls_key.has_value())
+    throw std::invalid_argument(std::string("--tls-cert and --tls-key go together\n") +
                                 kCoordinatorUsage);
   if (o.timing.silence <= o.timing.heartbeat)
     throw std::invalid_argument("--silence-ms must exceed --heartbeat-ms");

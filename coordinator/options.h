@@ -4,7 +4,7 @@
 //   [--worker-binary PATH] [--max-job-seconds S] [--max-body-bytes N] [--heartbeat-ms MS]
 //   [--silence-ms MS] [--intake-threads N] [--max-intake-seconds S]
 //   [--max-http-connections N] [--api-token T | --open-submit] [--allow-origin O]...
-//   [--max-jobs-per-client N]
+//   [--max-jobs-per-client N] [--tls-cert FILE --tls-key FILE]
 #pragma once
 
 #include <filesystem>
@@ -38,6 +38,8 @@ struct CoordinatorOptions {
   int max_http_connections = 256;
   SubmitPolicy submit;          // --api-token (TESSERA_API_TOKEN), --open-submit, --allow-origin
   int max_jobs_per_client = 8;  // unfinished jobs per peer address
+  // Both or neither: HTTPS and TLS on the worker port (PEM files).
+  std::optional<std::filesystem::path> tls_cert, tls_key;
 };
 
 extern const char* const kCoordinatorUsage;

@@ -1,5 +1,7 @@
-// Command line of tessera-worker (CLI11): --coordinator HOST:PORT [--secret S] [--threads N]
-// [--name NAME]. The secret may come from TESSERA_SECRET instead, so it stays out of `ps`.
+// Command line of tessera-worker (CLI11): --coordinator [tls://]HOST:PORT [--secret S]
+// [--threads N] [--name NAME] [--tls-ca FILE | --tls-insecure]. The link is TLS when the address
+// starts with tls:// or either TLS flag is given. The secret may come from TESSERA_SECRET instead,
+// so it stays out of `ps`.
 #pragma once
 
 #include <variant>

@@ -6,13 +6,12 @@ namespace tessera {
 
 namespace asio = boost::asio;
 
-FrameConnection::FrameConnection(asio::ip::tcp::socket socket, FrameLimits limits,
-                                 ConnectionTiming timing)
-    : socket_(std::move(socket)), timer_(socket_.get_executor()), limits_(limits), timing_(timing) {
+FrameConnection::FrameConnection(FrameStream stream, FrameLimits limits, ConnectionTiming timing)
+    : stream_(std::move(stream)), timer_(stream_.get_executor()), limits_(limits), timing_(timing) {
   boost::system::error_code ec;
-  const auto endpoint = socket_.remote_endpoint(ec);
+  const auto endpoint = stream_.socket().remote_endpoint(ec);
   peer_ = ec ? "unknown" : endpoint.address().to_string() + ":" + std::to_string(endpoint.port());
-  socket_.set_option(asio::ip::tcp::no_delay(true), ec);
+  stream_.socket().set_option(asio::ip::tcp::no_delay(true), ec);
 }
 
 void FrameConnection::start(FrameHandler on_frame, CloseHandler on_close) {
@@ -20,8 +19,14 @@ void FrameConnection::start(FrameHandler on_frame, CloseHandler on_close) {
   on_close_ = std::move(on_close);
   open_ = true;
   last_sent_ = last_received_ = std::chrono::steady_clock::now();
-  read_prefix();
-  tick();
+  writing_ = true;  // holds sends in the queue until the stream is ready for them
+  tick();           // the silence limit bounds the TLS handshake too
+  stream_.handshake([self = shared_from_this()](boost::system::error_code ec) {
+    if (!self->open_) return;
+    if (ec) return self->close("TLS handshake failed: " + ec.message());
+    self->read_prefix();
+    self->write_next();
+  });
 }
 
 void FrameConnection::send(const Frame& frame) {
@@ -47,8 +52,8 @@ void FrameConnection::close(const std::string& reason) {
   if (!open_) return;
   open_ = false;
   boost::system::error_code ignored;
-  socket_.shutdown(asio::ip::tcp::socket::shutdown_both, ignored);
-  socket_.close(ignored);
+  stream_.socket().shutdown(asio::ip::tcp::socket::shutdown_both, ignored);
+  stream_.socket().close(ignored);
   timer_.cancel();
   queue_.clear();
   queued_bytes_ = 0;
@@ -56,7 +61,7 @@ void FrameConnection::close(const std::string& reason) {
   // later, never inside a caller that is iterating over connections.
   on_frame_ = nullptr;
   if (auto on_close = std::move(on_close_))
-    asio::post(socket_.get_executor(),
+    asio::post(stream_.get_executor(),
                [on_close = std::move(on_close), reason] { on_close(reason); });
 }
 
@@ -66,7 +71,7 @@ void FrameConnection::close_after_flush(const std::string& reason) {
 }
 
 void FrameConnection::read_prefix() {
-  asio::async_read(socket_, asio::buffer(prefix_),
+  asio::async_read(stream_, asio::buffer(prefix_),
                    [self = shared_from_this()](boost::system::error_code ec, std::size_t) {
                      if (!self->open_) return;
                      if (ec)
@@ -81,7 +86,7 @@ void FrameConnection::read_prefix() {
 
 void FrameConnection::read_body(std::size_t size) {
   body_.resize(size);
-  asio::async_read(socket_, asio::buffer(body_),
+  asio::async_read(stream_, asio::buffer(body_),
                    [self = shared_from_this()](boost::system::error_code ec, std::size_t) {
                      if (!self->open_) return;
                      if (ec) return self->close(ec.message());
@@ -106,7 +111,7 @@ void FrameConnection::write_next() {
     return;
   }
   writing_ = true;
-  asio::async_write(socket_, asio::buffer(queue_.front()),
+  asio::async_write(stream_, asio::buffer(queue_.front()),
                     [self = shared_from_this()](boost::system::error_code ec, std::size_t) {
                       if (!self->open_) return;
                       if (ec) return self->close(ec.message());

@@ -1,6 +1,7 @@
 // One framed TCP connection on a single-threaded io_context, shared by the coordinator's worker
-// sessions and the worker's session: length-prefixed reads, a bounded write queue, heartbeats
-// when idle, and a close when the peer is silent, misbehaves or the queue overflows. Every
+// sessions and the worker's session: the TLS handshake when the stream is TLS, length-prefixed
+// reads, a bounded write queue, heartbeats when idle, and a close when the peer is silent,
+// misbehaves or the queue overflows. Every
 // member runs on the io_context's thread; the close handler runs exactly once, posted.
 #pragma once
 
@@ -18,6 +19,7 @@
 #include <boost/asio/write.hpp>
 
 #include "common/protocol/frame.h"
+#include "common/protocol/tls.h"
 
 namespace tessera {
 
@@ -31,7 +33,9 @@ class FrameConnection : public std::enable_shared_from_this<FrameConnection> {
   using FrameHandler = std::function<void(Frame)>;
   using CloseHandler = std::function<void(const std::string& reason)>;
 
-  FrameConnection(boost::asio::ip::tcp::socket socket, FrameLimits limits, ConnectionTiming timing);
+  FrameConnection(FrameStream stream, FrameLimits limits, ConnectionTiming timing);
+  // Runs the TLS handshake first when the stream is TLS; frames sent meanwhile wait for it, and
+  // a failed handshake closes with "TLS handshake failed: ...".
   void start(FrameHandler on_frame, CloseHandler on_close);
   void send(const Frame& frame);
   void close(const std::string& reason);
@@ -48,7 +52,7 @@ class FrameConnection : public std::enable_shared_from_this<FrameConnection> {
   void write_next();
   void tick();
 
-  boost::asio::ip::tcp::socket socket_;
+  FrameStream stream_;
   boost::asio::steady_timer timer_;
   FrameLimits limits_;
   ConnectionTiming timing_;

@@ -2,10 +2,12 @@
 
 #include <chrono>
 #include <optional>
+#include <type_traits>
 
 #include <spdlog/spdlog.h>
 #include <boost/asio/post.hpp>
 #include <boost/beast/core.hpp>
+#include <boost/beast/ssl.hpp>
 #include <nlohmann/json.hpp>
 
 namespace tessera {
@@ -13,17 +15,25 @@ namespace tessera {
 namespace asio = boost::asio;
 namespace beast = boost::beast;
 namespace http = beast::http;
+namespace ssl = asio::ssl;
 using asio::ip::tcp;
 
 namespace {
 
 constexpr auto kReadTimeout = std::chrono::seconds(30);
 
-class HttpSession : public std::enable_shared_from_this<HttpSession> {
+using TlsStream = beast::ssl_stream<beast::tcp_stream>;
+
+// Stream: beast::tcp_stream (HTTP) or TlsStream (HTTPS).
+template <class Stream>
+class HttpSession : public std::enable_shared_from_this<HttpSession<Stream>> {
+  static constexpr bool kTls = std::is_same_v<Stream, TlsStream>;
+
  public:
-  HttpSession(tcp::socket socket, std::size_t body_limit,
-              std::shared_ptr<const HttpHandler> handler, std::shared_ptr<std::atomic<int>> open)
-      : stream_(std::move(socket)),
+  template <class... StreamArgs>
+  HttpSession(std::size_t body_limit, std::shared_ptr<const HttpHandler> handler,
+              std::shared_ptr<std::atomic<int>> open, StreamArgs&&... stream_args)
+      : stream_(std::forward<StreamArgs>(stream_args)...),
         body_limit_(body_limit),
         handler_(std::move(handler)),
         open_(std::move(open)) {
@@ -31,17 +41,33 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
   }
   ~HttpSession() { --*open_; }
 
+  void start() {
+    if constexpr (kTls) {
+      lowest().expires_after(kReadTimeout);
+      stream_.async_handshake(ssl::stream_base::server,
+                              [self = this->shared_from_this()](beast::error_code ec) {
+                                if (ec) return beast::get_lowest_layer(self->stream_).close();
+                                self->read();
+                              });
+    } else {
+      read();
+    }
+  }
+
+ private:
+  beast::tcp_stream& lowest() { return beast::get_lowest_layer(stream_); }
+
   void read() {
     parser_.emplace();
     parser_->body_limit(body_limit_);
     parser_->header_limit(16 * 1024);
-    stream_.expires_after(kReadTimeout);
-    http::async_read(
-        stream_, buffer_, *parser_,
-        [self = shared_from_this()](beast::error_code ec, std::size_t) { self->on_read(ec); });
+    lowest().expires_after(kReadTimeout);
+    http::async_read(stream_, buffer_, *parser_,
+                     [self = this->shared_from_this()](beast::error_code ec, std::size_t) {
+                       self->on_read(ec);
+                     });
   }
 
- private:
   void on_read(beast::error_code ec) {
     if (ec == http::error::end_of_stream || ec == beast::error::timeout) return close();
     if (ec == http::error::body_limit) {
@@ -63,11 +89,12 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
     const unsigned version = request.version();
     const bool keep_alive = request.keep_alive();
     beast::error_code peer_error;
-    const tcp::endpoint peer = stream_.socket().remote_endpoint(peer_error);
+    const tcp::endpoint peer = lowest().socket().remote_endpoint(peer_error);
     if (peer_error) return close();
     // Until the response is written the session reads nothing more (no pipelining), so one
     // connection never has two requests in work.
-    HttpRespond respond = [self = shared_from_this(), version, keep_alive](HttpResponse response) {
+    HttpRespond respond = [self = this->shared_from_this(), version,
+                           keep_alive](HttpResponse response) {
       asio::post(self->stream_.get_executor(),
                  [self, version, keep_alive, response = std::move(response)]() mutable {
                    response.version(version);
@@ -88,22 +115,30 @@ class HttpSession : public std::enable_shared_from_this<HttpSession> {
     if (close_after) response.keep_alive(false);
     response.prepare_payload();
     response_ = std::make_shared<HttpResponse>(std::move(response));
-    stream_.expires_after(kReadTimeout);
-    http::async_write(stream_, *response_,
-                      [self = shared_from_this(), close_after](beast::error_code ec, std::size_t) {
-                        self->response_.reset();
-                        if (ec || close_after) return self->close();
-                        self->read();
-                      });
+    lowest().expires_after(kReadTimeout);
+    http::async_write(
+        stream_, *response_,
+        [self = this->shared_from_this(), close_after](beast::error_code ec, std::size_t) {
+          self->response_.reset();
+          if (ec || close_after) return self->close();
+          self->read();
+        });
   }
 
   void close() {
-    beast::error_code ignored;
-    stream_.socket().shutdown(tcp::socket::shutdown_send, ignored);
-    stream_.close();
+    if constexpr (kTls) {
+      // close_notify first, so the client can tell the end from a truncation; bounded.
+      lowest().expires_after(std::chrono::seconds(5));
+      stream_.async_shutdown(
+          [self = this->shared_from_this()](beast::error_code) { self->lowest().close(); });
+    } else {
+      beast::error_code ignored;
+      stream_.socket().shutdown(tcp::socket::shutdown_send, ignored);
+      stream_.close();
+    }
   }
 
-  beast::tcp_stream stream_;
+  Stream stream_;
   beast::flat_buffer buffer_;
   std::size_t body_limit_;
   std::shared_ptr<const HttpHandler> handler_;
@@ -159,7 +194,14 @@ void HttpServer::on_accept(beast::error_code ec, tcp::socket socket) {
     beast::error_code ignored;
     socket.close(ignored);
   } else {
-    std::make_shared<HttpSession>(std::move(socket), options_.body_limit, handler_, open_)->read();
+    if (options_.tls)
+      std::make_shared<HttpSession<TlsStream>>(options_.body_limit, handler_, open_,
+                                               std::move(socket), *options_.tls)
+          ->start();
+    else
+      std::make_shared<HttpSession<beast::tcp_stream>>(options_.body_limit, handler_, open_,
+                                                       std::move(socket))
+          ->start();
   }
   accept();
 }

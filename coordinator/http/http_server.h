@@ -1,6 +1,6 @@
-// The HTTP transport (Boost.Beast, after its advanced_server example): one session per
-// connection on the io thread, a body limit (413 beyond it), a timeout before every read,
-// keep-alive, a cap on open connections. A handler gets each request with a callback that it
+// The HTTP transport (Boost.Beast, after its advanced_server example): HTTP or HTTPS, one
+// session per connection on the io thread, a body limit (413 beyond it), a timeout before every
+// read, keep-alive, a cap on open connections. A handler gets each request with a callback that it
 // calls once, now or later (after work on another thread): the session lives until the
 // response is written.
 #pragma once
@@ -11,6 +11,7 @@
 #include <utility>  // before Asio: Boost 1.74 uses std::exchange without it
 
 #include <boost/asio/ip/tcp.hpp>
+#include <boost/asio/ssl/context.hpp>
 #include <boost/asio/steady_timer.hpp>
 #include <boost/beast/http.hpp>
 #include <nlohmann/json.hpp>
@@ -32,6 +33,9 @@ struct HttpServerOptions {
   // Connections beyond it are closed as soon as they are accepted: each one holds a
   // descriptor and up to body_limit bytes.
   int max_connections = 256;
+  // HTTPS when set (--tls-cert): a client that does not complete the TLS handshake within the
+  // read timeout is dropped without an answer.
+  std::shared_ptr<boost::asio::ssl::context> tls;
 };
 
 class HttpServer {

@@ -21,7 +21,7 @@ std::filesystem::path default_worker_binary() {
 }
 
 LocalWorkers::LocalWorkers(const std::filesystem::path& binary, int count, int threads_each,
-                           unsigned short port, const std::string& secret) {
+                           unsigned short port, const std::string& secret, bool tls) {
   if (count > 0 && !std::filesystem::exists(binary))
     throw std::runtime_error("no worker binary at " + binary.string() + " (use --worker-binary)");
   const pid_t parent = getpid();
@@ -35,8 +35,10 @@ LocalWorkers::LocalWorkers(const std::filesystem::path& binary, int count, int t
       prctl(PR_SET_PDEATHSIG, SIGTERM);
       if (getppid() != parent) _exit(0);  // the coordinator died before prctl took effect
       if (!secret.empty()) setenv("TESSERA_SECRET", secret.c_str(), 1);
+      // The last argument ends the list early without TLS.
       execl(binary.c_str(), binary.c_str(), "--coordinator", address.c_str(), "--threads",
-            threads.c_str(), "--name", name.c_str(), static_cast<char*>(nullptr));
+            threads.c_str(), "--name", name.c_str(), tls ? "--tls-insecure" : nullptr,
+            static_cast<char*>(nullptr));
       _exit(127);
     }
     children_.push_back(pid);

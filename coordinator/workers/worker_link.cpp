@@ -18,11 +18,11 @@ constexpr FrameLimits kWorkerLimits{.max_body = 16u << 20, .max_header = 64u << 
 constexpr std::size_t kMaxCachedHashes = 64;
 }  // namespace
 
-WorkerLink::WorkerLink(tcp::socket socket, const WorkerAuth& auth, Scheduler& scheduler,
+WorkerLink::WorkerLink(FrameStream stream, const WorkerAuth& auth, Scheduler& scheduler,
                        ConnectionTiming timing, std::shared_ptr<WorkerPortState> port,
                        std::chrono::milliseconds handshake_deadline)
-    : deadline_(socket.get_executor()),
-      connection_(std::make_shared<FrameConnection>(std::move(socket), kHandshakeLimits, timing)),
+    : deadline_(stream.get_executor()),
+      connection_(std::make_shared<FrameConnection>(std::move(stream), kHandshakeLimits, timing)),
       auth_(auth),
       scheduler_(scheduler),
       port_(std::move(port)),
@@ -37,6 +37,11 @@ void WorkerLink::start() {
                        if (self->stage_ == Stage::Ready) {
                          spdlog::info("worker {}: {}", self->id_, reason);
                          self->scheduler_.remove_worker(self->id_);
+                       } else if (reason.starts_with("TLS handshake failed")) {
+                         // A plaintext client or a worker that does not trust our certificate.
+                         if (auto suppressed = self->port_->reject_log.allow())
+                           spdlog::warn("worker port: {}: {}{}", self->connection_->peer(), reason,
+                                        suppressed_note(*suppressed));
                        }
                        self->leave_unauthenticated();
                        self->deadline_.cancel();
@@ -133,13 +138,14 @@ void WorkerLink::reject(const std::string& reason) {
 
 WorkerListener::WorkerListener(asio::io_context& io, const tcp::endpoint& endpoint, WorkerAuth auth,
                                Scheduler& scheduler, ConnectionTiming timing,
-                               WorkerPortLimits limits)
+                               WorkerPortLimits limits, std::shared_ptr<asio::ssl::context> tls)
     : acceptor_(io, endpoint),
       retry_(io),
       auth_(std::move(auth)),
       scheduler_(scheduler),
       timing_(timing),
-      limits_(limits) {
+      limits_(limits),
+      tls_(std::move(tls)) {
   accept();
 }
 
@@ -165,8 +171,9 @@ void WorkerListener::accept() {
       boost::system::error_code ignored;
       socket.close(ignored);
     } else {
-      std::make_shared<WorkerLink>(std::move(socket), auth_, scheduler_, timing_, state_,
-                                   limits_.handshake_deadline)
+      std::make_shared<WorkerLink>(
+          tls_ ? FrameStream(std::move(socket), tls_) : FrameStream(std::move(socket)), auth_,
+          scheduler_, timing_, state_, limits_.handshake_deadline)
           ->start();
     }
     accept();

@@ -43,7 +43,7 @@ struct WorkerPortState {
 
 class WorkerLink : public std::enable_shared_from_this<WorkerLink> {
  public:
-  WorkerLink(boost::asio::ip::tcp::socket socket, const WorkerAuth& auth, Scheduler& scheduler,
+  WorkerLink(FrameStream stream, const WorkerAuth& auth, Scheduler& scheduler,
              ConnectionTiming timing, std::shared_ptr<WorkerPortState> port,
              std::chrono::milliseconds handshake_deadline);
   void start();
@@ -71,12 +71,14 @@ class WorkerLink : public std::enable_shared_from_this<WorkerLink> {
   std::int64_t id_ = 0;
 };
 
-// Accepts worker connections on the worker port.
+// Accepts worker connections on the worker port; with `tls` (--tls-cert) every connection
+// is TLS, the handshake bounded by the handshake deadline.
 class WorkerListener {
  public:
   WorkerListener(boost::asio::io_context& io, const boost::asio::ip::tcp::endpoint& endpoint,
                  WorkerAuth auth, Scheduler& scheduler, ConnectionTiming timing,
-                 WorkerPortLimits limits = {});
+                 WorkerPortLimits limits = {},
+                 std::shared_ptr<boost::asio::ssl::context> tls = nullptr);
   unsigned short port() const { return acceptor_.local_endpoint().port(); }
 
  private:
@@ -89,6 +91,7 @@ class WorkerListener {
   Scheduler& scheduler_;
   ConnectionTiming timing_;
   WorkerPortLimits limits_;
+  std::shared_ptr<boost::asio::ssl::context> tls_;
   std::shared_ptr<WorkerPortState> state_ = std::make_shared<WorkerPortState>();
 };
 

@@ -52,7 +52,10 @@ void WorkerSession::connect() {
 }
 
 void WorkerSession::on_connected(tcp::socket socket) {
-  connection_ = std::make_shared<FrameConnection>(std::move(socket), FrameLimits{}, config_.timing);
+  connection_ = std::make_shared<FrameConnection>(
+      config_.tls ? FrameStream(std::move(socket), config_.tls, config_.host)
+                  : FrameStream(std::move(socket)),
+      FrameLimits{}, config_.timing);
   connection_->start([this](Frame f) { on_frame(f); },
                      [this](const std::string& reason) { on_closed(reason); });
   nonce_ = make_nonce();

@@ -20,6 +20,7 @@ struct WorkerConfig {
   std::string secret;  // empty: only an --insecure coordinator accepts us
   std::string name;
   int threads = 1;
+  std::shared_ptr<boost::asio::ssl::context> tls;  // null: plain TCP
   ConnectionTiming timing;
 };
 
