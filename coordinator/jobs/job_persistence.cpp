@@ -73,16 +73,26 @@ void JobPersistence::state_changed(const Job& job) {
   }
 }
 
-void JobPersistence::store_images(const Job& job) {
+void JobPersistence::store_images(Job& job) {
   std::vector<StoredImage> images;
   for (const auto& [format, bytes] : job.final_encoded)
     if (bytes) images.push_back({"image." + format, *bytes});
+  const WallClock::time_point finished = to_wall(job.finished.value_or(Clock::now()));
   try {
-    db_.finish_job(job.id, to_string(job.state), job.error,
-                   to_wall(job.finished.value_or(Clock::now())), images);
+    db_.finish_job(job.id, to_string(job.state), job.error, finished, images);
   } catch (const StoreError& e) {
-    // The job is done and serves its images from memory; only its restart is lost.
-    spdlog::error("job {}: its images cannot be stored: {}", job.id, e.cause());
+    // Kept only in memory, the job would come back after a restart as what the store holds
+    // of it: it fails now, and that (a small write, after the failed one rolled back) is kept.
+    job.state = JobState::Failed;
+    job.error = "cannot store the job's results: " + e.cause();
+    job.final_encoded.clear();
+    ++job.version;
+    spdlog::error("job {} failed: its results cannot be stored: {}", job.id, e.cause());
+    try {
+      db_.finish_job(job.id, to_string(job.state), job.error, finished, {});
+    } catch (const StoreError& again) {
+      spdlog::error("job {}: its failure cannot be stored either: {}", job.id, again.cause());
+    }
   }
 }
 
@@ -98,7 +108,7 @@ void JobPersistence::tick(JobStore& jobs, Scheduler& scheduler) {
     note_failure(e);
   }
   for (const auto& [job, cause] : failed_)
-    if (scheduler.fail(job, "cannot store the job's progress: " + cause))
+    if (scheduler.fail(job, "cannot store the job's results: " + cause))
       spdlog::error("job {} failed: its progress cannot be stored: {}", job, cause);
   failed_.clear();
   try {

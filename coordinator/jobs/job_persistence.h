@@ -32,7 +32,8 @@ class JobPersistence : public JobObserver {
               const std::string& worker) override;
   void state_changed(const Job& job) override;
   // A done job's final images are encoded (Job::final_encoded): stores them with its state.
-  void store_images(const Job& job);
+  // When that write fails the job fails (its images dropped) with the store's error.
+  void store_images(Job& job);
   // Every tick: writes the queued results, then applies retention. Jobs whose write failed
   // are failed in the scheduler; jobs retention deleted leave `jobs`.
   void tick(JobStore& jobs, Scheduler& scheduler);

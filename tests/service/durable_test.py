@@ -19,7 +19,7 @@ import service_test
 from service_test import SECRET, assert_identical, demo_scene, render_cli, start_coordinator
 
 # Several levels and three passes, long enough on two threads for ten kills spread over it.
-SETTINGS = {"width": 128, "height": 96, "aa": 5, "stochastic": True, "passes": 3, "seed": 11}
+SETTINGS = {"width": 256, "height": 192, "aa": 5, "stochastic": True, "passes": 3, "seed": 11}
 SMALL = {"width": 24, "height": 18, "aa": 1, "passes": 1, "seed": 3}
 KILLS = 10
 
@@ -151,7 +151,7 @@ def case_crash_resume():
 
 def case_max_disk():
     with tempfile.TemporaryDirectory() as tmp:
-        c = Coordinator(tmp, "--max-disk", "400K")
+        c = Coordinator(tmp, "--max-disk", "160K")
         try:
             c.start()
             small = c.submit(SMALL)
@@ -160,7 +160,8 @@ def case_max_disk():
             big = c.submit(SETTINGS)
             failed = c.finished(big)
             assert failed["state"] == "failed", failed
-            assert "cannot store" in failed["error"] and "over its limit" in failed["error"], failed
+            assert failed["error"].startswith("cannot store the job's results: "), failed
+            assert "full" in failed["error"] or "over its limit" in failed["error"], failed
             # The service goes on, and what it stored before is intact, also after a restart.
             assert [j["id"] for j in c.get("/api/jobs")] == [small, big]
             assert c.image(small, "png") == small_png
