@@ -132,6 +132,10 @@ def case_crash_resume():
             assert c.get("/api/jobs/%d" % first)["state"] == "done"
             assert c.image(first) == first_exr
             assert [j["id"] for j in c.get("/api/jobs?limit=1&after=%d" % first)] == [job]
+            assert [j["id"] for j in c.get("/api/jobs?limit=1")] == [first]
+            for bad in ("limit=0", "limit=1001", "after=-1", "limit=x"):
+                status, body = c.request("GET", "/api/jobs?" + bad)
+                assert status == 400 and json.loads(body)["error"] == "bad_query", (bad, body)
             c.kill()
             c.start()
             assert c.get("/api/jobs/%d" % job)["state"] == "done"
