@@ -24,12 +24,16 @@
 
 namespace {
 
-void tick_every(boost::asio::steady_timer& timer, tessera::Scheduler& scheduler) {
+// Every 250 ms: time limits and speculation, then the merged results written to the store
+// (a crash loses at most this much work) and retention.
+void tick_every(boost::asio::steady_timer& timer, tessera::Scheduler& scheduler,
+                tessera::JobStore& jobs, tessera::JobPersistence& persistence) {
   timer.expires_after(std::chrono::milliseconds(250));
   timer.async_wait([&](boost::system::error_code ec) {
     if (ec) return;
     scheduler.tick();
-    tick_every(timer, scheduler);
+    persistence.tick(jobs, scheduler);
+    tick_every(timer, scheduler, jobs, persistence);
   });
 }
 
@@ -84,6 +88,8 @@ int main(int argc, char** argv) {
       metrics.workers.set(totals.workers);
       metrics.worker_threads.set(totals.threads);
     });
+    JobPersistence persistence(options.data_dir, options.keep_finished, options.max_disk_bytes);
+    scheduler.set_observer(&persistence);
     const auto address = asio::ip::make_address(options.bind);
     const auto tls = options.tls_cert ? make_server_tls(*options.tls_cert, *options.tls_key)
                                       : nullptr;  // both ports plain
@@ -98,7 +104,11 @@ int main(int argc, char** argv) {
     IntakePool intake(io, options.intake_threads, options.intake_threads + 8);
     Api api(io, jobs, scheduler, intake, metrics,
             {options.limits, options.scenes_dir, options.web_dir, options.submit,
-             static_cast<double>(options.max_intake_seconds), options.max_jobs_per_client});
+             static_cast<double>(options.max_intake_seconds), options.max_jobs_per_client,
+             &persistence});
+    persistence.restore(jobs, scheduler, [&api](Job& job) {
+      job.on_released = [&api](Job& released) { api.on_released(released); };
+    });
     HttpServer http(
         io, {address, options.http_port},
         {options.limits.max_body_bytes, options.max_http_connections, tls},
@@ -118,7 +128,7 @@ int main(int argc, char** argv) {
     asio::signal_set signals(io, SIGINT, SIGTERM);
     signals.async_wait([&](boost::system::error_code, int) { io.stop(); });
     asio::steady_timer timer(io);
-    tick_every(timer, scheduler);
+    tick_every(timer, scheduler, jobs, persistence);
     io.run();
     if (intake.pending() > 0) {
       // A runaway scene would hold the exit until its budget stops it: leave without it

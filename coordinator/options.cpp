@@ -1,13 +1,14 @@
 #include "coordinator/options.h"
 
+#include <cctype>
 #include <cstdlib>
+#include <limits>
+#include <map>
 #include <stdexcept>
 
 #include "coordinator/workers/local_workers.h"
 
 namespace tessera {
-
-namespace {}  // namespace
 
 const char* const kCoordinatorUsage =
     "usage: tessera-coordinator --http-port P --worker-port Q [--secret S | --insecure]\n"
@@ -16,7 +17,12 @@ const char* const kCoordinatorUsage =
     "       [--heartbeat-ms MS] [--silence-ms MS] [--port-file PATH] [--intake-threads N]\n"
     "       [--max-intake-seconds S] [--max-http-connections N] [--api-token T | --open-submit]\n"
     "       [--allow-origin ORIGIN]... [--max-jobs-per-client N]\n"
-    "       [--tls-cert FILE --tls-key FILE]";
+    "       [--tls-cert FILE --tls-key FILE] [--data-dir DIR]\n"
+    "       [--keep-finished DURATION] [--max-disk BYTES]\n"
+    "  --data-dir DIR            where jobs are kept across restarts (default ./tessera-data)\n"
+    "  --keep-finished DURATION  how long finished jobs are kept: 3600s, 90m, 12h, 7d (default "
+    "7d)\n"
+    "  --max-disk BYTES          the data directory's budget: 512M, 2G (default unlimited)";
 
 namespace {
 
@@ -29,7 +35,39 @@ long parse_number(const std::string& flag, const std::string& text, long lo, lon
   return v;
 }
 
+// A number with a unit suffix: "90m" -> 90 * units.at('m'); no suffix multiplies by 1.
+std::int64_t parse_scaled(const std::string& flag, const std::string& text,
+                          const std::map<char, std::int64_t>& units, const char* what) {
+  const auto fail = [&] {
+    return std::invalid_argument(flag + " takes " + what + ", not \"" + text + "\"\n" +
+                                 kCoordinatorUsage);
+  };
+  std::size_t digits = 0;
+  while (digits < text.size() && std::isdigit(static_cast<unsigned char>(text[digits]))) ++digits;
+  if (digits == 0 || digits > 15 || text.size() > digits + 1) throw fail();
+  std::int64_t scale = 1;
+  if (text.size() == digits + 1) {
+    const auto unit = units.find(text.back());
+    if (unit == units.end()) throw fail();
+    scale = unit->second;
+  }
+  const std::int64_t value = std::stoll(text.substr(0, digits));
+  if (value <= 0 || value > std::numeric_limits<std::int64_t>::max() / scale) throw fail();
+  return value * scale;
+}
+
 }  // namespace
+
+std::chrono::seconds parse_duration(const std::string& flag, const std::string& text) {
+  return std::chrono::seconds(parse_scaled(flag, text,
+                                           {{'s', 1}, {'m', 60}, {'h', 3600}, {'d', 86400}},
+                                           "a duration like 3600s, 90m, 12h or 7d"));
+}
+
+std::int64_t parse_bytes(const std::string& flag, const std::string& text) {
+  return parse_scaled(flag, text, {{'K', 1LL << 10}, {'M', 1LL << 20}, {'G', 1LL << 30}},
+                      "a size like 1048576, 512K, 512M or 2G");
+}
 
 CoordinatorOptions parse_coordinator_options(int argc, char** argv) {
   CoordinatorOptions o;
@@ -91,6 +129,12 @@ CoordinatorOptions parse_coordinator_options(int argc, char** argv) {
       o.tls_cert = value();
     else if (arg == "--tls-key")
       o.tls_key = value();
+    else if (arg == "--data-dir")
+      o.data_dir = value();
+    else if (arg == "--keep-finished")
+      o.keep_finished = parse_duration(arg, value());
+    else if (arg == "--max-disk")
+      o.max_disk_bytes = parse_bytes(arg, value());
     else
       throw std::invalid_argument("unknown argument " + arg + "\n" + kCoordinatorUsage);
   }

@@ -4,10 +4,14 @@
 //   [--worker-binary PATH] [--max-job-seconds S] [--max-body-bytes N] [--heartbeat-ms MS]
 //   [--silence-ms MS] [--intake-threads N] [--max-intake-seconds S]
 //   [--max-http-connections N] [--api-token T | --open-submit] [--allow-origin O]...
-//   [--max-jobs-per-client N] [--tls-cert FILE --tls-key FILE]
+//   [--max-jobs-per-client N] [--tls-cert FILE --tls-key FILE] [--data-dir DIR]
+//   [--keep-finished DURATION] [--max-disk BYTES]
 #pragma once
 
+#include <chrono>
+#include <cstdint>
 #include <filesystem>
+#include <limits>
 #include <optional>
 #include <string>
 
@@ -40,11 +44,20 @@ struct CoordinatorOptions {
   int max_jobs_per_client = 8;  // unfinished jobs per peer address
   // Both or neither: HTTPS and TLS on the worker port (PEM files).
   std::optional<std::filesystem::path> tls_cert, tls_key;
+  // The durable job store (docs/SERVICE.md "Data directory"): finished jobs are kept for
+  // keep_finished and, oldest first, within max_disk_bytes.
+  std::filesystem::path data_dir = "tessera-data";
+  std::chrono::seconds keep_finished = std::chrono::hours(24 * 7);
+  std::int64_t max_disk_bytes = std::numeric_limits<std::int64_t>::max();
 };
 
 extern const char* const kCoordinatorUsage;
 
 // Throws std::invalid_argument with a usage message.
 CoordinatorOptions parse_coordinator_options(int argc, char** argv);
+// "3600s", "90m", "12h", "7d" (a bare number is seconds); throws std::invalid_argument.
+std::chrono::seconds parse_duration(const std::string& flag, const std::string& text);
+// "1048576", "512K", "512M", "2G" (powers of 1024); throws std::invalid_argument.
+std::int64_t parse_bytes(const std::string& flag, const std::string& text);
 
 }  // namespace tessera

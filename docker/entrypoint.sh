@@ -1,7 +1,8 @@
 #!/bin/bash
 # Maps the containers' environment to the programs' flags; flags given to `podman run` after
 # the image name are appended and win.
-#   coordinator: TESSERA_HTTP_PORT, TESSERA_WORKER_PORT, TESSERA_SECRET and TESSERA_API_TOKEN
+#   coordinator: TESSERA_HTTP_PORT, TESSERA_WORKER_PORT, TESSERA_DATA_DIR (the job store, a
+#                volume: /var/lib/tessera), TESSERA_SECRET and TESSERA_API_TOKEN
 #                (read by the program), TESSERA_OPEN_SUBMIT=1 (--open-submit). Requests from the
 #                host through a published port do not come from loopback inside the container:
 #                to submit, give them TESSERA_API_TOKEN (Authorization: Bearer TOKEN; the page
@@ -15,7 +16,8 @@ case "$role" in
   coordinator)
     [ "${TESSERA_OPEN_SUBMIT:-}" = 1 ] && set -- --open-submit "$@"
     exec tessera-coordinator --http-port "$TESSERA_HTTP_PORT" --worker-port "$TESSERA_WORKER_PORT" \
-      --web-dir /usr/share/tessera/web --scenes-dir /usr/share/tessera/scenes "$@" ;;
+      --web-dir /usr/share/tessera/web --scenes-dir /usr/share/tessera/scenes \
+      --data-dir "${TESSERA_DATA_DIR:-/var/lib/tessera}" "$@" ;;
   worker)
     args=(--coordinator "${TESSERA_COORDINATOR:?set TESSERA_COORDINATOR to HOST:PORT of the coordinator}")
     [ -n "${TESSERA_THREADS:-}" ] && args+=(--threads "$TESSERA_THREADS")

@@ -131,8 +131,23 @@ void Api::route(HttpRequest& request, const std::string& path, const Query& quer
     if (method == http::verb::post) return create_job(request, query, client, respond);
     if (method != http::verb::get)
       throw ApiError(405, "method_not_allowed", "GET or POST /api/jobs");
+    // Pages: ?limit=N (1..1000) jobs with ids above ?after=ID, by id.
+    const auto number = [&](const char* name, long long lo, long long hi, long long fallback) {
+      auto it = query.find(name);
+      if (it == query.end()) return fallback;
+      const auto value = parse_id(it->second);
+      if (!value || *value < lo || *value > hi)
+        throw ApiError(400, "bad_query",
+                       std::string(name) + " takes a number in [" + std::to_string(lo) + ", " +
+                           std::to_string(hi) + "]");
+      return static_cast<long long>(*value);
+    };
+    const long long limit = number("limit", 1, 1000, 1000000000);
+    const long long after = number("after", 0, 999999999999999LL, 0);
     nlohmann::json list = nlohmann::json::array();
-    for (const auto& [id, job] : jobs_.all()) list.push_back(job_summary_json(*job, now));
+    for (auto it = jobs_.all().upper_bound(after);
+         it != jobs_.all().end() && static_cast<long long>(list.size()) < limit; ++it)
+      list.push_back(job_summary_json(*it->second, now));
     return respond(json_response(200, list));
   }
   const std::string prefix = "/api/jobs/";
@@ -236,7 +251,16 @@ void Api::create_job(HttpRequest& request, const Query& query, const std::string
             return [this, parsed, client, over_cap, too_many] {
               if (over_cap())
                 throw too_many;  // other submissions of this client finished meanwhile
-              Job* job = jobs_.create(std::move(*parsed), client);
+              std::function<std::int64_t(const JobRequest&)> store;
+              if (config_.persistence)
+                store = [p = config_.persistence](const JobRequest& r) {
+                  try {
+                    return p->admit(r);
+                  } catch (const StoreError& e) {
+                    throw ApiError(507, "store_failed", "the job cannot be stored: " + e.cause());
+                  }
+                };
+              Job* job = jobs_.create(std::move(*parsed), client, store);
               if (!job)
                 throw ApiError(503, "busy", "too many unfinished jobs; cancel some or wait");
               job->on_released = [this](Job& released) { on_released(released); };
@@ -385,6 +409,7 @@ void Api::on_released(Job& job) {
           if (Job* done = jobs_.find(id)) {
             done->final_encoded = {{"png", png}, {"exr", exr}};
             done->final_image.reset();
+            if (config_.persistence) config_.persistence->store_images(*done);
           }
           std::erase_if(encoded_, [id](const auto& entry) {
             return entry.first.first == id && entry.second.waiting.empty();

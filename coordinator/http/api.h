@@ -15,6 +15,7 @@
 #include "coordinator/http/http_server.h"
 #include "coordinator/http/intake_pool.h"
 #include "coordinator/http/submit_policy.h"
+#include "coordinator/jobs/job_persistence.h"
 #include "coordinator/jobs/job_store.h"
 #include "coordinator/jobs/limits.h"
 #include "coordinator/metrics/service_metrics.h"
@@ -27,8 +28,9 @@ struct ApiConfig {
   std::optional<std::filesystem::path> scenes_dir;
   std::filesystem::path web_dir;
   SubmitPolicy submit;
-  double max_intake_seconds = 10;  // wall time of one submission or prediction
-  int max_jobs_per_client = 8;     // unfinished jobs per peer address
+  double max_intake_seconds = 10;         // wall time of one submission or prediction
+  int max_jobs_per_client = 8;            // unfinished jobs per peer address
+  JobPersistence* persistence = nullptr;  // the durable store; jobs live in memory only without
 };
 
 class Api {
@@ -43,6 +45,9 @@ class Api {
         config_(std::move(config)) {}
   // On the io thread; `respond` is called once, at once or when the pool's work is done.
   void handle(HttpRequest request, const boost::asio::ip::tcp::endpoint& peer, HttpRespond respond);
+  // A job has freed its buffers: a done one's final image is encoded on the pool (and stored).
+  // Set as every job's on_released, restored ones included.
+  void on_released(Job& job);
 
  private:
   using Query = std::map<std::string, std::string>;
@@ -60,8 +65,6 @@ class Api {
   // Runs `work` on the pool under a deadline of --max-intake-seconds: 503 when the pool's
   // queue is full, 422 when the deadline passes first (the late result is then dropped).
   void offload(HttpRespond respond, std::function<Finish(const IntakeBudget&)> work);
-  // A job has freed its buffers: a done one's final image is encoded on the pool.
-  void on_released(Job& job);
 
   boost::asio::io_context& io_;
   JobStore& jobs_;

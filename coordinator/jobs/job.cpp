@@ -77,13 +77,17 @@ Image Job::image() const {
 
 void Job::release_buffers() {
   if (state == JobState::Done) final_image = std::make_shared<const Image>(image());
+  free_buffers();
+  if (on_released) on_released(*this);
+}
+
+void Job::free_buffers() {
   // Assigning empty containers frees their storage (clear() would keep the capacity).
   frame_buffer = FrameBuffer(0, 0);
   display = Image();
   display_rank = std::vector<int>();
   tiles = std::vector<TileRecord>();
   malloc_trim(0);  // large frees go back to the system only when trimmed (glibc)
-  if (on_released) on_released(*this);
 }
 
 double Job::elapsed_seconds(Clock::time_point now) const {

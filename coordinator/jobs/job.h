@@ -99,6 +99,9 @@ struct Job {
   // frees the frame buffer, display, ranks and tile records, and returns the memory to the
   // system (malloc_trim).
   void release_buffers();
+  // Frees the frame buffer, display, ranks and tile records (a job restored finished never
+  // needs them).
+  void free_buffers();
   double elapsed_seconds(Clock::time_point now) const;
   std::optional<double> eta_seconds(Clock::time_point now) const;
   // The first stage not finished: the level or pass being refined now.

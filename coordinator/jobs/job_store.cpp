@@ -1,12 +1,16 @@
 #include "coordinator/jobs/job_store.h"
 
+#include <algorithm>
+
 namespace tessera {
 
-Job* JobStore::create(JobRequest request, std::string client) {
+Job* JobStore::create(JobRequest request, std::string client,
+                      const std::function<std::int64_t(const JobRequest&)>& assign_id) {
   for (auto it = jobs_.begin(); static_cast<int>(jobs_.size()) >= max_jobs_ && it != jobs_.end();)
     it = it->second->finished_state() ? jobs_.erase(it) : std::next(it);
   if (static_cast<int>(jobs_.size()) >= max_jobs_) return nullptr;
-  const std::int64_t id = next_id_++;
+  const std::int64_t id = assign_id ? assign_id(request) : next_id_;
+  next_id_ = std::max(next_id_, id + 1);
   auto job = std::make_unique<Job>(id, std::move(request.bundle), request.spec, request.plan,
                                    request.priority);
   job->effects = std::move(request.effects);

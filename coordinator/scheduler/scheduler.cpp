@@ -66,13 +66,18 @@ int Scheduler::take_back_units(WorkerSlot& w, const std::function<bool(std::int6
   return requeued;
 }
 
-void Scheduler::add_job(Job& job) {
+void Scheduler::add_job(Job& job, const std::vector<bool>& done) {
   spdlog::info("job {} queued: {} ({}x{}, {} units)", job.id, job.bundle.main,
                job.spec.settings.width, job.spec.settings.height, job.plan.units.size());
   JobRun& run = runs_[job.id];
   run.job = &job;
   run.units.resize(job.plan.units.size());
-  for (int u = 0; u < static_cast<int>(job.plan.units.size()); ++u) run.pending.push_back(u);
+  for (int u = 0; u < static_cast<int>(job.plan.units.size()); ++u)
+    if (u < static_cast<int>(done.size()) && done[u])
+      run.units[u].state = UnitState::Done;
+    else
+      run.pending.push_back(u);
+  if (job.done_cost == job.plan.total_cost) return finish(run, JobState::Done);
   // Start level with the others, so a new job neither waits for nor starves the running ones.
   double least = 0;
   bool any = false;
@@ -89,6 +94,13 @@ bool Scheduler::cancel(std::int64_t job) {
   auto it = runs_.find(job);
   if (it == runs_.end()) return false;
   finish(it->second, JobState::Cancelled);
+  return true;
+}
+
+bool Scheduler::fail(std::int64_t job, const std::string& error) {
+  auto it = runs_.find(job);
+  if (it == runs_.end()) return false;
+  finish(it->second, JobState::Failed, error);
   return true;
 }
 
@@ -205,10 +217,10 @@ void Scheduler::send_unit(WorkerSlot& w, JobRun& run, int unit) {
   StageTiming& timing = job.stage_timing[wu.stage];
   if (!timing.first_dispatch) timing.first_dispatch = now;
   if (!job.started) job.started = now;
-  if (job.state != JobState::Running) {
-    job.state = JobState::Running;
-    spdlog::info("job {} running", job.id);
-  }
+  if (job.state == JobState::Running) return;
+  job.state = JobState::Running;
+  spdlog::info("job {} running", job.id);
+  if (observer_) observer_->state_changed(job);
 }
 
 void Scheduler::on_result(std::int64_t worker, const Frame& frame) {
@@ -257,6 +269,7 @@ void Scheduler::on_result(std::int64_t worker, const Frame& frame) {
   r.state = UnitState::Done;
   run.in_flight.erase(unit);
   job.apply_result(unit, values);
+  if (observer_) observer_->merged(job, unit, values, stats, w.hello.name);
   job.stats += stats;
   if (ServiceMetrics* m = options_.metrics) {
     m->units_finished.add();
@@ -340,6 +353,7 @@ void Scheduler::finish(JobRun& run, JobState state, const std::string& error) {
     calibration_.observe(*job.uncalibrated_prediction, job.stats.seconds / job.prediction_threads,
                          job.elapsed_seconds(*job.finished));
   job.release_buffers();
+  if (observer_) observer_->state_changed(job);
   runs_.erase(job.id);  // `run` and `job` references end here
   fill_slots();
 }

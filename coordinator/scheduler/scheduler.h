@@ -16,6 +16,7 @@
 #include <memory>
 #include <optional>
 #include <set>
+#include <span>
 #include <string>
 #include <utility>
 #include <vector>
@@ -53,6 +54,18 @@ struct Prediction {
   double overhead_seconds = 0;  // ...and the overhead added
 };
 
+// Told of what changes a job for good, so it can be stored (coordinator/jobs/job_persistence.h)
+// without the scheduler knowing the store. Called on the io thread.
+class JobObserver {
+ public:
+  virtual ~JobObserver() = default;
+  // A unit's result was merged into the job's frame buffer (Job::apply_result).
+  virtual void merged(const Job& job, int unit, std::span<const float> values,
+                      const RenderStats& stats, const std::string& worker) = 0;
+  // The job started running or finished (its buffers are already released).
+  virtual void state_changed(const Job& job) = 0;
+};
+
 class Scheduler {
  public:
   explicit Scheduler(SchedulerOptions options) : options_(options) {}
@@ -70,7 +83,12 @@ class Scheduler {
   // job fails when a second worker reports it too, or at the time limit with the first report.
   void on_job_failed(std::int64_t worker, const Frame& frame);
 
-  void add_job(Job& job);
+  void set_observer(JobObserver* observer) { observer_ = observer; }
+  // `done` (per unit, may be empty) marks units whose results the job already holds: a job
+  // resumed after a restart runs only the others.
+  void add_job(Job& job, const std::vector<bool>& done = {});
+  // Fails a queued or running job (e.g. its results cannot be stored); false if finished.
+  bool fail(std::int64_t job, const std::string& error);
   // Cancels a queued or running job and frees its workers at once; false if already finished.
   bool cancel(std::int64_t job);
   // Time limits and speculation deadlines; called periodically.
@@ -135,6 +153,7 @@ class Scheduler {
   std::map<std::int64_t, WorkerSlot> workers_;
   PredictionCalibration calibration_;
   std::int64_t next_worker_ = 1;
+  JobObserver* observer_ = nullptr;
 };
 
 }  // namespace tessera

@@ -11,6 +11,7 @@
 #include "coordinator/jobs/job.h"
 #include "coordinator/jobs/job_request.h"
 #include "coordinator/jobs/multipart.h"
+#include "coordinator/options.h"
 #include "coordinator/scheduler/scheduler.h"
 
 namespace tessera {
@@ -281,6 +282,23 @@ TEST(SubmitPolicy, ForeignOriginsAreRefusedUnlessAllowed) {
   // The origin is checked before the token: a foreign page is refused even with it.
   policy.api_token = "t";
   EXPECT_EQ(refusal(policy, state_change("h", "https://evil.example", "Bearer t"), "::1"), 403);
+}
+
+// --keep-finished and --max-disk (issue 17 §2): units scale exactly; anything else is refused.
+TEST(CoordinatorOptions, DurationsAndSizesTakeTheirUnits) {
+  EXPECT_EQ(parse_duration("--keep-finished", "3600s").count(), 3600);
+  EXPECT_EQ(parse_duration("--keep-finished", "90m").count(), 5400);
+  EXPECT_EQ(parse_duration("--keep-finished", "12h").count(), 43200);
+  EXPECT_EQ(parse_duration("--keep-finished", "7d").count(), 604800);
+  EXPECT_EQ(parse_duration("--keep-finished", "45").count(), 45);
+  EXPECT_EQ(parse_bytes("--max-disk", "512K"), 512LL << 10);
+  EXPECT_EQ(parse_bytes("--max-disk", "512M"), 512LL << 20);
+  EXPECT_EQ(parse_bytes("--max-disk", "2G"), 2LL << 30);
+  EXPECT_EQ(parse_bytes("--max-disk", "1000"), 1000);
+  for (const char* bad : {"", "d", "7x", "7dd", "-1d", "0s", "1.5h", "99999999999999999d"})
+    EXPECT_THROW(parse_duration("--keep-finished", bad), std::invalid_argument) << bad;
+  for (const char* bad : {"", "M", "2T", "0", "2 G", "9999999999999G"})
+    EXPECT_THROW(parse_bytes("--max-disk", bad), std::invalid_argument) << bad;
 }
 
 }  // namespace

@@ -36,7 +36,9 @@ def start_coordinator(build, argv, log, port_file, timeout=10, prefix=(), bind="
     command (tests/multihost: `ip netns exec NS`)."""
     proc = subprocess.Popen(
         [*prefix, os.path.join(build, "coordinator", "tessera-coordinator"), "--bind", bind,
-         "--http-port", "0", "--worker-port", "0", "--port-file", port_file, *argv],
+         "--http-port", "0", "--worker-port", "0", "--port-file", port_file,
+         # Each coordinator its own job store, unless the test names one (durable_test.py).
+         "--data-dir", os.path.join(os.path.dirname(port_file), "data"), *argv],
         stdout=log, stderr=subprocess.STDOUT)
     deadline = time.time() + timeout
     while not os.path.exists(port_file):

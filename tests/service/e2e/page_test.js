@@ -86,7 +86,8 @@ async function main() {
   // A long --silence-ms: the stopped worker must not be dropped while the test looks.
   const coordinator = spawn(path.join(buildDir, "coordinator", "tessera-coordinator"),
     ["--bind", "127.0.0.1", "--http-port", "0", "--worker-port", "0", "--port-file", portFile,
-     "--insecure", "--silence-ms", "120000"], { stdio: "inherit" });
+     "--insecure", "--silence-ms", "120000", "--data-dir", path.join(profile, "data")],
+    { stdio: "inherit" });
   let context, worker;
   try {
     const { http_port: httpPort, worker_port: workerPort } =

@@ -1,0 +1,55 @@
+// The coordinator's jobs kept across restarts (issue 17 §1-2): converts between the in-memory
+// Job and the durable store's records (coordinator/store/job_record.h) in one place. A job is
+// stored at admission, each merged result is queued as it merges and written every tick, a
+// state change is stored, and a done job's encoded images are kept as files. At start,
+// restore() rebuilds every stored job under its old id: finished ones with their images,
+// unfinished ones by replaying their results into a fresh Job, which the scheduler resumes.
+// A write that fails fails the jobs it concerned; the coordinator goes on. On the io thread.
+#pragma once
+
+#include <chrono>
+#include <cstdint>
+#include <filesystem>
+#include <functional>
+#include <map>
+#include <string>
+
+#include "coordinator/jobs/job_store.h"
+#include "coordinator/scheduler/scheduler.h"
+#include "coordinator/store/job_database.h"
+
+namespace tessera {
+
+class JobPersistence : public JobObserver {
+ public:
+  // Throws StoreError when the directory or its database cannot be opened.
+  JobPersistence(const std::filesystem::path& dir, std::chrono::seconds keep_finished,
+                 std::int64_t max_disk_bytes);
+
+  // Stores a new job and returns its id; throws StoreError (nothing is stored then).
+  std::int64_t admit(const JobRequest& request);
+  void merged(const Job& job, int unit, std::span<const float> values, const RenderStats& stats,
+              const std::string& worker) override;
+  void state_changed(const Job& job) override;
+  // A done job's final images are encoded (Job::final_encoded): stores them with its state.
+  // When that write fails the job fails (its images dropped) with the store's error.
+  void store_images(Job& job);
+  // Every tick: writes the queued results, then applies retention. Jobs whose write failed
+  // are failed in the scheduler; jobs retention deleted leave `jobs`.
+  void tick(JobStore& jobs, Scheduler& scheduler);
+  // At start: every stored job into `jobs` (`prepare` is called on each, e.g. to set its
+  // on_released), unfinished ones handed to the scheduler to resume.
+  void restore(JobStore& jobs, Scheduler& scheduler, const std::function<void(Job&)>& prepare);
+
+ private:
+  // Notes the jobs a failed write concerned: tick() fails them (not at once: a write may fail
+  // inside the scheduler's own calls).
+  void note_failure(const StoreError& e);
+
+  JobDatabase db_;
+  std::chrono::seconds keep_finished_;
+  std::int64_t max_disk_bytes_;
+  std::map<std::int64_t, std::string> failed_;  // job -> why its write failed
+};
+
+}  // namespace tessera

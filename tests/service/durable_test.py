@@ -1,0 +1,202 @@
+#!/usr/bin/env python3
+"""Jobs survive a coordinator crash (issue 17 §1-2): the coordinator is SIGKILLed again and
+again while a job of several levels and passes renders, restarted each time with the same
+--data-dir, and the job's final image is still bit-identical to tessera-render's; jobs finished
+before the crashes keep their ids and images. And a store over --max-disk fails only the job
+it could not store. Cases: crash_resume, max_disk."""
+import argparse
+import json
+import os
+import signal
+import subprocess
+import sys
+import tempfile
+import time
+import urllib.error
+import urllib.request
+
+import service_test
+from service_test import SECRET, assert_identical, demo_scene, render_cli, start_coordinator
+
+# Several levels and three passes, long enough on two threads for ten kills spread over it.
+SETTINGS = {"width": 320, "height": 240, "aa": 9, "stochastic": True, "passes": 4, "seed": 11}
+SMALL = {"width": 24, "height": 18, "aa": 1, "passes": 1, "seed": 3}
+KILLS = 10
+
+
+class Coordinator:
+    """A coordinator with one local worker over a data directory that outlives it: kill() is
+    SIGKILL, start() comes back on the same ports and directory."""
+
+    def __init__(self, tmp, *extra):
+        self.tmp, self.extra = tmp, list(extra)
+        self.data = os.path.join(tmp, "data")
+        self.ports = ["--http-port", "0", "--worker-port", "0"]
+        self.proc = None
+        self.starts = 0
+
+    def start(self):
+        self.starts += 1
+        port_file = os.path.join(self.tmp, "ports-%d.json" % self.starts)
+        log = open(os.path.join(self.tmp, "coordinator-%d.log" % self.starts), "w")
+        self.proc, self.http_port, worker_port = start_coordinator(
+            ARGS.build, ["--secret", SECRET, "--local-workers", "1", "--local-threads", "2",
+                         "--data-dir", self.data, *self.ports, *self.extra], log, port_file)
+        self.ports = ["--http-port", str(self.http_port), "--worker-port", str(worker_port)]
+
+    def kill(self):
+        self.proc.send_signal(signal.SIGKILL)
+        self.proc.wait()
+
+    def request(self, method, path, body=None):
+        req = urllib.request.Request("http://127.0.0.1:%d%s" % (self.http_port, path), data=body,
+                                     method=method, headers={"Content-Type": "application/json"})
+        try:
+            with urllib.request.urlopen(req, timeout=30) as r:
+                return r.status, r.read()
+        except urllib.error.HTTPError as e:
+            return e.code, e.read()
+
+    def get(self, path):
+        status, body = self.request("GET", path)
+        assert status == 200, (path, status, body)
+        return json.loads(body)
+
+    def submit(self, settings):
+        status, body = self.request(
+            "POST", "/api/jobs", json.dumps({"scene": open(demo_scene()).read(),
+                                             "settings": settings}).encode())
+        assert status == 201, (status, body)
+        return json.loads(body)["id"]
+
+    def wait(self, job_id, until, timeout=60):
+        deadline = time.time() + timeout
+        while True:
+            job = self.get("/api/jobs/%d" % job_id)
+            if until(job):
+                return job
+            assert time.time() < deadline, "job %d: %s" % (job_id, job)
+            time.sleep(0.02)
+
+    def image(self, job_id, fmt="exr"):
+        status, body = self.request("GET", "/api/jobs/%d/image?format=%s" % (job_id, fmt))
+        assert status == 200, (status, body[:200])
+        return body
+
+    def finished(self, job_id):
+        return self.wait(job_id, lambda j: j["state"] not in ("queued", "running"))
+
+
+def show_logs(tmp):
+    for name in sorted(os.listdir(tmp)):
+        if name.endswith(".log"):
+            print("----- %s" % name)
+            print(open(os.path.join(tmp, name)).read()[-2000:])
+
+
+def case_crash_resume():
+    with tempfile.TemporaryDirectory() as tmp:
+        c = Coordinator(tmp)
+        try:
+            c.start()
+            first = c.submit(SMALL)
+            assert c.finished(first)["state"] == "done"
+            first_exr = c.image(first)
+            job = c.submit(SETTINGS)
+            assert job == first + 1
+            seen, restored = set(), [0.0]
+            for k in range(1, KILLS + 1):
+                # Kill points spread evenly over the job's work, so over its levels and passes.
+                at = c.wait(job, lambda j, k=k: j["progress"] >= k / (KILLS + 5)
+                            or j["state"] != "running" and j["state"] != "queued")
+                assert at["state"] == "running", ("finished before kill %d" % k, at)
+                seen.add((at["level"], at["pass"]))
+                # A crash loses at most the last tick's results (250 ms): let one tick store
+                # what reached the kill point, or on a fast machine every kill would come
+                # before the next flush and the job would never get further.
+                time.sleep(0.3)
+                c.kill()
+                c.start()
+                # Resumed, not restarted: what was stored is back before any new unit (a
+                # crash loses at most the last tick's results), and never less than last time.
+                back = c.get("/api/jobs/%d" % job)
+                assert back["state"] in ("queued", "running"), back
+                assert back["progress"] >= restored[-1], (restored, back["progress"])
+                restored.append(back["progress"])
+            assert restored[-1] > 0.5, restored
+            final = c.finished(job)
+            assert final["state"] == "done", final
+            assert len(seen) >= 3, "kills hit only %s" % seen
+            with open(os.path.join(tmp, "resumed.exr"), "wb") as f:
+                f.write(c.image(job))
+            render_cli(demo_scene(), SETTINGS, os.path.join(tmp, "cli.exr"))
+            assert_identical(os.path.join(tmp, "resumed.exr"), os.path.join(tmp, "cli.exr"))
+            # Finished jobs from before the crashes: same ids, same images; ids go on.
+            assert [j["id"] for j in c.get("/api/jobs")] == [first, job]
+            assert c.get("/api/jobs/%d" % first)["state"] == "done"
+            assert c.image(first) == first_exr
+            assert [j["id"] for j in c.get("/api/jobs?limit=1&after=%d" % first)] == [job]
+            assert [j["id"] for j in c.get("/api/jobs?limit=1")] == [first]
+            for bad in ("limit=0", "limit=1001", "after=-1", "limit=x"):
+                status, body = c.request("GET", "/api/jobs?" + bad)
+                assert status == 400 and json.loads(body)["error"] == "bad_query", (bad, body)
+            c.kill()
+            c.start()
+            assert c.get("/api/jobs/%d" % job)["state"] == "done"
+            with open(os.path.join(tmp, "after.exr"), "wb") as f:
+                f.write(c.image(job))
+            assert_identical(os.path.join(tmp, "after.exr"), os.path.join(tmp, "cli.exr"))
+            assert c.submit(SMALL) == job + 1
+            print("killed %d times at (level, pass) %s; progress back after each restart: %s" %
+                  (KILLS, sorted(seen), " ".join("%.2f" % p for p in restored[1:])))
+        except BaseException:
+            show_logs(tmp)
+            raise
+        finally:
+            if c.proc and c.proc.poll() is None:
+                c.kill()
+
+
+def case_max_disk():
+    with tempfile.TemporaryDirectory() as tmp:
+        c = Coordinator(tmp, "--max-disk", "160K")
+        try:
+            c.start()
+            small = c.submit(SMALL)
+            assert c.finished(small)["state"] == "done"
+            small_png = c.image(small, "png")
+            big = c.submit(SETTINGS)
+            failed = c.finished(big)
+            assert failed["state"] == "failed", failed
+            assert failed["error"].startswith("cannot store the job's results: "), failed
+            assert "full" in failed["error"] or "over its limit" in failed["error"], failed
+            # The service goes on, and what it stored before is intact, also after a restart.
+            assert [j["id"] for j in c.get("/api/jobs")] == [small, big]
+            assert c.image(small, "png") == small_png
+            c.kill()
+            c.start()
+            assert c.get("/api/jobs/%d" % big)["state"] == "failed"
+            assert c.image(small, "png") == small_png
+        except BaseException:
+            show_logs(tmp)
+            raise
+        finally:
+            if c.proc and c.proc.poll() is None:
+                c.kill()
+
+
+def main():
+    global ARGS
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--build", required=True)
+    parser.add_argument("--source", required=True)
+    parser.add_argument("case")
+    ARGS = parser.parse_args()
+    service_test.ARGS = ARGS  # its helpers find the binaries through it
+    start = time.time()
+    globals()["case_" + ARGS.case]()
+    print("%s passed in %.1f s" % (ARGS.case, time.time() - start))
+
+
+if __name__ == "__main__":
+    sys.exit(main())
