@@ -34,6 +34,8 @@ mutations=(
   "page_records_failed_loads~web/app.js~    img.src = url;\n  });~    img.src = url + (view.version % 2 ? \"broken\" : \"\");\n  }).then(() => true);~~node tests/service/e2e/page_test.js $build ."
   "cancel_never_sent~coordinator/scheduler/scheduler.cpp~    w.connection->send(Frame{MessageType::Cancel, {{\"job\", job.id}}, {}});~    (void)0;~test_coordinator~gtest service/test_coordinator SchedulerTest.*"
   "cancel_ignored~worker/render_loop/render_loop.cpp~void RenderLoop::cancel_job(std::int64_t job) {~void RenderLoop::cancel_job(std::int64_t job) {\n  if (job >= 0) return;~test_worker~gtest test_worker RenderLoopCancel.*"
+  "cancel_frame_ignored~worker/session/worker_session.cpp~          return loop_.cancel_job(frame.header.at(\"job\").get<std::int64_t>());~          return;~tessera-worker~python3 tests/service/worker_cancel_test.py --build $build --source ."
+  "bundle_hash_unchecked~worker/session/worker_session.cpp~if (content_hash(*bundle) != hash)~if ((false))~tessera-worker~python3 tests/service/worker_cancel_test.py --build $build --source ."
   "bundles_never_reused~worker/render_loop/render_loop.cpp~  } else if (cached != bundles_.end()) {~  } else if ((false)) {~test_worker~gtest test_worker RenderLoopBundles.*"
   "bundle_cache_of_nine~worker/render_loop/render_loop.cpp~constexpr std::size_t kCachedBundles = 8;~constexpr std::size_t kCachedBundles = 9;~test_worker~gtest test_worker RenderLoopBundles.*"
   "speculation_at_once~coordinator/scheduler/scheduler.cpp~if (seconds_since(r.dispatched, now) < wait) continue;~if (seconds_since(r.dispatched, now) < 0 * wait) continue;~test_coordinator~gtest service/test_coordinator SpeculationDeadlineTest.*"

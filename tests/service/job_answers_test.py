@@ -87,8 +87,9 @@ def case_image_format():
         for fmt in ("gif", "PNG", ""):
             status, _, reply = service.request(
                 "GET", "/api/jobs/%d/image?format=%s" % (job["id"], fmt))
+            assert status == 400, (fmt, status)
             err = json.loads(reply)
-            assert status == 400 and err["error"] == "bad_request", (fmt, status, err)
+            assert err["error"] == "bad_request", (fmt, err)
             assert "png or exr" in err["detail"], err
         for fmt in ("png", "exr"):
             status, _, _ = service.request("GET", "/api/jobs/%d/image?format=%s" % (job["id"], fmt))
