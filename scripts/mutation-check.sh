@@ -32,6 +32,21 @@ mutations=(
   "frame_buffer_blue_from_green~common/render/frame_buffer.cpp~  sums_[3 * i + 2] += rgb[2];~  sums_[3 * i + 2] += rgb[1];~test_coordinator~gtest service/test_coordinator JobMerge*"
   "constant_etag~coordinator/http/api.cpp~std::to_string(job.version) + \"-\" + format~std::to_string(0) + \"-\" + format~tessera-coordinator tessera-worker~node tests/service/e2e/page_test.js $build ."
   "page_records_failed_loads~web/app.js~    img.src = url;\n  });~    img.src = url + (view.version % 2 ? \"broken\" : \"\");\n  }).then(() => true);~~node tests/service/e2e/page_test.js $build ."
+  "cancel_never_sent~coordinator/scheduler/scheduler.cpp~    w.connection->send(Frame{MessageType::Cancel, {{\"job\", job.id}}, {}});~    (void)0;~test_coordinator~gtest service/test_coordinator SchedulerTest.*"
+  "cancel_ignored~worker/render_loop/render_loop.cpp~void RenderLoop::cancel_job(std::int64_t job) {~void RenderLoop::cancel_job(std::int64_t job) {\n  if (job >= 0) return;~test_worker~gtest test_worker RenderLoopCancel.*"
+  "cancel_frame_ignored~worker/session/worker_session.cpp~          return loop_.cancel_job(frame.header.at(\"job\").get<std::int64_t>());~          return;~tessera-worker~python3 tests/service/worker_cancel_test.py --build $build --source ."
+  "bundle_hash_unchecked~worker/session/worker_session.cpp~if (content_hash(*bundle) != hash)~if ((false))~tessera-worker~python3 tests/service/worker_cancel_test.py --build $build --source ."
+  "bundles_never_reused~worker/render_loop/render_loop.cpp~  } else if (cached != bundles_.end()) {~  } else if ((false)) {~test_worker~gtest test_worker RenderLoopBundles.*"
+  "bundle_cache_of_nine~worker/render_loop/render_loop.cpp~constexpr std::size_t kCachedBundles = 8;~constexpr std::size_t kCachedBundles = 9;~test_worker~gtest test_worker RenderLoopBundles.*"
+  "speculation_at_once~coordinator/scheduler/scheduler.cpp~if (seconds_since(r.dispatched, now) < wait) continue;~if (seconds_since(r.dispatched, now) < 0 * wait) continue;~test_coordinator~gtest service/test_coordinator SpeculationDeadlineTest.*"
+  "speculation_factor_ignored~coordinator/scheduler/scheduler.cpp~std::max(options_.speculation_factor * mean,~std::max(0 * mean,~test_coordinator~gtest service/test_coordinator SpeculationDeadlineTest.*"
+  "speculation_to_busy_workers~coordinator/scheduler/scheduler.cpp~if (static_cast<int>(w.in_flight.size()) >= w.hello.threads) return false;~if ((false)) return false;~test_coordinator~gtest service/test_coordinator SchedulerTest.*"
+  "calibration_inputs_swapped~coordinator/scheduler/scheduler.cpp~job.stats.seconds / job.prediction_threads,\n                         job.elapsed_seconds(*job.finished));~7 * job.elapsed_seconds(*job.finished),\n                         job.stats.seconds / job.prediction_threads);~test_coordinator~gtest service/test_coordinator SchedulerTest.Calibration*"
+  "ran_alone_ignored~coordinator/scheduler/scheduler.cpp~state == JobState::Done && job.ran_alone &&~state == JobState::Done &&~test_coordinator~gtest service/test_coordinator SchedulerTest.*Calibrate*"
+  "job_store_unbounded~coordinator/jobs/job_store.cpp~if (static_cast<int>(jobs_.size()) >= max_jobs_) return nullptr;~if ((false)) return nullptr;~tessera-coordinator~python3 tests/service/job_answers_test.py --build $build --source . full_store"
+  "tiles_since_ignored~coordinator/http/job_json.cpp~for (std::size_t i = since; i < job.tiles.size(); ++i)~for (std::size_t i = 0 * since; i < job.tiles.size(); ++i)~tessera-coordinator~python3 tests/service/job_answers_test.py --build $build --source . tiles_since"
+  "image_format_unchecked~coordinator/http/api.cpp~if (format != \"png\" && format != \"exr\")~if ((false))~tessera-coordinator~python3 tests/service/job_answers_test.py --build $build --source . image_format"
+  "round_trip_in_centiseconds~coordinator/scheduler/scheduler.cpp~{\"round_trip_ms\", w.pipeline.round_trip_seconds() * 1e3},~{\"round_trip_ms\", w.pipeline.round_trip_seconds() * 1e2},~tessera-coordinator~python3 tests/multihost/multihost_test.py --build $build --source . identical"
 )
 
 built=()

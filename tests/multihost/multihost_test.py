@@ -48,6 +48,12 @@ def case_identical():
         service.wait_workers(2)
         final = render_and_compare(service, submit_demo(service, SETTINGS), SETTINGS, tmp)
         assert {w["name"] for w in final["workers"]} == {"near", "far"}, final["workers"]
+        # Each worker's round trip, as /api/workers reports it, is the one added to its link:
+        # never less, and not much more (the fastest unit's transit beyond its render time).
+        round_trips = {w["name"]: w["round_trip_ms"] for w in service.get("/api/workers")}
+        print("round trips (ms): %s" % round_trips)
+        for name, rtt_ms in (("near", 20), ("far", 50)):
+            assert rtt_ms <= round_trips[name] < rtt_ms + 25, round_trips
 
 
 def case_link_cut():

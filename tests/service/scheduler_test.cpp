@@ -4,8 +4,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <limits>
 #include <map>
+#include <thread>
 
 #include "common/protocol/unit_message.h"
 
@@ -27,7 +29,11 @@ struct FakeWorker {
 
 class SchedulerTest : public ::testing::Test {
  protected:
-  SchedulerTest() : acceptor_(io_, tcp::endpoint(asio::ip::address_v4::loopback(), 0)) {}
+  // Speculation at once by default; the deadline tests pass their own options.
+  explicit SchedulerTest(
+      SchedulerOptions options = {.speculation_factor = 0,
+                                  .min_speculation = std::chrono::milliseconds(0)})
+      : acceptor_(io_, tcp::endpoint(asio::ip::address_v4::loopback(), 0)), scheduler_(options) {}
 
   JobRequest request(int width, int height, int passes, int priority = 1) {
     JobRequest r;
@@ -78,17 +84,19 @@ class SchedulerTest : public ::testing::Test {
   }
 
   // What an honest worker sends for a unit of `pixels` pixels.
-  static Frame result(const Job& job, int unit, float value = 0.5f) {
+  static Frame result(const Job& job, int unit, float value = 0.5f, double seconds = 0) {
     const long long pixels = job.plan.units[unit].cost;
     RenderStats stats;
+    stats.seconds = seconds;
     stats.pixels = stats.samples = stats.camera_rays = static_cast<std::uint64_t>(pixels);
     return Frame{MessageType::Result,
                  {{"job", job.id}, {"unit", unit}, {"count", pixels}, {"stats", to_json(stats)}},
                  pack_floats(std::vector<float>(static_cast<std::size_t>(pixels) * 3, value))};
   }
 
-  void send_result(FakeWorker& w, const Frame& unit_frame, const Job& job) {
-    scheduler_.on_result(w.id, result(job, unit_frame.header["unit"].get<int>()));
+  // `seconds`: the render time the worker reports for the unit.
+  void send_result(FakeWorker& w, const Frame& unit_frame, const Job& job, double seconds = 0) {
+    scheduler_.on_result(w.id, result(job, unit_frame.header["unit"].get<int>(), 0.5f, seconds));
   }
 
   void report_failure(FakeWorker& w, const Job& job, const std::string& error) {
@@ -99,7 +107,7 @@ class SchedulerTest : public ::testing::Test {
   asio::io_context io_;
   tcp::acceptor acceptor_;
   JobStore store_{16};
-  Scheduler scheduler_{{.speculation_factor = 0, .min_speculation = std::chrono::milliseconds(0)}};
+  Scheduler scheduler_;
   std::vector<std::unique_ptr<FakeWorker>> workers_;
 };
 
@@ -300,8 +308,100 @@ TEST_F(SchedulerTest, StragglersAreDuplicatedAndTheLateResultDropped) {
   EXPECT_EQ(idle.units[0].header["unit"], slow.units[0].header["unit"]);
   send_result(idle, idle.units[0], job);
   EXPECT_EQ(job.state, JobState::Done);
+  drain();
+  // The loser is told to stop rendering the job it still holds.
+  ASSERT_EQ(slow.cancels.size(), 1u);
+  EXPECT_EQ(slow.cancels[0].header["job"], job.id);
   send_result(slow, slow.units[0], job);  // the loser: the job is gone from the scheduler
   EXPECT_EQ(job.done_cost, job.plan.total_cost);
+}
+
+// A worker that is busy (as many units as threads) keeps its prefetch slots for new work: it
+// takes no duplicate until a thread of its own is idle.
+TEST_F(SchedulerTest, OnlyAWorkerWithIdleThreadsTakesADuplicate) {
+  const Job& first = add_job(2, 2, 1);  // one unit each
+  add_job(2, 2, 1);
+  FakeWorker& a = add_worker(1);  // 1 thread + 1 prefetch slot: the unit of each job
+  drain();
+  ASSERT_EQ(a.units.size(), 2u);
+  ASSERT_EQ(a.units[0].header["job"], first.id);
+  const Job& second = add_job(2, 2, 1);  // pending while `a` is full
+  FakeWorker& b = add_worker(1);
+  scheduler_.tick();
+  drain();
+  ASSERT_EQ(b.units.size(), 1u);
+  EXPECT_EQ(b.units[0].header["job"], second.id);
+  // b's thread is busy; its free prefetch slot must not take a straggler (deadline zero here).
+  scheduler_.tick();
+  drain();
+  EXPECT_EQ(b.units.size(), 1u);
+  send_result(b, b.units[0], second);  // now b's thread is idle: it takes the oldest straggler
+  drain();
+  ASSERT_EQ(b.units.size(), 2u);
+  EXPECT_EQ(b.units[1].header["job"], first.id);
+  EXPECT_EQ(b.units[1].header["unit"], a.units[0].header["unit"]);
+}
+
+double seconds_since(Clock::time_point t) {
+  return std::chrono::duration<double>(Clock::now() - t).count();
+}
+
+void sleep_until_seconds(Clock::time_point t0, double seconds) {
+  std::this_thread::sleep_until(
+      t0 + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(seconds)));
+}
+
+// The scheduler's defaults: a straggler is duplicated after 3 x the job's mean unit time and
+// not before 0.3 s.
+class SpeculationDeadlineTest : public SchedulerTest {
+ protected:
+  SpeculationDeadlineTest()
+      : SchedulerTest(
+            {.speculation_factor = 3, .min_speculation = std::chrono::milliseconds(300)}) {}
+};
+
+TEST_F(SpeculationDeadlineTest, NoDuplicateBeforeTheMinimum) {
+  add_job(2, 2, 1);  // one unit: no mean yet, the minimum decides
+  const auto t0 = Clock::now();
+  FakeWorker& slow = add_worker(1);
+  FakeWorker& idle = add_worker(1);
+  drain();
+  ASSERT_EQ(slow.units.size(), 1u);
+  EXPECT_TRUE(idle.units.empty());
+  sleep_until_seconds(t0, 0.1);
+  scheduler_.tick();
+  drain();
+  ASSERT_LT(seconds_since(t0), 0.3) << "the machine is too slow for this test's margins";
+  EXPECT_TRUE(idle.units.empty());
+  sleep_until_seconds(t0, 0.4);
+  scheduler_.tick();
+  drain();
+  ASSERT_EQ(idle.units.size(), 1u);
+  EXPECT_EQ(idle.units[0].header["unit"], slow.units[0].header["unit"]);
+}
+
+TEST_F(SpeculationDeadlineTest, NoDuplicateBeforeFactorTimesTheMeanUnitTime) {
+  // Four units: the slow worker takes two, and the other two once its first result shows a
+  // short round trip (its slots grow), so the other worker finds only stragglers.
+  const Job& job = add_job(8, 4, 1);
+  const auto t0 = Clock::now();
+  FakeWorker& slow = add_worker(1);
+  drain();
+  ASSERT_EQ(slow.units.size(), 2u);
+  // The first unit reports 0.3 s of rendering: the mean is 0.3 s, the deadline 0.9 s.
+  sleep_until_seconds(t0, 0.3);
+  send_result(slow, slow.units[0], job, 0.3);
+  FakeWorker& idle = add_worker(1);
+  sleep_until_seconds(t0, 0.45);  // past the minimum and past the mean, not past 3 x the mean
+  scheduler_.tick();
+  drain();
+  ASSERT_LT(seconds_since(t0), 0.85) << "the machine is too slow for this test's margins";
+  EXPECT_TRUE(idle.units.empty());
+  sleep_until_seconds(t0, 1.0);
+  scheduler_.tick();
+  drain();
+  ASSERT_EQ(idle.units.size(), 1u);
+  EXPECT_EQ(idle.units[0].header["unit"], slow.units[1].header["unit"]);
 }
 
 TEST_F(SchedulerTest, ALateDuplicateOfARunningJobIsDropped) {
@@ -360,13 +460,67 @@ TEST_F(SchedulerTest, WorkersAreSharedByPriority) {
 
 TEST_F(SchedulerTest, CancelFreesTheWorkersAtOnce) {
   const Job& job = add_job(64, 64, 1);
-  FakeWorker& w = add_worker(2);
+  const Job& other = add_job(64, 64, 1);
+  FakeWorker& a = add_worker(2);
+  FakeWorker& b = add_worker(1);
   drain();
   EXPECT_TRUE(scheduler_.cancel(job.id));
+  drain();
   EXPECT_EQ(job.state, JobState::Cancelled);
-  EXPECT_EQ(scheduler_.workers_json()[0]["in_flight"], 0);
+  // Every worker holding the job is sent one Cancel for it (and none for the other job).
+  // Their slots keep only the other job's units.
+  const nlohmann::json workers = scheduler_.workers_json();
+  for (FakeWorker* w : {&a, &b}) {
+    const auto held = [&](const Job& j) {
+      return std::count_if(w->units.begin(), w->units.end(),
+                           [&](const Frame& f) { return f.header["job"] == j.id; });
+    };
+    ASSERT_GT(held(job), 0);
+    ASSERT_EQ(w->cancels.size(), 1u);
+    EXPECT_EQ(w->cancels[0].header["job"], job.id);
+    EXPECT_EQ(workers[w == &a ? 0 : 1]["in_flight"], held(other));
+  }
   EXPECT_FALSE(scheduler_.cancel(job.id));
-  (void)w;
+  EXPECT_EQ(other.state, JobState::Running);
+}
+
+// Calibration learns from a job that ran alone: speed = (render seconds / predicted threads) /
+// uncalibrated prediction; overhead = wall seconds - render seconds per thread.
+TEST_F(SchedulerTest, CalibrationLearnsSpeedAndOverheadFromItsInputs) {
+  Job& job = add_job(2, 2, 1);
+  job.uncalibrated_prediction = 0.5;
+  job.prediction_threads = 4;
+  const auto t0 = Clock::now();
+  FakeWorker& w = add_worker(1);
+  drain();
+  ASSERT_EQ(w.units.size(), 1u);
+  sleep_until_seconds(t0, 0.15);
+  send_result(w, w.units[0], job, 0.2);  // 0.2 render seconds: 0.05 per predicted thread
+  const double wall = seconds_since(t0);
+  ASSERT_EQ(job.state, JobState::Done);
+  const Prediction p = scheduler_.predict(1e-3, 1000);  // 1 s on the one thread, uncalibrated
+  EXPECT_DOUBLE_EQ(p.factor, 0.2 / 4 / 0.5);
+  EXPECT_GE(p.overhead_seconds, 0.15 - 0.05);
+  EXPECT_LE(p.overhead_seconds, wall - 0.05);
+  ASSERT_TRUE(p.seconds);
+  EXPECT_DOUBLE_EQ(*p.seconds, p.overhead_seconds + p.factor * 1.0);
+}
+
+TEST_F(SchedulerTest, AJobThatRanBesideAnotherDoesNotCalibrate) {
+  Job& first = add_job(2, 2, 1);
+  Job& second = add_job(2, 2, 1);
+  for (Job* job : {&first, &second})
+    job->uncalibrated_prediction = 0.5, job->prediction_threads = 1;
+  FakeWorker& w = add_worker(1);  // 1 thread + 1 prefetch: one unit of each
+  drain();
+  ASSERT_EQ(w.units.size(), 2u);
+  for (const Frame& f : w.units)
+    send_result(w, f, f.header["job"] == first.id ? first : second, 0.2);
+  ASSERT_EQ(first.state, JobState::Done);
+  ASSERT_EQ(second.state, JobState::Done);
+  const Prediction p = scheduler_.predict(1e-3, 1000);
+  EXPECT_EQ(p.factor, 1);
+  EXPECT_EQ(p.overhead_seconds, 0);
 }
 
 }  // namespace

@@ -1,0 +1,111 @@
+#!/usr/bin/env python3
+"""What the HTTP API answers about jobs (issue 23 §3), each by its own case: a full job store,
+`/api/jobs/{id}/tiles?since=` after a job's merges, and an image format it does not encode,
+asked of a job that exists (so the 404 of a missing job cannot answer first).
+
+usage: job_answers_test.py --build BUILD_DIR --source SOURCE_DIR CASE
+CASE: full_store | tiles_since | image_format
+"""
+import argparse
+import json
+import os
+import signal
+import sys
+import time
+
+sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
+import service_test  # noqa: E402  (the Service helpers; ARGS is set below)
+from service_test import SETTINGS, Service, demo_scene  # noqa: E402
+
+SMALL = {"width": 32, "height": 24}
+STORE_JOBS = 64  # ServiceLimits::max_jobs (coordinator/jobs/limits.h)
+
+
+def case_full_store():
+    """With the store full of unfinished jobs a submission gets 503 busy; a cancelled job makes
+    room, and the next submission takes its place (the oldest finished job goes first)."""
+    # No workers: every job stays queued. The per-client cap is raised above the store's.
+    with Service("--max-jobs-per-client", "100") as service:
+        ids = [service.submit("sphere\n", SMALL)["id"] for _ in range(STORE_JOBS)]
+        body = json.dumps({"scene": "sphere\n", "settings": SMALL}).encode()
+        headers = {"Content-Type": "application/json"}
+        status, _, reply = service.request("POST", "/api/jobs", body, headers)
+        err = json.loads(reply)
+        assert status == 503 and err["error"] == "busy" and err["detail"], (status, err)
+        assert len(service.get("/api/jobs")) == STORE_JOBS
+        status, _, _ = service.request("DELETE", "/api/jobs/%d" % ids[0])
+        assert status == 200
+        status, _, reply = service.request("POST", "/api/jobs", body, headers)
+        assert status == 201, (status, reply)
+        status, _, _ = service.request("GET", "/api/jobs/%d" % ids[0])
+        assert status == 404, status  # the cancelled job was dropped for the new one
+        assert service.get("/api/jobs/%d" % ids[1])["state"] == "queued"
+
+
+def case_tiles_since():
+    """/tiles lists one tile per merged unit, in merge order; ?since=k returns the tiles from
+    the k-th on, and `next` is the count to ask from next time. Asked of a running job (a
+    finished job's tiles are released): its only worker is stopped (SIGSTOP) meanwhile, so
+    the count does not move under the test."""
+    with Service() as service:
+        worker = service.worker("w1", threads=1)
+        service.wait_workers(1)
+        settings = dict(SETTINGS, width=320, height=240, aa=9, passes=4)
+        job = service.submit(open(demo_scene()).read(), settings)
+        path = "/api/jobs/%d/tiles" % job["id"]
+        deadline = time.time() + 30
+        while service.get(path)["next"] < 5:
+            assert time.time() < deadline, service.get("/api/jobs/%d" % job["id"])
+            time.sleep(0.02)
+        worker.send_signal(signal.SIGSTOP)
+        time.sleep(0.5)  # results already sent are merged; no more come
+        status = service.get("/api/jobs/%d" % job["id"])
+        assert status["state"] == "running", status
+        merges = sum(w["units"] for w in status["workers"])
+        everything = service.get(path)
+        assert everything["next"] == merges == status["tiles"] >= 5, (everything, merges)
+        tiles = everything["tiles"]
+        assert len(tiles) == merges
+        worker_id = status["workers"][0]["id"]
+        for x0, y0, x1, y1, tile_worker, stage in tiles:
+            assert 0 <= x0 < x1 <= settings["width"] and 0 <= y0 < y1 <= settings["height"]
+            assert tile_worker == worker_id and stage >= 0
+        assert tiles[0][5] == 0  # the first merge is of the first stage
+        for since in (0, 1, merges // 2, merges - 1, merges, merges + 5):
+            part = service.get("%s?since=%d" % (path, since))
+            assert part == {"next": merges, "tiles": tiles[since:]}, (since, part)
+        status, _, reply = service.request("GET", path + "?since=abc")
+        assert status == 400 and json.loads(reply)["error"] == "bad_request", (status, reply)
+        worker.send_signal(signal.SIGCONT)
+        service.request("DELETE", "/api/jobs/%d" % job["id"])
+
+
+def case_image_format():
+    """An existing job's image in a format other than png or exr: 400 with a JSON error."""
+    with Service() as service:  # no workers: the job stays queued, its image is black
+        job = service.submit("sphere\n", SMALL)
+        for fmt in ("gif", "PNG", ""):
+            status, _, reply = service.request(
+                "GET", "/api/jobs/%d/image?format=%s" % (job["id"], fmt))
+            assert status == 400, (fmt, status)
+            err = json.loads(reply)
+            assert err["error"] == "bad_request", (fmt, err)
+            assert "png or exr" in err["detail"], err
+        for fmt in ("png", "exr"):
+            status, _, _ = service.request("GET", "/api/jobs/%d/image?format=%s" % (job["id"], fmt))
+            assert status == 200, (fmt, status)
+
+
+def main():
+    parser = argparse.ArgumentParser()
+    parser.add_argument("--build", required=True)
+    parser.add_argument("--source", required=True)
+    parser.add_argument("case")
+    service_test.ARGS = parser.parse_args()
+    start = time.time()
+    globals()["case_" + service_test.ARGS.case]()
+    print("%s passed in %.1f s" % (service_test.ARGS.case, time.time() - start))
+
+
+if __name__ == "__main__":
+    sys.exit(main())
