@@ -357,7 +357,7 @@ class SpeculationDeadlineTest : public SchedulerTest {
  protected:
   SpeculationDeadlineTest()
       : SchedulerTest(
-            {.speculation_factor = 3, .min_speculation = std::chrono::milliseconds(300)}) {}
+            {.speculation_factor = 3, .min_speculation = std::chrono::milliseconds(600)}) {}
 };
 
 TEST_F(SpeculationDeadlineTest, NoDuplicateBeforeTheMinimum) {
@@ -368,12 +368,12 @@ TEST_F(SpeculationDeadlineTest, NoDuplicateBeforeTheMinimum) {
   drain();
   ASSERT_EQ(slow.units.size(), 1u);
   EXPECT_TRUE(idle.units.empty());
-  sleep_until_seconds(t0, 0.1);
+  sleep_until_seconds(t0, 0.2);
   scheduler_.tick();
   drain();
-  ASSERT_LT(seconds_since(t0), 0.3) << "the machine is too slow for this test's margins";
+  ASSERT_LT(seconds_since(t0), 0.6) << "the machine is too slow for this test's margins";
   EXPECT_TRUE(idle.units.empty());
-  sleep_until_seconds(t0, 0.4);
+  sleep_until_seconds(t0, 0.8);
   scheduler_.tick();
   drain();
   ASSERT_EQ(idle.units.size(), 1u);
@@ -388,16 +388,16 @@ TEST_F(SpeculationDeadlineTest, NoDuplicateBeforeFactorTimesTheMeanUnitTime) {
   FakeWorker& slow = add_worker(1);
   drain();
   ASSERT_EQ(slow.units.size(), 2u);
-  // The first unit reports 0.3 s of rendering: the mean is 0.3 s, the deadline 0.9 s.
-  sleep_until_seconds(t0, 0.3);
-  send_result(slow, slow.units[0], job, 0.3);
+  // The first unit reports 0.6 s of rendering: the mean is 0.6 s, the deadline 1.8 s.
+  sleep_until_seconds(t0, 0.6);
+  send_result(slow, slow.units[0], job, 0.6);
   FakeWorker& idle = add_worker(1);
-  sleep_until_seconds(t0, 0.45);  // past the minimum and past the mean, not past 3 x the mean
+  sleep_until_seconds(t0, 0.9);  // past the minimum and past the mean, not past 3 x the mean
   scheduler_.tick();
   drain();
-  ASSERT_LT(seconds_since(t0), 0.85) << "the machine is too slow for this test's margins";
+  ASSERT_LT(seconds_since(t0), 1.7) << "the machine is too slow for this test's margins";
   EXPECT_TRUE(idle.units.empty());
-  sleep_until_seconds(t0, 1.0);
+  sleep_until_seconds(t0, 2.0);
   scheduler_.tick();
   drain();
   ASSERT_EQ(idle.units.size(), 1u);
