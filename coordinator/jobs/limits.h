@@ -1,4 +1,5 @@
-// Limits that protect the service from any one request (STYLE.md §7).
+// Limits that protect the service from any one request (docs/ARCHITECTURE.md, "Limits on every
+// input"; docs/SECURITY.md lists them all).
 #pragma once
 
 #include <cstddef>
