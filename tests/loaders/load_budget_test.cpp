@@ -67,8 +67,9 @@ TEST(LoadBudget, UseReplaysOfShapelessNodesAreCountedExactly) {
   EXPECT_EQ(world_limit(world, with(&LoadBudget::max_use_replays, 21)), "use_replays");
 }
 
+// (Without the limit the walk would take 2^60 steps: the test would never end. How fast the
+// limit is reached is a benchmark's question, not a test's: docs/SERVICE.md has the figures.)
 TEST(LoadBudget, ADoublingChainStopsAtTheDefaultReplayLimit) {
-  const auto start = std::chrono::steady_clock::now();
   MemorySource source({{"w.wrl", kHeader + doubling_world(60, "Transform {}")}});
   try {
     load_scene(source, "w.wrl", SceneFormat::Vrml);
@@ -79,7 +80,6 @@ TEST(LoadBudget, ADoublingChainStopsAtTheDefaultReplayLimit) {
     EXPECT_EQ(e.message(),
               "the scene expands to more than 1000000 USE replays (limit use_replays)");
   }
-  EXPECT_LT(std::chrono::steady_clock::now() - start, std::chrono::seconds(5));
   // The error names the replayed node: the first replay is of A0, a Transform at 2:8.
   source.add("w.wrl", kHeader + doubling_world(1, "Transform {}"));
   try {
