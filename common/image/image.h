@@ -33,6 +33,10 @@ struct Image {
   friend bool operator==(const Image&, const Image&) = default;
 };
 
+// Image files, through OpenImageIO (common/image/oiio/). Every program has them but the worker
+// (its target sets TESSERA_WITHOUT_OPENIMAGEIO, common/CMakeLists.txt), whose decode_image and
+// image_channels refuse: it gets textures decoded by the coordinator (decoded_texture.h).
+
 // Writes by extension with OpenImageIO: .exr as 32-bit float, anything else as 8-bit.
 // Throws std::runtime_error with OpenImageIO's message on failure.
 void write_image(const Image& image, const std::string& path);

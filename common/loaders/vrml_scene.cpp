@@ -12,7 +12,7 @@
 #include <variant>
 #include <vector>
 
-#include "common/image/image.h"
+#include "common/image/decoded_texture.h"
 #include "common/loaders/vrml_fields.h"
 #include "common/loaders/vrml_lexer.h"
 #include "common/loaders/vrml_loader.h"
@@ -329,11 +329,11 @@ class Converter {
   // (FlatTexture::transform). No node: the identity, so that coordinates beyond [0, 1] repeat
   // the texture.
   // One or two channels (intensity, and alpha): an image that modulates the colour under it.
-  // An image OpenImageIO cannot open is taken as RGB here; decoding it for the render reports
+  // An image that cannot be opened is taken as RGB here; decoding it for the render reports
   // it.
   static bool is_intensity_image(const std::string& bytes, const std::string& path) {
     try {
-      return image_channels(bytes, path) <= 2;
+      return texture_channels(bytes, path) <= 2;
     } catch (const std::runtime_error&) {
       return false;
     }

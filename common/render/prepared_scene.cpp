@@ -6,6 +6,7 @@
 
 #include "common/geometry/csg.h"
 #include "common/geometry/motion.h"
+#include "common/image/decoded_texture.h"
 #include "common/texture/image_texture.h"
 
 namespace tessera {
@@ -133,7 +134,7 @@ std::vector<Image> decode_images(const Scene& scene) {
   images.reserve(scene.images.size());
   for (const ImageFile& file : scene.images) {
     try {
-      images.push_back(decode_image(file.bytes, file.path, kMaxTexturePixels));
+      images.push_back(decode_texture(file.bytes, file.path, kMaxTexturePixels));
     } catch (const std::runtime_error& e) {
       throw SceneError(file.where, e.what());
     }

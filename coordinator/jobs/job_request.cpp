@@ -1,12 +1,15 @@
 #include "coordinator/jobs/job_request.h"
 
+#include <map>
 #include <set>
 
+#include "common/image/decoded_texture.h"
 #include "common/loaders/scene_loader.h"
 #include "common/loaders/scene_source.h"
 #include "common/render/prepared_scene.h"
 #include "common/render/render.h"
 #include "common/render/time_prediction.h"
+#include "common/texture/image_texture.h"
 #include "coordinator/jobs/api_error.h"
 #include "coordinator/jobs/multipart.h"
 #include "coordinator/jobs/tar_reader.h"
@@ -202,6 +205,18 @@ ApiError over_load_budget(const LoadBudgetExceeded& e) {
                    {"column", e.where().column}});
 }
 
+// Workers have no image library (they start without OpenImageIO): every texture the scene
+// reads travels in the bundle decoded, bit for bit what decoding it here gives.
+std::map<std::string, std::string> decoded_textures(const Scene& scene) {
+  std::map<std::string, std::string> files;
+  for (const ImageFile& image : scene.images)
+    if (!is_decoded_texture(image.bytes))
+      files[image.path] =
+          encode_decoded_texture(decode_image(image.bytes, image.path, kMaxTexturePixels),
+                                 image_channels(image.bytes, image.path));
+  return files;
+}
+
 // The one place where a request's budget meets the loader and the probe.
 void check_scene(const Submission& sub, const std::optional<std::filesystem::path>& scenes_dir,
                  const ServiceLimits& limits, const IntakeBudget& budget, JobRequest& out) {
@@ -214,6 +229,7 @@ void check_scene(const Submission& sub, const std::optional<std::filesystem::pat
   std::optional<DirectorySource> folder;
   if (scenes_dir) folder.emplace(*scenes_dir);
   RecordingSource source(submitted, folder ? &*folder : nullptr);
+  std::map<std::string, std::string> textures;
   LoadBudget load_budget;  // the defaults of docs/SERVICE.md's "Load budget", and our deadline
   load_budget.deadline = budget.deadline;
   try {
@@ -231,6 +247,7 @@ void check_scene(const Submission& sub, const std::optional<std::filesystem::pat
     out.probe_cut_short = probe.cut_short;
     budget.check("the cost probe");
     out.plan.unit_pixels = unit_pixels_for_cost(out.seconds_per_pixel_pass);
+    textures = decoded_textures(scene);
     out.warnings = scene.warnings;
     for (const auto& u : prepared.unsupported()) out.warnings.push_back(u);
   } catch (const LoadBudgetExceeded& e) {
@@ -246,6 +263,7 @@ void check_scene(const Submission& sub, const std::optional<std::filesystem::pat
   out.bundle.main = sub.main;
   out.bundle.format = sub.format;
   out.bundle.files = source.files();
+  for (auto& [path, bytes] : textures) out.bundle.files[path] = std::move(bytes);
 }
 
 }  // namespace

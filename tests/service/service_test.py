@@ -144,6 +144,8 @@ class Service:
             p.wait()
         if exc[0] is not None:  # show the logs of a failing case
             for name in sorted(os.listdir(self.tmp.name)):
+                if os.path.isdir(os.path.join(self.tmp.name, name)):
+                    continue  # the coordinator's data directory
                 print("----- %s" % name)
                 print(open(os.path.join(self.tmp.name, name)).read()[-3000:])
         self.tmp.cleanup()
