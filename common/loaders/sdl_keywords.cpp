@@ -294,6 +294,37 @@ void flat_texture_offset(FileParser& p) {
   p.material().flat_texture.offset_t = t;
 }
 
+// Keywords of Hill's SDL that this renderer has no counterpart for (his textures, his
+// Cook-Torrance share): read and checked as his Scene::getObject reads them, then ignored with a
+// warning, so that his scenes render (untextured).
+void hill_ignored(FileParser& p, const char* reason) {
+  p.warn("Hill's '" + std::string(p.keyword_name()) + "' is ignored: " + reason);
+}
+
+constexpr const char* kOwnTextures = "Tessera has its own textures (solidTexture, imageTexture)";
+
+void hill_texture(FileParser& p) {
+  p.number("<type>");
+  hill_ignored(p, kOwnTextures);
+}
+
+void hill_parameters(FileParser& p) {
+  const int count = p.integer("<count>", 0, 10);  // his Material holds ten
+  for (int i = 0; i < count; ++i) p.number("<parameter>");
+  hill_ignored(p, kOwnTextures);
+}
+
+void hill_make_pixmap(FileParser& p) {
+  p.integer("<index>", 0, 7);  // his Scene holds eight pixmaps
+  p.word("a file name for <filename> of 'makePixmap'");
+  hill_ignored(p, kOwnTextures);
+}
+
+void hill_specular_fraction(FileParser& p) {
+  p.number("<value>", Range::UnitInterval);
+  hill_ignored(p, "Tessera shades with Phong's model, not Cook-Torrance's");
+}
+
 // ---------------------------------------------------------------------------------------------
 // Lights (§3.2.2), in world coordinates: the CT does not apply to them.
 
@@ -524,6 +555,11 @@ constexpr Keyword kKeywords[] = {
     {"imageTexture", image_texture},
     {"proceduralTexture", procedural_texture},
     {"flatTextureOffset", flat_texture_offset},
+    // Hill's texture keywords, read and ignored
+    {"texture", hill_texture},
+    {"parameters", hill_parameters},
+    {"makePixmap", hill_make_pixmap},
+    {"specularFraction", hill_specular_fraction},
     // Lights
     {"light", light},
     {"spotlight", spotlight},

@@ -530,6 +530,10 @@ void FileParser::use() {
   frames_.push_back({&macro.tokens, 0, &macro});
 }
 
+void FileParser::warn(const std::string& message) {
+  context_.warn(location(keyword_).to_string() + ": " + message);
+}
+
 bool FileParser::accept_global() {
   refuse_in_csg();
   if (!included_) return true;

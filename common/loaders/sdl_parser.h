@@ -106,6 +106,8 @@ class FileParser {
   // Global attributes apply only in the top-level file: in an included file this adds a
   // warning and returns false.
   bool accept_global();
+  // A warning placed at the current keyword, shown once however often it is repeated.
+  void warn(const std::string& message);
   void note_camera_position() { last_camera_position_ = keyword_; }
   void note_up_direction() { up_direction_ = keyword_; }
 

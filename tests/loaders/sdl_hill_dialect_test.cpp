@@ -6,6 +6,7 @@
 #include <gtest/gtest.h>
 
 #include <string>
+#include <vector>
 
 #include "common/loaders/scene_loader.h"
 #include "tests/loaders/loader_test_util.h"
@@ -164,6 +165,28 @@ TEST(SdlHillDialect, AMeshOfUnknownContentIsAnErrorInTheMeshFile) {
       fails_with("mesh bad.txt", "bad.txt", 4, 17,
                  "normal index 1 is out of range (1 defined, indices start at 0)",
                  {{"bad.txt", "4 1 1\n0 0 0 1 0 0 1 1 0 0 1 0\n0 0 1\n4 0 1 2 3 0 0 0 1\n"}}));
+}
+
+TEST(SdlHillDialect, HillsTextureKeywordsAreReadAndIgnoredWithAWarning) {
+  const Scene scene = load_text(
+      "makePixmap 1 neat.bmp\n"
+      "texture 1 parameters 4 -1 -1 1 1 specularFraction 0.5\n"
+      "square texture -2 sphere");
+  ASSERT_EQ(scene.objects.size(), 2u);  // the parameters are read, not taken for statements
+  EXPECT_EQ(scene.objects[0].material, Material{});
+  const std::string textures = "Tessera has its own textures (solidTexture, imageTexture)";
+  EXPECT_EQ(scene.warnings,
+            (std::vector<std::string>{
+                "scene.sdl:1:1: Hill's 'makePixmap' is ignored: " + textures,
+                "scene.sdl:2:1: Hill's 'texture' is ignored: " + textures,
+                "scene.sdl:2:11: Hill's 'parameters' is ignored: " + textures,
+                "scene.sdl:2:34: Hill's 'specularFraction' is ignored: Tessera shades with "
+                "Phong's model, not Cook-Torrance's",
+                "scene.sdl:3:8: Hill's 'texture' is ignored: " + textures}));
+  EXPECT_TRUE(fails_at("parameters 11", 1, 12,
+                       "<count> of 'parameters' must be between 0 and 10, found '11'"));
+  EXPECT_TRUE(fails_at("texture", 1, 8,
+                       "unexpected end of file, expected a number for <type> of 'texture'"));
 }
 
 TEST(SdlHillDialect, DatFilesAreSdlScenes) {
