@@ -189,6 +189,15 @@ TEST(SdlHillDialect, HillsTextureKeywordsAreReadAndIgnoredWithAWarning) {
                        "unexpected end of file, expected a number for <type> of 'texture'"));
 }
 
+// Reproductions of what stops scene files from courses built on Hill's book: keywords their own
+// copies of his parser added, and his infinite plane (docs/SDL.md §4.12, §8).
+TEST(SdlHillDialect, KeywordsThatAreNotHillsStayErrors) {
+  EXPECT_TRUE(fails_at("specular 1 1 1\nexponent 50", 2, 1, "unknown keyword 'exponent'"));
+  EXPECT_TRUE(fails_at("push extrude hlArch2.dat pop", 1, 6, "unknown keyword 'extrude'"));
+  EXPECT_TRUE(fails_at("taperedTube 1.0 .05", 1, 1, "unknown keyword 'taperedTube'"));
+  EXPECT_TRUE(fails_at("plane", 1, 1, "unknown keyword 'plane'"));
+}
+
 TEST(SdlHillDialect, DatFilesAreSdlScenes) {
   EXPECT_EQ(scene_format_of("scenes/hill.dat"), SceneFormat::Sdl);
   EXPECT_EQ(scene_format_of("SCENE.DAT"), SceneFormat::Sdl);
