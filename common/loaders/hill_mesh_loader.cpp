@@ -196,6 +196,10 @@ class HillMeshParser {
   Mesh mesh_;
 };
 
+bool reads_further(const SourceLocation& a, const SourceLocation& b) {
+  return a.line != b.line ? a.line > b.line : a.column > b.column;
+}
+
 }  // namespace
 
 Mesh load_3vn(std::string_view text, const std::string& file) {
@@ -208,6 +212,29 @@ Mesh load_3dv(std::string_view text, const std::string& file) {
 
 Mesh load_3dm(std::string_view text, const std::string& file) {
   return HillMeshParser(text, file, Format::ThreeDM).parse();
+}
+
+Mesh load_hill_mesh(std::string_view text, const std::string& file) {
+  const std::optional<Word> first = WordReader(text, file).next();
+  const IntegerResult count = first ? parse_integer(first->text) : IntegerResult{};
+  if (count.status != DecimalStatus::Ok || count.value < 0) {
+    throw SceneError({file, first ? first->line : 1, first ? first->column : 1},
+                     "the format of the mesh is unknown: OBJ files are named .obj, and 3VN, 3DV "
+                     "and 3DM files start with a count of vertices");
+  }
+  std::optional<SceneError> furthest;
+  std::optional<Mesh> faceless;  // a layout can fit with no faces: another may find them
+  for (const Format format : {Format::ThreeVN, Format::ThreeDV, Format::ThreeDM}) {
+    try {
+      Mesh mesh = HillMeshParser(text, file, format).parse();
+      if (!mesh.triangles.empty()) return mesh;
+      if (!faceless) faceless = std::move(mesh);
+    } catch (const SceneError& error) {
+      if (!furthest || reads_further(error.where(), furthest->where())) furthest = error;
+    }
+  }
+  if (faceless) return std::move(*faceless);
+  throw *furthest;
 }
 
 }  // namespace tessera

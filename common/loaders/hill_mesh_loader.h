@@ -18,4 +18,12 @@ Mesh load_3vn(std::string_view text, const std::string& file);
 Mesh load_3dv(std::string_view text, const std::string& file);
 Mesh load_3dm(std::string_view text, const std::string& file);
 
+// A mesh whose file name does not tell its format (Hill's programs read 3VN from any name, often
+// `.txt`): the first of 3VN, 3DV and 3DM whose layout the numbers fit exactly, with at least one
+// face. The counts at the start decide, since each layout must then use up the file to its last
+// word (a small 3DM file can also read as a 3VN file with no faces). When none fits, the error
+// is the one of the layout that read furthest; a file that does not start with a count is no
+// Hill mesh at all.
+Mesh load_hill_mesh(std::string_view text, const std::string& file);
+
 }  // namespace tessera

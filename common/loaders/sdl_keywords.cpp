@@ -9,6 +9,7 @@
 #include "common/loaders/lexical.h"
 #include "common/loaders/polyhedra.h"
 #include "common/loaders/sdl_parser.h"
+#include "common/loaders/sdl_square.h"
 #include "common/loaders/teapot.h"
 
 namespace tessera::sdl {
@@ -86,20 +87,35 @@ void mb_enable(FileParser& p) { p.motion().enabled = true; }
 void sphere(FileParser& p) { p.add_object(Sphere{}); }
 void cube(FileParser& p) { p.add_object(Cube{}); }
 
-void cone(FileParser& p) { p.add_object(TaperedCylinder{0, p.flag("<distort-texture>")}); }
+// Hill's SDL writes the tapered cylinders without the manual's <distort-texture> flag (the
+// caps' texture mapping), which is then false.
+bool distort_texture(FileParser& p) { return p.number_follows() && p.flag("<distort-texture>"); }
 
-void cylinder(FileParser& p) { p.add_object(TaperedCylinder{1, p.flag("<distort-texture>")}); }
+void cone(FileParser& p) { p.add_object(TaperedCylinder{0, distort_texture(p)}); }
+
+void cylinder(FileParser& p) { p.add_object(TaperedCylinder{1, distort_texture(p)}); }
 
 void tapered_cylinder(FileParser& p) {
   const double top_radius = p.number("<small-radius>", Range::NonNegative);
-  p.add_object(TaperedCylinder{top_radius, p.flag("<distort-texture>")});
+  p.add_object(TaperedCylinder{top_radius, distort_texture(p)});
 }
 
+// Hill's `torus` has no parameters: his generic torus has tube radius 0.2 and torus radius 1
+// (the glutSolidTorus(0.2, 1.0, ...) his Torus class draws).
+constexpr Torus kHillTorus{0.2, 1};
+
 void torus(FileParser& p) {
+  if (!p.number_follows()) {
+    p.add_object(kHillTorus);
+    return;
+  }
   const double tube_radius = p.number("<tube-radius>", Range::Positive);
   const double torus_radius = p.number("<torus-radius>", Range::Positive);
   p.add_object(Torus{tube_radius, torus_radius});
 }
+
+// Hill's generic square: [-1, 1]² in the plane z = 0, facing +z.
+void square(FileParser& p) { p.add_object(MeshShape{p.built_in_mesh(hill_square_mesh), false}); }
 
 // Algebraic surfaces (§3.3.6): the box extent's width, height and depth.
 template <AlgebraicKind kind>
@@ -112,7 +128,9 @@ void algebraic_surface(FileParser& p) {
 
 void mesh(FileParser& p) {
   const Token name = p.word("a file name for <filename> of 'mesh'");
-  const bool interpolate = p.flag("<interpolate-normals>");
+  // Hill's `mesh <filename>` shades with the normals the file gives (or, for 3DM, that its
+  // faces give), as his Mesh class draws them.
+  const bool interpolate = !p.number_follows() || p.flag("<interpolate-normals>");
   p.add_object(MeshShape{p.mesh(name), interpolate});
 }
 
@@ -274,6 +292,37 @@ void flat_texture_offset(FileParser& p) {
   const double t = p.number("<t-offset>", Range::UnitInterval);
   p.material().flat_texture.offset_s = s;
   p.material().flat_texture.offset_t = t;
+}
+
+// Keywords of Hill's SDL that this renderer has no counterpart for (his textures, his
+// Cook-Torrance share): read and checked as his Scene::getObject reads them, then ignored with a
+// warning, so that his scenes render (untextured).
+void hill_ignored(FileParser& p, const char* reason) {
+  p.warn("Hill's '" + std::string(p.keyword_name()) + "' is ignored: " + reason);
+}
+
+constexpr const char* kOwnTextures = "Tessera has its own textures (solidTexture, imageTexture)";
+
+void hill_texture(FileParser& p) {
+  p.number("<type>");
+  hill_ignored(p, kOwnTextures);
+}
+
+void hill_parameters(FileParser& p) {
+  const int count = p.integer("<count>", 0, 10);  // his Material holds ten
+  for (int i = 0; i < count; ++i) p.number("<parameter>");
+  hill_ignored(p, kOwnTextures);
+}
+
+void hill_make_pixmap(FileParser& p) {
+  p.integer("<index>", 0, 7);  // his Scene holds eight pixmaps
+  p.word("a file name for <filename> of 'makePixmap'");
+  hill_ignored(p, kOwnTextures);
+}
+
+void hill_specular_fraction(FileParser& p) {
+  p.number("<value>", Range::UnitInterval);
+  hill_ignored(p, "Tessera shades with Phong's model, not Cook-Torrance's");
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -457,6 +506,7 @@ constexpr Keyword kKeywords[] = {
     // Shapes
     {"sphere", sphere},
     {"cube", cube},
+    {"square", square},
     {"cone", cone},
     {"cylinder", cylinder},
     {"taperedCylinder", tapered_cylinder},
@@ -505,6 +555,11 @@ constexpr Keyword kKeywords[] = {
     {"imageTexture", image_texture},
     {"proceduralTexture", procedural_texture},
     {"flatTextureOffset", flat_texture_offset},
+    // Hill's texture keywords, read and ignored
+    {"texture", hill_texture},
+    {"parameters", hill_parameters},
+    {"makePixmap", hill_make_pixmap},
+    {"specularFraction", hill_specular_fraction},
     // Lights
     {"light", light},
     {"spotlight", spotlight},

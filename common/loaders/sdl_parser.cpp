@@ -231,19 +231,25 @@ void FileParser::fail_at_end(const std::string& what) const {
                    "unexpected end of file, expected " + what);
 }
 
-std::optional<Token> FileParser::next() {
+const Token* FileParser::peek() {
   // A replay is left only when the token after its last one is asked for: while its last
   // token is being handled it is still on the stack, so a macro that uses itself in tail
   // position is caught as recursion.
   while (frames_.back().next == frames_.back().tokens->size()) {
-    if (frames_.size() == 1) return std::nullopt;
+    if (frames_.size() == 1) return nullptr;
     frames_.pop_back();
     context_.leave_nesting();
   }
-  Frame& frame = frames_.back();
-  const Token& token = (*frame.tokens)[frame.next++];
-  context_.count_token(token);
-  return token;
+  const Frame& frame = frames_.back();
+  return &(*frame.tokens)[frame.next];
+}
+
+std::optional<Token> FileParser::next() {
+  const Token* token = peek();
+  if (token == nullptr) return std::nullopt;
+  ++frames_.back().next;
+  context_.count_token(*token);
+  return *token;
 }
 
 Token FileParser::expect(const std::string& what) {
@@ -361,6 +367,11 @@ int FileParser::integer(const char* param, int min, int max) {
 
 bool FileParser::flag(const char* param) { return number(param) != 0; }
 
+bool FileParser::number_follows() {
+  const Token* token = peek();
+  return token != nullptr && parse_decimal(token->text).status != DecimalStatus::NotANumber;
+}
+
 Vec3 FileParser::vec3(const char* x, const char* y, const char* z) {
   const double vx = number(x);
   const double vy = number(y);
@@ -458,16 +469,13 @@ std::size_t FileParser::mesh(const Token& name) {
       dot == std::string::npos || (slash != std::string::npos && dot < slash)
           ? std::string()
           : to_lower(std::string_view(path).substr(dot + 1));
-  // The format goes by the extension, as the manual names the formats.
-  MeshLoader loader = nullptr;
+  // The extensions the manual names give the format; any other name is read as Hill's
+  // programs read it, as a 3VN (or 3DV, 3DM) mesh told by its content.
+  MeshLoader loader = load_hill_mesh;
   if (extension == "obj") loader = load_obj;
   if (extension == "3vn") loader = load_3vn;
   if (extension == "3dv") loader = load_3dv;
   if (extension == "3dm") loader = load_3dm;
-  if (loader == nullptr) {
-    fail(name, "mesh " + in_quotes(name.text) +
-                   " has an unsupported format (supported: .3vn, .3dv, .3dm, .obj)");
-  }
   return context_.mesh(path, name, loader);
 }
 
@@ -520,6 +528,10 @@ void FileParser::use() {
   }
   context_.enter_nesting(keyword_);
   frames_.push_back({&macro.tokens, 0, &macro});
+}
+
+void FileParser::warn(const std::string& message) {
+  context_.warn(location(keyword_).to_string() + ": " + message);
 }
 
 bool FileParser::accept_global() {

@@ -65,6 +65,11 @@ class FileParser {
   }
   int integer(const char* param, int min, int max);
   bool flag(const char* param);  // any number; non-zero is true
+  // Whether the next token is a number. Hill's SDL leaves out the trailing parameters that the
+  // manual adds to some shapes (`cone` for `cone 0`); since a statement never starts with a
+  // number, a number after such a shape is its parameter and anything else starts the next
+  // statement. It reads nothing, so a parameter may still follow the end of a macro replay.
+  bool number_follows();
   Vec3 vec3(const char* x, const char* y, const char* z);
   Rgb color(const char* r, const char* g, const char* b);  // non-negative components
 
@@ -101,6 +106,8 @@ class FileParser {
   // Global attributes apply only in the top-level file: in an included file this adds a
   // warning and returns false.
   bool accept_global();
+  // A warning placed at the current keyword, shown once however often it is repeated.
+  void warn(const std::string& message);
   void note_camera_position() { last_camera_position_ = keyword_; }
   void note_up_direction() { up_direction_ = keyword_; }
 
@@ -112,6 +119,7 @@ class FileParser {
   };
 
   std::optional<Token> next();
+  const Token* peek();  // the token next() returns, or null at the end; reads nothing
   Token expect(const std::string& what);  // the next token, or "unexpected end of file"
   [[noreturn]] void fail_at_end(const std::string& what) const;
   std::string of_keyword(const char* param) const;  // "<dx> of 'translate'"

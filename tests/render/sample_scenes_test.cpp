@@ -14,7 +14,7 @@ namespace {
 bool is_scene(const std::filesystem::path& path) {
   const std::filesystem::path extension = path.extension();
   if (extension == ".gz") return path.stem().extension() == ".wrl";
-  return extension == ".sdl" || extension == ".wrl";
+  return extension == ".sdl" || extension == ".dat" || extension == ".wrl";  // .dat: Hill's SDL
 }
 
 std::vector<std::filesystem::path> sample_scenes() {
