@@ -173,8 +173,10 @@ def main():
                                                          "slurm-%s.1" % job], names
 
             status = service_test.render_and_compare(service, SETTINGS, tmp, "slurm")
+            # Rendered by the allocation's workers (which of the two takes how many of the
+            # job's few units is the scheduler's business).
             shares = {w["name"]: w["units"] for w in status["workers"]}
-            assert sorted(shares) == names and all(shares.values()), shares
+            assert set(shares) <= set(names) and sum(shares.values()) > 0, shares
 
             # The allocation ends: Slurm signals the workers, they exit and leave.
             cluster.run(["scancel", job])
