@@ -5,7 +5,7 @@ programs and images accept.
 Renders deploy/kubernetes (the example overlay) and deploy/kubernetes/base with
 `kubectl kustomize`, turns the YAML into JSON offline (`kubectl patch --local`), and checks:
 the objects against the page's table, every Secret reference against its Secrets table, the
-images against scripts/build-images.sh and the overlay, every flag against the program's own
+images against docker/compose.yaml's and the page's, every flag against the program's own
 usage text, every file a flag names against a mounted Secret key, probes against a running
 coordinator (the path answers 200) and docker/healthcheck.sh, the autoscaler's metric against
 the adapter rule and /metrics, resources and non-root security contexts on every container.
