@@ -1,21 +1,44 @@
 #!/usr/bin/env python3
-"""Coordinator capacity benchmark (issue 4, item 8): many fast synthetic workers that speak
-the real protocol (docs/PROTOCOL.md) but answer every unit at once with black pixels, so the
-coordinator's scheduling, merging and I/O are the only work. Prints work units per second.
+"""Coordinator capacity (issue 4 §8, issue 22 §3), for docs/SCALING.md and docs/PERFORMANCE.md.
+
+Many workers connect to one coordinator: synthetic ones (the default) that speak the real
+protocol (docs/PROTOCOL.md) but answer every unit at once with black pixels, so that the
+coordinator's scheduling, merging and I/O are the only work; or, with --real N, N real
+tessera-worker processes of one thread. In phases, it measures
+
+- memory: the coordinator's resident set before and with every worker connected, per worker;
+- idle: the heartbeat traffic per worker (synthetic workers count the bytes) and the
+  coordinator's CPU while nothing runs;
+- throughput: one job (a sphere or --scene, --size square, --aa, --passes; the coordinator
+  sizes units to 20 ms of predicted work, so a costlier job has smaller units): units and
+  pixel passes merged per second of wall time and per coordinator CPU-second (CPU per unit,
+  per pixel pass);
+- loss: during a second job one worker crashes (its connection closes with units in flight)
+  and another hangs (it stops answering, its connection stays open): the time until the
+  first's units are re-queued, and until the second is dropped (--silence-ms after its last
+  message) and its units re-queued.
 
 usage: coordinator_capacity.py --build BUILD_DIR [--workers 32] [--threads 4] [--size 2048]
-       [--passes 4]
-The wall-clock rate is a lower bound: this script shares the machine with the coordinator. The
-coordinator's own CPU time is reported too; units per coordinator CPU-second is its capacity on
-a machine of its own.
+       [--passes 4] [--scene SDL] [--aa 1] [--real N] [--heartbeat-ms 2000]
+       [--silence-ms 10000] [--idle-seconds 6] [--smoke]
+--smoke: seconds, tiny sizes, short heartbeats; exits 1 when a phase fails (the test command
+runs it, so a protocol change that breaks this script fails CI).
+
+The wall-clock rates are lower bounds: this script shares the machine with the coordinator
+(and, with --real, with the workers). The coordinator's own CPU time is measured from /proc;
+units per coordinator CPU-second is its capacity on a machine of its own.
 """
 import argparse
 import asyncio
+import datetime
 import hashlib
 import hmac
 import json
 import os
+import re
+import resource
 import secrets
+import signal
 import struct
 import subprocess
 import sys
@@ -23,25 +46,23 @@ import tempfile
 import time
 import urllib.request
 
-sys.path.insert(0, os.path.join(os.path.dirname(os.path.abspath(__file__)), "..", "tests",
-                                "service"))
+HERE = os.path.dirname(os.path.abspath(__file__))
+sys.path.insert(0, os.path.join(HERE, "..", "tests", "service"))
 import service_test  # noqa: E402  (start_coordinator)
 
 SECRET = "capacity-secret"
 HELLO, CHALLENGE, AUTH, WELCOME, REJECT, HEARTBEAT, JOB, UNIT, RESULT = range(1, 10)
+# Read from the source, so that a new protocol version cannot leave this script behind.
+with open(os.path.join(HERE, "..", "common", "protocol", "handshake.h")) as _f:
+    PROTOCOL_VERSION = int(re.search(r"kProtocolVersion = (\d+);", _f.read()).group(1))
+# The coordinator closes connections beyond 64 unauthenticated ones (docs/PROTOCOL.md).
+HANDSHAKES_AT_ONCE = 32
 
 
 def frame(kind, header, payload=b""):
     head = json.dumps(header).encode()
     body = struct.pack(">BI", kind, len(head)) + head + payload
     return struct.pack(">I", len(body)) + body
-
-
-async def read_frame(reader):
-    (size,) = struct.unpack(">I", await reader.readexactly(4))
-    body = await reader.readexactly(size)
-    kind, head_len = struct.unpack(">BI", body[:5])
-    return kind, json.loads(body[5:5 + head_len]), body[5 + head_len:]
 
 
 def pixel_count(p):
@@ -57,92 +78,363 @@ def pixel_count(p):
     return n
 
 
-async def worker(port, index, threads, counter):
-    try:
-        await serve(port, index, threads, counter)
-    except asyncio.CancelledError:
-        raise
-    except Exception as e:  # a dropped synthetic worker must not go unnoticed
-        print("synthetic worker %d: %r" % (index, e), file=sys.stderr)
+class Synthetic:
+    """One synthetic worker. `fault` ("crash" or "hang") strikes at its first unit of job
+    `fault_job`; `fault_at` is then the time of its last message."""
+
+    def __init__(self, index, threads):
+        self.name = "synthetic-%d" % index
+        self.threads = threads
+        self.received = self.sent = 0
+        self.fault = self.fault_job = self.fault_at = self.last_sent = self.writer = None
+        self.error = None
+
+    def send(self, writer, data):
+        writer.write(data)
+        self.sent += len(data)
+        self.last_sent = time.time()
+
+    async def read_frame(self, reader):
+        (size,) = struct.unpack(">I", await reader.readexactly(4))
+        body = await reader.readexactly(size)
+        self.received += 4 + size
+        kind, head_len = struct.unpack(">BI", body[:5])
+        return kind, json.loads(body[5:5 + head_len])
+
+    async def run(self, port, handshakes):
+        try:
+            async with handshakes:
+                reader, writer = await asyncio.open_connection("127.0.0.1", port)
+                nonce = secrets.token_hex(32)
+                self.send(writer, frame(HELLO, {"version": PROTOCOL_VERSION, "name": self.name,
+                                                "threads": self.threads, "nonce": nonce,
+                                                "cached": []}))
+                kind, challenge = await self.read_frame(reader)
+                if kind != CHALLENGE:
+                    raise RuntimeError("refused: %s" % challenge)
+                message = "tessera-worker|%d|%s|%s" % (PROTOCOL_VERSION, challenge["nonce"],
+                                                       nonce)
+                proof = hmac.new(SECRET.encode(), message.encode(), hashlib.sha256).hexdigest()
+                self.send(writer, frame(AUTH, {"proof": proof}))
+                kind, header = await self.read_frame(reader)
+                if kind != WELCOME:
+                    raise RuntimeError("refused: %s" % header)
+            self.writer = writer
+            await self.serve(reader, writer)
+        except asyncio.CancelledError:
+            raise
+        except Exception as e:  # a dropped synthetic worker must not go unnoticed
+            self.error = repr(e)
+
+    async def serve(self, reader, writer):
+        while True:
+            kind, header = await self.read_frame(reader)
+            if kind == UNIT and self.fault and header["job"] == self.fault_job:
+                self.fault_at = time.time()
+                if self.fault == "crash":
+                    writer.close()
+                    return
+                await asyncio.Event().wait()  # hang: read nothing, answer nothing
+            if kind == UNIT:
+                count = pixel_count(header["pixels"])
+                # The coordinator checks the statistics against the unit (result_check.h).
+                stats = {"seconds": 0, "pixels": count, "samples": count, "camera_rays": count}
+                self.send(writer, frame(RESULT, {"job": header["job"], "unit": header["unit"],
+                                                 "count": count, "stats": stats},
+                                        bytes(12 * count)))
+            elif kind == HEARTBEAT:
+                self.send(writer, frame(HEARTBEAT, {}))
 
 
-async def serve(port, index, threads, counter):
-    reader, writer = await asyncio.open_connection("127.0.0.1", port)
-    nonce = secrets.token_hex(32)
-    writer.write(frame(HELLO, {"version": 2, "name": "synthetic-%d" % index,
-                               "threads": threads, "nonce": nonce, "cached": []}))
-    _, challenge, _ = await read_frame(reader)
-    message = "tessera-worker|1|%s|%s" % (challenge["nonce"], nonce)
-    proof = hmac.new(SECRET.encode(), message.encode(), hashlib.sha256).hexdigest()
-    writer.write(frame(AUTH, {"proof": proof}))
-    stats = {"seconds": 0}
-    while True:
-        kind, header, _ = await read_frame(reader)
-        if kind == UNIT:
-            count = pixel_count(header["pixels"])
-            writer.write(frame(RESULT, {"job": header["job"], "unit": header["unit"],
-                                        "count": count, "stats": stats}, bytes(12 * count)))
-            counter[0] += 1
-        elif kind == REJECT:
-            raise SystemExit("refused: %s" % header)
-        elif kind == HEARTBEAT:
-            writer.write(frame(HEARTBEAT, {}))
-
-
-def cpu_seconds(pid):
-    """User plus system CPU time of a process so far (Linux /proc)."""
-    with open("/proc/%d/stat" % pid) as f:
+def cpu_seconds_of(stat_path):
+    with open(stat_path) as f:
         fields = f.read().rsplit(")", 1)[1].split()
     return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
 
 
-async def main(args):
-    with tempfile.TemporaryDirectory() as tmp:
-        coordinator, http_port, worker_port = service_test.start_coordinator(
-            args.build, ["--secret", SECRET], subprocess.DEVNULL, os.path.join(tmp, "ports.json"))
-    try:
-        get = lambda url: json.load(urllib.request.urlopen(url))
-        workers_url = "http://127.0.0.1:%d/api/workers" % http_port
-        counter = [0]
-        tasks = [asyncio.create_task(worker(worker_port, i, args.threads, counter))
-                 for i in range(args.workers)]
-        while len(await asyncio.to_thread(get, workers_url)) < args.workers:
-            await asyncio.sleep(0.05)
-        scene = "sphere\n"
-        body = json.dumps({"scene": scene, "settings": {"width": args.size, "height": args.size,
-                                                         "passes": args.passes}}).encode()
-        request = urllib.request.Request("http://127.0.0.1:%d/api/jobs" % http_port, body,
+def cpu_seconds(pid):
+    """User plus system CPU time of a process so far (Linux /proc)."""
+    return cpu_seconds_of("/proc/%d/stat" % pid)
+
+
+def thread_cpu_seconds(pid):
+    """CPU time so far of each of a process's threads, by thread id."""
+    seconds = {}
+    for tid in os.listdir("/proc/%d/task" % pid):
+        try:
+            seconds[tid] = cpu_seconds_of("/proc/%d/task/%s/stat" % (pid, tid))
+        except FileNotFoundError:  # the thread ended
+            pass
+    return seconds
+
+
+def rss_bytes(pid):
+    with open("/proc/%d/status" % pid) as f:
+        return int(re.search(r"VmRSS:\s+(\d+) kB", f.read()).group(1)) * 1024
+
+
+class Coordinator:
+    def __init__(self, build, tmp, heartbeat_ms, silence_ms):
+        self.log_path = os.path.join(tmp, "coordinator.log")
+        with open(self.log_path, "w") as log:
+            self.proc, self.http_port, self.worker_port = service_test.start_coordinator(
+                build, ["--secret", SECRET, "--heartbeat-ms", str(heartbeat_ms), "--silence-ms",
+                        str(silence_ms)], log, os.path.join(tmp, "ports.json"))
+
+    def log(self):
+        with open(self.log_path) as f:
+            return f.read()
+
+    def left_at(self, name):
+        """The wall-clock time of the log line saying worker `name` left (its units are
+        re-queued in the same step), or None. The coordinator's own clock: the script's event
+        loop, busy with a thousand connections, would add its own delays to a poll."""
+        line = re.search(r'^\[([0-9-]+ [0-9:.]+)\] \[info\] worker \d+ "%s" left' % name,
+                         self.log(), re.M)
+        return line and datetime.datetime.strptime(line.group(1), "%Y-%m-%d %H:%M:%S.%f"
+                                                   ).timestamp()
+
+    async def get(self, path, raw=False):
+        def fetch():
+            with urllib.request.urlopen("http://127.0.0.1:%d%s" % (self.http_port, path)) as r:
+                return r.read()
+        body = await asyncio.to_thread(fetch)
+        return body.decode() if raw else json.loads(body)
+
+    async def metric(self, name):
+        text = await self.get("/metrics", raw=True)
+        return float(re.search(r"^%s (\S+)$" % name, text, re.M).group(1))
+
+    async def submit(self, size, passes, scene="sphere\n", aa=1):
+        body = json.dumps({"scene": scene, "settings": {
+            "width": size, "height": size, "passes": passes, "aa": aa}}).encode()
+        request = urllib.request.Request("http://127.0.0.1:%d/api/jobs" % self.http_port, body,
                                          {"Content-Type": "application/json"})
-        job = json.load(urllib.request.urlopen(request))
-        start = time.time()
-        cpu_start = cpu_seconds(coordinator.pid)
+        return json.load(await asyncio.to_thread(urllib.request.urlopen, request))["id"]
+
+    async def wait_job(self, job_id, check_workers):
         while True:
-            await asyncio.sleep(0.05)
-            url = "http://127.0.0.1:%d/api/jobs/%d" % (http_port, job["id"])
-            status = await asyncio.to_thread(get, url)
+            check_workers()
+            status = await self.get("/api/jobs/%d" % job_id)
             if status["state"] not in ("queued", "running"):
-                break
-        elapsed = time.time() - start
-        cpu = cpu_seconds(coordinator.pid) - cpu_start
-        units = sum(row["units"] for row in status["levels_table"])
-        print("%d synthetic workers x %d slots: %d units (%dx%d, %d passes) in %.2f s: "
-              "%.0f units/s, %.1f Mpixel/s merged; job %s"
-              % (args.workers, args.threads, units, args.size, args.size, args.passes, elapsed,
-                 units / elapsed, args.size * args.size * args.passes / elapsed / 1e6,
-                 status["state"]))
-        print("coordinator CPU: %.2f s, %.0f units per CPU-second" % (cpu, units / cpu))
+                return status
+            await asyncio.sleep(0.02)
+
+    async def workers(self):
+        return {w["name"] for w in await self.get("/api/workers")}
+
+    async def wait_until(self, what, condition, timeout):
+        deadline = time.perf_counter() + timeout
+        while not await condition():
+            if time.perf_counter() > deadline:
+                raise AssertionError("timed out waiting for " + what)
+            await asyncio.sleep(0.005)
+        return time.perf_counter()
+
+
+class RealWorkers:
+    """--real N: tessera-worker processes of one thread."""
+
+    def __init__(self, build, count, port):
+        self.procs = [subprocess.Popen(
+            [os.path.join(build, "worker", "tessera-worker"), "--coordinator",
+             "127.0.0.1:%d" % port, "--threads", "1", "--name", "real-%d" % i],
+            env=dict(os.environ, TESSERA_SECRET=SECRET), stdout=subprocess.DEVNULL,
+            stderr=subprocess.DEVNULL) for i in range(count)]
+        self.names = ["real-%d" % i for i in range(count)]
+
+    def stop(self):
+        for p in self.procs:
+            if p.poll() is None:
+                p.send_signal(signal.SIGCONT)
+                p.kill()
+            p.wait()
+
+
+async def keep_alive(workers, seconds):
+    """Each synthetic worker sends a heartbeat after `seconds` of sending nothing, as real
+    workers do (2 s): a worker that only received (a job's bundle, units it holds) would
+    otherwise be dropped as silent."""
+    while True:
+        await asyncio.sleep(seconds / 4)
+        now = time.time()
+        for w in workers:
+            if w.writer and not w.fault and w.last_sent and now - w.last_sent > seconds:
+                w.send(w.writer, frame(HEARTBEAT, {}))
+
+
+async def measure(args, coordinator, report):
+    pid = coordinator.proc.pid
+    rss_before = rss_bytes(pid)
+    synthetic, tasks, real = [], [], None
+    if args.real:
+        real = RealWorkers(args.build, args.real, coordinator.worker_port)
+        names, threads = real.names, 1
+    else:
+        handshakes = asyncio.Semaphore(HANDSHAKES_AT_ONCE)
+        synthetic = [Synthetic(i, args.threads) for i in range(args.workers)]
+        tasks = [asyncio.create_task(w.run(coordinator.worker_port, handshakes))
+                 for w in synthetic]
+        heartbeat = min(2.0, args.heartbeat_ms / 1e3)
+        tasks.append(asyncio.create_task(keep_alive(synthetic, heartbeat)))
+        names, threads = [w.name for w in synthetic], args.threads
+    try:
+        start = time.perf_counter()
+
+        def check_workers():
+            failed = [w.error for w in synthetic if w.error and not w.fault]
+            if failed:
+                raise AssertionError("%d synthetic workers failed: %s" % (len(failed),
+                                                                          failed[:3]))
+
+        async def all_joined():
+            check_workers()
+            return len(await coordinator.workers()) == len(names)
+        # A real worker process takes seconds of CPU to start (its libraries) on a busy machine.
+        await coordinator.wait_until("%d workers to join" % len(names), all_joined,
+                                     120 + 3 * args.real)
+        joined = time.perf_counter() - start
+        await asyncio.sleep(0.5)  # let the last handshakes' buffers settle
+        rss_with = rss_bytes(pid)
+        report("workers", "%d %s workers x %d threads joined in %.2f s" %
+               (len(names), "real" if real else "synthetic", threads, joined))
+        report("memory", "coordinator RSS %.1f MB idle, %.1f MB with the workers: %.1f kB "
+               "per connected worker" % (rss_before / 1e6, rss_with / 1e6,
+                                         (rss_with - rss_before) / len(names) / 1e3))
+
+        # Idle: heartbeats only.
+        received = sum(w.received for w in synthetic)
+        sent = sum(w.sent for w in synthetic)
+        cpu = cpu_seconds(pid)
+        await asyncio.sleep(args.idle_seconds)
+        idle_cpu = (cpu_seconds(pid) - cpu) / args.idle_seconds
+        line = "coordinator CPU %.1f %% of a core" % (100 * idle_cpu)
+        if synthetic:
+            rate = lambda total: total / args.idle_seconds / len(names)
+            line = ("heartbeats every %d ms: %.1f B/s to and %.1f B/s from each worker; %s" %
+                    (args.heartbeat_ms, rate(sum(w.received for w in synthetic) - received),
+                     rate(sum(w.sent for w in synthetic) - sent), line))
+        report("idle", line)
+
+        # Throughput.
+        units0 = await coordinator.metric("tessera_units_finished_total")
+        pixels0 = await coordinator.metric("tessera_pixels_total")
+        # Submission probes the scene's cost on the coordinator (docs/SERVICE.md): counted from
+        # its answer on, so that only the job's scheduling and merging are measured.
+        job = await coordinator.submit(args.size, args.passes, args.scene_text, args.aa)
+        start = time.perf_counter()
+        cpu, threads_before = cpu_seconds(pid), thread_cpu_seconds(pid)
+        status = await coordinator.wait_job(job, check_workers)
+        elapsed = time.perf_counter() - start
+        cpu = cpu_seconds(pid) - cpu
+        by_thread = sorted((seconds - threads_before.get(tid, 0)
+                            for tid, seconds in thread_cpu_seconds(pid).items()), reverse=True)
+        if status["state"] != "done":
+            raise AssertionError("the job ended %s" % status)
+        units = await coordinator.metric("tessera_units_finished_total") - units0
+        pixels = await coordinator.metric("tessera_pixels_total") - pixels0
+        report("throughput", "%s %dx%d aa %d, %d passes: %d units of %.0f pixels, %.2f M pixel "
+               "passes in %.2f s: %.0f units/s, %.1f M pixel passes/s (wall, machine shared)" %
+               (args.scene or "sphere", args.size, args.size, args.aa, args.passes, units,
+                pixels / units, pixels / 1e6, elapsed, units / elapsed, pixels / elapsed / 1e6))
+        cpu = max(cpu, 1e-9)
+        report("coordinator CPU", "%.2f s: %.0f units and %.1f M pixel passes per CPU-second; "
+               "%.0f us a unit, %.1f ns a pixel pass; its busiest threads %s s" %
+               (cpu, units / cpu, pixels / cpu / 1e6, cpu / units * 1e6, cpu / pixels * 1e9,
+                ", ".join("%.2f" % t for t in by_thread[:3])))
+
+        # Loss: one worker crashes and one hangs while a job runs.
+        crash, hang = names[0], names[1]
+        requeued0 = await coordinator.metric("tessera_units_requeued_total")
+        if synthetic:
+            job = await coordinator.submit(args.size, args.passes)
+            for w, fault in ((synthetic[0], "crash"), (synthetic[1], "hang")):
+                w.fault, w.fault_job = fault, job
+            async def struck():
+                return all(w.fault_at for w in synthetic[:2])
+            await coordinator.wait_until("the faults", struck, 60)
+            crash_at, hang_at = synthetic[0].fault_at, synthetic[1].last_sent
+        else:
+            # Real workers take time: a job long enough that both victims hold units.
+            with open(os.path.join(HERE, "..", "scenes", "demo.sdl")) as f:
+                job = await coordinator.submit(256, 16, f.read(), aa=9)
+            await coordinator.wait_until("the job to start",
+                                         lambda: _progressed(coordinator, job), 60)
+            crash_at = time.time()
+            real.procs[0].kill()
+            hang_at = time.time()
+            real.procs[1].send_signal(signal.SIGSTOP)
+
+        async def left(name):
+            return coordinator.left_at(name) is not None
+        await coordinator.wait_until("the crashed worker to be dropped",
+                                     lambda: left(crash), 30)
+        await coordinator.wait_until("the hung worker to be dropped", lambda: left(hang),
+                                     args.silence_ms / 1000 + 30)
+        crash_seen, hang_seen = coordinator.left_at(crash), coordinator.left_at(hang)
+        requeued = await coordinator.metric("tessera_units_requeued_total") - requeued0
+        report("loss", "(the coordinator's log, to the ms) a crashed worker dropped, its units "
+               "re-queued, %.0f ms after its connection closed; a hung one %.2f s after %s "
+               "(--silence-ms %d); %d units re-queued (a unit another worker holds too is not "
+               "counted)" %
+               (max(0, crash_seen - crash_at) * 1e3, hang_seen - hang_at,
+                "it was stopped" if real else "its last message", args.silence_ms, requeued))
+    finally:
         for t in tasks:
             t.cancel()
-    finally:
-        coordinator.kill()
-        coordinator.wait()
+        if real:
+            real.stop()
 
 
-if __name__ == "__main__":
+async def _progressed(coordinator, job):
+    return (await coordinator.get("/api/jobs/%d" % job))["progress"] > 0
+
+
+def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("--build", required=True)
     parser.add_argument("--workers", type=int, default=32)
     parser.add_argument("--threads", type=int, default=4)
     parser.add_argument("--size", type=int, default=2048)
     parser.add_argument("--passes", type=int, default=4)
-    sys.exit(asyncio.run(main(parser.parse_args())))
+    parser.add_argument("--scene", help="an SDL file for the throughput job (default: one "
+                        "sphere); a costlier scene or --aa 9 gives smaller units")
+    parser.add_argument("--aa", type=int, default=1)
+    parser.add_argument("--real", type=int, default=0)
+    parser.add_argument("--heartbeat-ms", type=int, default=2000)
+    parser.add_argument("--silence-ms", type=int, default=10000)
+    parser.add_argument("--idle-seconds", type=float, default=6)
+    parser.add_argument("--smoke", action="store_true")
+    args = parser.parse_args()
+    args.scene_text = open(args.scene).read() if args.scene else "sphere\n"
+    if args.smoke:
+        args.workers, args.size, args.passes = min(args.workers, 8), 64, 2
+        args.real = min(args.real, 3)
+        # Real workers send a heartbeat after 2 s of silence, whatever --heartbeat-ms says: a
+        # shorter --silence-ms would drop them whenever they are idle.
+        args.heartbeat_ms, args.idle_seconds = 100, 0.5
+        args.silence_ms = 3000 if args.real else 500
+    if max(args.workers if not args.real else 0, args.real) < 2:
+        parser.error("needs at least 2 workers (one crashes, one hangs)")
+    # Each connection is a descriptor on both sides; the coordinator inherits this limit.
+    soft, hard = resource.getrlimit(resource.RLIMIT_NOFILE)
+    resource.setrlimit(resource.RLIMIT_NOFILE, (hard, hard))
+    if hard < 2 * (args.workers + args.real) + 100:
+        parser.error("the descriptor limit %d is too low for %d workers" % (hard, args.workers))
+    report = lambda what, line: print("%-16s %s" % (what + ":", line), flush=True)
+    with tempfile.TemporaryDirectory() as tmp:
+        coordinator = Coordinator(args.build, tmp, args.heartbeat_ms, args.silence_ms)
+        try:
+            asyncio.run(measure(args, coordinator, report))
+        except AssertionError as e:
+            print("coordinator_capacity: FAILED: %s\n--- the coordinator's log ends:\n%s" %
+                  (e, coordinator.log()[-3000:]))
+            return 1
+        finally:
+            coordinator.proc.kill()
+            coordinator.proc.wait()
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

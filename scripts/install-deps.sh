@@ -24,6 +24,11 @@ packages=(
 # these two are asked for only when their commands are missing.
 command -v node >/dev/null || packages+=(nodejs)
 command -v npm >/dev/null || packages+=(npm)
+# The Kubernetes manifests' test renders them with `kubectl kustomize` (Debian's kubectl 1.20;
+# a newer kubectl from elsewhere owns /usr/bin/kubectl too, so only when it is missing).
+command -v kubectl >/dev/null || packages+=(kubernetes-client)
+# The Slurm batch script's test runs a one-node cluster (slurmctld, slurmd, munged).
+packages+=(slurm-wlm munge)
 
 missing=()
 for p in "${packages[@]}"; do
