@@ -5,6 +5,7 @@
 
 #include <algorithm>
 
+#include "common/render/settings_schema.h"
 #include "coordinator/http/api.h"
 #include "coordinator/http/submit_policy.h"
 #include "coordinator/jobs/api_error.h"
@@ -65,6 +66,38 @@ TEST(ParseSettings, RefusesWhatIsOutOfLimits) {
     JobRequest r;
     EXPECT_THROW(parse_settings(nlohmann::json::parse(bad), limits, r), ApiError) << bad;
   }
+}
+
+TEST(ParseSettings, TakesEveryChoiceOfTheSchema) {
+  for (const char* name : {"order", "preview", "shadows"})
+    for (const std::string_view choice : find_setting(name)->choices) {
+      JobRequest r;
+      EXPECT_NO_THROW(parse_settings({{name, std::string(choice)}}, ServiceLimits{}, r))
+          << name << choice;
+    }
+}
+
+TEST(ParseSettings, ServiceLimitsNarrowTheSchemasRange) {
+  ServiceLimits limits;
+  limits.max_passes = 4096;  // the schema's own range
+  JobRequest r;
+  parse_settings({{"passes", 4096}}, limits, r);
+  EXPECT_EQ(r.spec.settings.passes, 4096);
+  limits.max_passes = 8;
+  try {
+    parse_settings({{"passes", 9}}, limits, r);
+    FAIL() << "expected the service's limit";
+  } catch (const ApiError& e) {
+    EXPECT_EQ(e.body()["detail"], "settings.passes must be an integer in [1, 8]");
+  }
+}
+
+// Jitter takes the same range as tessera-render's --jitter and the wire (issue 19 §2).
+TEST(ParseSettings, JitterTakesTheSchemasRange) {
+  JobRequest r;
+  parse_settings({{"jitter", 16}}, ServiceLimits{}, r);
+  EXPECT_EQ(r.spec.settings.jitter, 16.0);
+  EXPECT_THROW(parse_settings({{"jitter", 16.5}}, ServiceLimits{}, r), ApiError);
 }
 
 TEST(ParseJobRequest, SceneErrorsNameLineAndColumn) {
