@@ -61,7 +61,8 @@ constexpr unsigned kJobs = kJobRequest | kWire;  // the service's, not tessera-r
 
 constexpr std::int64_t kAaCounts[] = {1, 5, 9};
 constexpr std::string_view kShadowModes[] = {"none", "hard", "soft"};
-constexpr std::string_view kUnitOrders[] = {"centre", "center", "scanline"};
+// "center" and "central" (the seeds' word) are the same order, as parse_unit_order reads them.
+constexpr std::string_view kUnitOrders[] = {"centre", "scanline", "center", "central"};
 constexpr std::string_view kPreviewModes[] = {"anchor", "area"};
 
 // ---- The table ----------------------------------------------------------------------------
