@@ -7,8 +7,9 @@
 #include <filesystem>
 #include <fstream>
 #include <stdexcept>
-#include <string_view>
+#include <string>
 #include <thread>
+#include <vector>
 
 #include <spdlog/spdlog.h>
 #include <boost/asio/signal_set.hpp>
@@ -54,18 +55,16 @@ void write_port_file(const std::filesystem::path& path, unsigned short http_port
 int main(int argc, char** argv) {
   using namespace tessera;
   namespace asio = boost::asio;
-  CoordinatorOptions options;
-  for (int i = 1; i < argc; ++i)
-    if (std::string_view(argv[i]) == "--help" || std::string_view(argv[i]) == "-h") {
-      std::puts(kCoordinatorUsage);
-      return 0;
-    }
-  try {
-    options = parse_coordinator_options(argc, argv);
-  } catch (const std::exception& e) {
-    spdlog::error("{}", e.what());
+  const auto parsed = parse_coordinator_options(std::vector<std::string>(argv + 1, argv + argc));
+  if (std::holds_alternative<CoordinatorHelp>(parsed)) {
+    std::fputs(coordinator_usage().c_str(), stdout);
+    return 0;
+  }
+  if (const auto* error = std::get_if<std::string>(&parsed)) {
+    spdlog::error("{} (tessera-coordinator --help lists the options)", *error);
     return 2;
   }
+  CoordinatorOptions options = std::get<CoordinatorOptions>(parsed);
   if (options.secret.empty() && !options.insecure) {
     // Authentication is off only when asked for; local workers get this one by environment.
     options.secret = make_nonce();

@@ -1,46 +1,24 @@
 #include "coordinator/options.h"
 
 #include <cctype>
-#include <cstdlib>
 #include <limits>
 #include <map>
+#include <memory>
 #include <stdexcept>
+
+#include <CLI/CLI.hpp>
 
 #include "coordinator/workers/local_workers.h"
 
 namespace tessera {
 
-const char* const kCoordinatorUsage =
-    "usage: tessera-coordinator --http-port P --worker-port Q [--secret S | --insecure]\n"
-    "       [--local-workers N] [--local-threads T] [--scenes-dir DIR] [--web-dir DIR]\n"
-    "       [--bind ADDR] [--worker-binary PATH] [--max-job-seconds S] [--max-body-bytes N]\n"
-    "       [--heartbeat-ms MS] [--silence-ms MS] [--port-file PATH] [--intake-threads N]\n"
-    "       [--max-intake-seconds S] [--max-http-connections N] [--api-token T | --open-submit]\n"
-    "       [--allow-origin ORIGIN]... [--max-jobs-per-client N]\n"
-    "       [--tls-cert FILE --tls-key FILE] [--data-dir DIR]\n"
-    "       [--keep-finished DURATION] [--max-disk BYTES]\n"
-    "  --data-dir DIR            where jobs are kept across restarts (default ./tessera-data)\n"
-    "  --keep-finished DURATION  how long finished jobs are kept: 3600s, 90m, 12h, 7d (default "
-    "7d)\n"
-    "  --max-disk BYTES          the data directory's budget: 512M, 2G (default unlimited)";
-
 namespace {
-
-long parse_number(const std::string& flag, const std::string& text, long lo, long hi) {
-  char* end = nullptr;
-  const long v = std::strtol(text.c_str(), &end, 10);
-  if (text.empty() || *end != '\0' || v < lo || v > hi)
-    throw std::invalid_argument(flag + " takes a number in [" + std::to_string(lo) + ", " +
-                                std::to_string(hi) + "]\n" + kCoordinatorUsage);
-  return v;
-}
 
 // A number with a unit suffix: "90m" -> 90 * units.at('m'); no suffix multiplies by 1.
 std::int64_t parse_scaled(const std::string& flag, const std::string& text,
                           const std::map<char, std::int64_t>& units, const char* what) {
   const auto fail = [&] {
-    return std::invalid_argument(flag + " takes " + what + ", not \"" + text + "\"\n" +
-                                 kCoordinatorUsage);
+    return std::invalid_argument(flag + " takes " + what + ", not \"" + text + "\"");
   };
   std::size_t digits = 0;
   while (digits < text.size() && std::isdigit(static_cast<unsigned char>(text[digits]))) ++digits;
@@ -69,85 +47,146 @@ std::int64_t parse_bytes(const std::string& flag, const std::string& text) {
                       "a size like 1048576, 512K, 512M or 2G");
 }
 
-CoordinatorOptions parse_coordinator_options(int argc, char** argv) {
+namespace {
+
+// A flag whose value parse(flag, text) reads, or refuses with a message naming both.
+template <typename T>
+void add_parsed(CLI::App& app, const std::string& flag, T& value, const std::string& help,
+                T (*parse)(const std::string&, const std::string&)) {
+  app.add_option_function<std::string>(
+         flag, [&value, flag, parse](const std::string& text) { value = parse(flag, text); }, help)
+      ->check(CLI::Validator(
+          [flag, parse](std::string& text) -> std::string {
+            try {
+              parse(flag, text);
+              return {};
+            } catch (const std::invalid_argument& e) {
+              return e.what();
+            }
+          },
+          ""));
+}
+
+// Values whose flags read another type than CoordinatorOptions holds (paths that may be left
+// unset, milliseconds), moved into it after parsing.
+struct Flags {
+  std::string scenes_dir, port_file, tls_cert, tls_key, worker_binary;
+  std::string web_dir = TESSERA_WEB_DIR, data_dir = CoordinatorOptions().data_dir.string();
+  int max_job_seconds = 0, heartbeat_ms = 0, silence_ms = 0;
+  std::size_t max_body_bytes = 0;
+};
+
+std::unique_ptr<CLI::App> make_app(CoordinatorOptions& o, Flags& f) {
+  auto app = std::make_unique<CLI::App>(
+      "tessera-coordinator: the HTTP API and page, the job store and the scheduler, and the "
+      "port workers connect to (docs/SERVICE.md)",
+      "tessera-coordinator");
+  app->option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
+  app->add_option("--http-port", o.http_port, "the page and the API (0 picks a free port)")
+      ->check(CLI::Range(0, 65535))
+      ->capture_default_str();
+  app->add_option("--worker-port", o.worker_port, "where workers connect (0 picks a free port)")
+      ->check(CLI::Range(0, 65535))
+      ->capture_default_str();
+  app->add_option("--secret", o.secret, "shared secret workers must prove")
+      ->envname("TESSERA_SECRET");
+  app->add_flag("--insecure", o.insecure, "no authentication at all (trusted networks, tests)");
+  app->add_option("--local-workers", o.local_workers, "start N workers on this machine")
+      ->check(CLI::Range(0, 64));
+  app->add_option("--local-threads", o.local_threads,
+                  "threads per local worker (default: cores / N)")
+      ->check(CLI::Range(1, 1024));
+  app->add_option("--scenes-dir", f.scenes_dir,
+                  "scenes may include files from DIR; {\"scene_file\": PATH} renders DIR/PATH");
+  app->add_option("--web-dir", f.web_dir, "where the page's files are")->capture_default_str();
+  app->add_option("--bind", o.bind, "listen address for both ports")->capture_default_str();
+  app->add_option("--port-file", f.port_file,
+                  "once both ports listen, write {\"http_port\": P, \"worker_port\": Q} here");
+  app->add_option("--worker-binary", f.worker_binary,
+                  "the worker for --local-workers (default: next to the coordinator)");
+  app->add_option("--max-job-seconds", f.max_job_seconds, "a job running longer fails (600)")
+      ->check(CLI::Range(1, 86400));
+  app->add_option("--max-body-bytes", f.max_body_bytes, "request bodies over N get 413 (32 MiB)")
+      ->check(CLI::Range(std::size_t{1024}, std::size_t{1} << 30));
+  app->add_option("--heartbeat-ms", f.heartbeat_ms, "heartbeat interval (2000)")
+      ->check(CLI::Range(10, 60000));
+  app->add_option("--silence-ms", f.silence_ms, "silence after which a peer is dropped (10000)")
+      ->check(CLI::Range(50, 600000));
+  app->add_option("--intake-threads", o.intake_threads,
+                  "threads that load, prepare and probe scenes and encode images")
+      ->check(CLI::Range(1, 64))
+      ->capture_default_str();
+  app->add_option("--max-intake-seconds", o.max_intake_seconds,
+                  "wall time of one submission or prediction")
+      ->check(CLI::Range(1, 3600))
+      ->capture_default_str();
+  app->add_option("--max-http-connections", o.max_http_connections, "open HTTP connections")
+      ->check(CLI::Range(1, 65536))
+      ->capture_default_str();
+  app->add_option("--api-token", o.submit.api_token,
+                  "POST and DELETE need Authorization: Bearer TOKEN, from every address")
+      ->envname("TESSERA_API_TOKEN");
+  app->add_flag("--open-submit", o.submit.open_submit,
+                "without a token, any address may POST and DELETE (default: only loopback)");
+  app->add_option("--allow-origin", o.submit.allowed_origins,
+                  "a page at ORIGIN may POST and DELETE too; repeatable")
+      ->multi_option_policy(CLI::MultiOptionPolicy::TakeAll);
+  app->add_option("--max-jobs-per-client", o.max_jobs_per_client,
+                  "unfinished jobs per client address")
+      ->check(CLI::Range(1, 1024))
+      ->capture_default_str();
+  app->add_option("--tls-cert", f.tls_cert, "HTTPS and TLS on the worker port: certificate (PEM)");
+  app->add_option("--tls-key", f.tls_key, "and its key (PEM); both or neither");
+  app->add_option("--data-dir", f.data_dir, "where jobs are kept across restarts")
+      ->capture_default_str();
+  add_parsed(*app, "--keep-finished", o.keep_finished,
+             "how long finished jobs are kept: 3600s, 90m, 12h, 7d (default 7d)", parse_duration);
+  add_parsed(*app, "--max-disk", o.max_disk_bytes,
+             "the data directory's budget: 512M, 2G (default unlimited)", parse_bytes);
+  return app;
+}
+
+}  // namespace
+
+std::variant<CoordinatorOptions, CoordinatorHelp, std::string> parse_coordinator_options(
+    const std::vector<std::string>& args) {
   CoordinatorOptions o;
-  if (const char* s = std::getenv("TESSERA_SECRET")) o.secret = s;
-  if (const char* t = std::getenv("TESSERA_API_TOKEN")) o.submit.api_token = t;
-  o.web_dir = TESSERA_WEB_DIR;
-  for (int i = 1; i < argc; ++i) {
-    const std::string arg = argv[i];
-    auto value = [&]() -> std::string {
-      if (i + 1 >= argc) throw std::invalid_argument(arg + " needs a value\n" + kCoordinatorUsage);
-      return argv[++i];
-    };
-    if (arg == "--http-port")
-      o.http_port = static_cast<unsigned short>(parse_number(arg, value(), 0, 65535));
-    else if (arg == "--worker-port")
-      o.worker_port = static_cast<unsigned short>(parse_number(arg, value(), 0, 65535));
-    else if (arg == "--secret")
-      o.secret = value();
-    else if (arg == "--insecure")
-      o.insecure = true;
-    else if (arg == "--local-workers")
-      o.local_workers = static_cast<int>(parse_number(arg, value(), 0, 64));
-    else if (arg == "--local-threads")
-      o.local_threads = static_cast<int>(parse_number(arg, value(), 1, 1024));
-    else if (arg == "--scenes-dir")
-      o.scenes_dir = value();
-    else if (arg == "--web-dir")
-      o.web_dir = value();
-    else if (arg == "--bind")
-      o.bind = value();
-    else if (arg == "--port-file")
-      o.port_file = value();
-    else if (arg == "--worker-binary")
-      o.worker_binary = value();
-    else if (arg == "--max-job-seconds")
-      o.limits.max_job_seconds = static_cast<double>(parse_number(arg, value(), 1, 86400));
-    else if (arg == "--max-body-bytes")
-      o.limits.max_body_bytes =
-          static_cast<std::size_t>(parse_number(arg, value(), 1024, 1L << 30));
-    else if (arg == "--heartbeat-ms")
-      o.timing.heartbeat = std::chrono::milliseconds(parse_number(arg, value(), 10, 60000));
-    else if (arg == "--silence-ms")
-      o.timing.silence = std::chrono::milliseconds(parse_number(arg, value(), 50, 600000));
-    else if (arg == "--intake-threads")
-      o.intake_threads = static_cast<int>(parse_number(arg, value(), 1, 64));
-    else if (arg == "--max-intake-seconds")
-      o.max_intake_seconds = static_cast<int>(parse_number(arg, value(), 1, 3600));
-    else if (arg == "--max-http-connections")
-      o.max_http_connections = static_cast<int>(parse_number(arg, value(), 1, 65536));
-    else if (arg == "--api-token")
-      o.submit.api_token = value();
-    else if (arg == "--open-submit")
-      o.submit.open_submit = true;
-    else if (arg == "--allow-origin")
-      o.submit.allowed_origins.push_back(value());
-    else if (arg == "--max-jobs-per-client")
-      o.max_jobs_per_client = static_cast<int>(parse_number(arg, value(), 1, 1024));
-    else if (arg == "--tls-cert")
-      o.tls_cert = value();
-    else if (arg == "--tls-key")
-      o.tls_key = value();
-    else if (arg == "--data-dir")
-      o.data_dir = value();
-    else if (arg == "--keep-finished")
-      o.keep_finished = parse_duration(arg, value());
-    else if (arg == "--max-disk")
-      o.max_disk_bytes = parse_bytes(arg, value());
-    else
-      throw std::invalid_argument("unknown argument " + arg + "\n" + kCoordinatorUsage);
+  Flags f;
+  const std::unique_ptr<CLI::App> app = make_app(o, f);
+  std::vector<std::string> reversed(args.rbegin(), args.rend());  // as CLI11 reads them
+  try {
+    app->parse(reversed);
+  } catch (const CLI::CallForHelp&) {
+    return CoordinatorHelp{};
+  } catch (const CLI::ParseError& e) {
+    return std::string(e.what());
   }
+  const auto given = [&](const char* flag) { return app->count(flag) > 0; };
+  o.web_dir = f.web_dir;
+  o.data_dir = f.data_dir;
+  if (given("--scenes-dir")) o.scenes_dir = f.scenes_dir;
+  if (given("--port-file")) o.port_file = f.port_file;
+  if (given("--tls-cert")) o.tls_cert = f.tls_cert;
+  if (given("--tls-key")) o.tls_key = f.tls_key;
+  if (given("--max-job-seconds")) o.limits.max_job_seconds = f.max_job_seconds;
+  if (given("--max-body-bytes")) o.limits.max_body_bytes = f.max_body_bytes;
+  if (given("--heartbeat-ms")) o.timing.heartbeat = std::chrono::milliseconds(f.heartbeat_ms);
+  if (given("--silence-ms")) o.timing.silence = std::chrono::milliseconds(f.silence_ms);
   if (o.insecure && !o.secret.empty())
-    throw std::invalid_argument(std::string("--secret and --insecure exclude each other\n") +
-                                kCoordinatorUsage);
+    return std::string("--secret and --insecure exclude each other");
   if (o.tls_cert.has_value() != o.tls_key.has_value())
-    throw std::invalid_argument(std::string("--tls-cert and --tls-key go together\n") +
-                                kCoordinatorUsage);
+    return std::string("--tls-cert and --tls-key go together");
   if (o.timing.silence <= o.timing.heartbeat)
-    throw std::invalid_argument("--silence-ms must exceed --heartbeat-ms");
-  if (o.worker_binary.empty()) o.worker_binary = default_worker_binary();
+    return std::string("--silence-ms must exceed --heartbeat-ms");
+  o.worker_binary =
+      f.worker_binary.empty() ? default_worker_binary() : std::filesystem::path(f.worker_binary);
   return o;
+}
+
+std::string coordinator_usage() {
+  CoordinatorOptions o;
+  Flags f;
+  return make_app(o, f)->help();
 }
 
 }  // namespace tessera

@@ -1,4 +1,4 @@
-// Command line of tessera-coordinator (docs/SERVICE.md):
+// Command line of tessera-coordinator (CLI11; docs/SERVICE.md lists the options):
 //   --http-port P --worker-port Q [--secret S | --insecure] [--local-workers N]
 //   [--local-threads T] [--scenes-dir DIR] [--web-dir DIR] [--bind ADDR]
 //   [--worker-binary PATH] [--max-job-seconds S] [--max-body-bytes N] [--heartbeat-ms MS]
@@ -14,6 +14,8 @@
 #include <limits>
 #include <optional>
 #include <string>
+#include <variant>
+#include <vector>
 
 #include "common/protocol/connection.h"
 #include "coordinator/http/submit_policy.h"
@@ -51,10 +53,14 @@ struct CoordinatorOptions {
   std::int64_t max_disk_bytes = std::numeric_limits<std::int64_t>::max();
 };
 
-extern const char* const kCoordinatorUsage;
+struct CoordinatorHelp {};  // --help was asked for
 
-// Throws std::invalid_argument with a usage message.
-CoordinatorOptions parse_coordinator_options(int argc, char** argv);
+// Parses the arguments after the program's name; returns the options, CoordinatorHelp, or an
+// error message naming the bad flag and value. TESSERA_SECRET and TESSERA_API_TOKEN stand in for
+// --secret and --api-token.
+std::variant<CoordinatorOptions, CoordinatorHelp, std::string> parse_coordinator_options(
+    const std::vector<std::string>& args);
+std::string coordinator_usage();
 // "3600s", "90m", "12h", "7d" (a bare number is seconds); throws std::invalid_argument.
 std::chrono::seconds parse_duration(const std::string& flag, const std::string& text);
 // "1048576", "512K", "512M", "2G" (powers of 1024); throws std::invalid_argument.

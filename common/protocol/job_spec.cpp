@@ -1,5 +1,8 @@
 #include "common/protocol/job_spec.h"
 
+#include <limits>
+#include <type_traits>
+
 #include "common/protocol/frame.h"
 
 namespace tessera {
@@ -12,53 +15,74 @@ void apply_overrides(Scene& scene, const SceneOverrides& o) {
   }
 }
 
+nlohmann::json setting_to_json(const SettingValue& value) {
+  return std::visit(
+      [](const auto& v) -> nlohmann::json {
+        if constexpr (std::is_same_v<std::decay_t<decltype(v)>, std::monostate>)
+          return nullptr;
+        else
+          return v;
+      },
+      value);
+}
+
+std::optional<SettingValue> setting_from_json(const SettingSpec& spec, const nlohmann::json& j) {
+  switch (spec.type) {
+    case SettingType::Integer:
+      if (j.is_number_unsigned() &&
+          j.get<std::uint64_t>() > std::numeric_limits<std::int64_t>::max())
+        break;
+      if (j.is_number_integer()) return j.get<std::int64_t>();
+      break;
+    case SettingType::Number:
+      if (j.is_number()) return j.get<double>();
+      break;
+    case SettingType::Boolean:
+      if (j.is_boolean()) return j.get<bool>();
+      break;
+    case SettingType::Choice:
+      if (j.is_string()) return j.get<std::string>();
+      break;
+    case SettingType::Seed:
+      if (j.is_number_unsigned()) return j.get<std::uint64_t>();
+      break;
+  }
+  return std::nullopt;
+}
+
+// The settings are the wire layer's of the schema; an unset override is left out.
 nlohmann::json to_json(const JobSpec& spec) {
-  const RenderSettings& s = spec.settings;
-  nlohmann::json j = {{"width", s.width},
-                      {"height", s.height},
-                      {"aa", s.aa_samples},
-                      {"stochastic", s.stochastic},
-                      {"jitter", s.jitter},
-                      {"seed", s.seed},
-                      {"passes", s.passes},
-                      {"bvh", s.bvh == BvhMode::Sah},
-                      {"time_samples", s.time_samples}};
-  j["shadows"] = to_string(s.shadows);
-  j["cone_samples"] = s.cone_samples;
-  j["shadow_jitter"] = s.shadow_jitter;
-  j["normalize"] = s.normalize_colors;
-  j["brightness"] = s.normalize_brightness;
-  if (spec.overrides.max_depth) j["max_depth"] = *spec.overrides.max_depth;
-  if (spec.overrides.min_weight) j["min_weight"] = *spec.overrides.min_weight;
+  JobSettings settings;
+  settings.render = spec.settings;
+  settings.overrides = spec.overrides;
+  nlohmann::json j = nlohmann::json::object();
+  for (const SettingSpec& setting : settings_schema()) {
+    if (!(setting.layers & kWire)) continue;
+    const SettingValue value = setting.access.get(settings);
+    if (!std::holds_alternative<std::monostate>(value))
+      j[std::string(setting.name)] = setting_to_json(value);
+  }
   return j;
 }
 
 JobSpec job_spec_from_json(const nlohmann::json& j) {
-  JobSpec spec;
-  RenderSettings& s = spec.settings;
-  try {
-    s.width = j.at("width").get<int>();
-    s.height = j.at("height").get<int>();
-    s.aa_samples = j.at("aa").get<int>();
-    s.stochastic = j.at("stochastic").get<bool>();
-    s.jitter = j.at("jitter").get<double>();
-    s.seed = j.at("seed").get<std::uint64_t>();
-    s.passes = j.at("passes").get<int>();
-    s.time_samples = j.at("time_samples").get<int>();
-    s.bvh = j.at("bvh").get<bool>() ? BvhMode::Sah : BvhMode::None;
-    const std::optional<ShadowMode> shadows = parse_shadow_mode(j.at("shadows").get<std::string>());
-    if (!shadows) throw ProtocolError("bad job settings: unknown shadow mode");
-    s.shadows = *shadows;
-    s.cone_samples = j.at("cone_samples").get<int>();
-    s.shadow_jitter = j.at("shadow_jitter").get<double>();
-    s.normalize_colors = j.at("normalize").get<bool>();
-    s.normalize_brightness = j.at("brightness").get<double>();
-    if (j.contains("max_depth")) spec.overrides.max_depth = j["max_depth"].get<int>();
-    if (j.contains("min_weight")) spec.overrides.min_weight = j["min_weight"].get<double>();
-  } catch (const nlohmann::json::exception& e) {
-    throw ProtocolError(std::string("bad job settings: ") + e.what());
+  if (!j.is_object()) throw ProtocolError("bad job settings: not an object");
+  JobSettings settings;
+  for (const SettingSpec& setting : settings_schema()) {
+    if (!(setting.layers & kWire)) continue;
+    const std::string name(setting.name);
+    if (!j.contains(name)) {
+      // Only an override may be left out (the scene's value).
+      if (std::holds_alternative<std::monostate>(setting.default_value())) continue;
+      throw ProtocolError("bad job settings: no " + name);
+    }
+    const std::optional<SettingValue> value = setting_from_json(setting, j[name]);
+    const std::optional<std::string> error =
+        value ? setting_error(setting, *value) : "must be " + describe_values(setting);
+    if (error) throw ProtocolError("bad job settings: " + name + " " + *error);
+    setting.access.set(settings, *value);
   }
-  return spec;
+  return {settings.render, settings.overrides};
 }
 
 nlohmann::json to_json(const RenderStats& s) {

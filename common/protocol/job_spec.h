@@ -1,6 +1,7 @@
 // What a worker needs besides the bundle to render a job's units: the render settings and the
 // scene overrides of the page's controls (recursion depth, minimum weight). Coordinator and
-// worker apply the same overrides to the same parsed scene.
+// worker apply the same overrides to the same parsed scene. The fields and their ranges are
+// the wire layer's settings of common/render/settings_schema.h.
 #pragma once
 
 #include <optional>
@@ -8,16 +9,11 @@
 #include <nlohmann/json.hpp>
 
 #include "common/render/settings.h"
+#include "common/render/settings_schema.h"
 #include "common/render/stats.h"
 #include "common/scene/scene.h"
 
 namespace tessera {
-
-struct SceneOverrides {
-  std::optional<int> max_depth;      // maxRecursionDepth
-  std::optional<double> min_weight;  // minReflectivity and minTransparency
-  friend bool operator==(const SceneOverrides&, const SceneOverrides&) = default;
-};
 
 struct JobSpec {
   RenderSettings settings;
@@ -27,8 +23,14 @@ struct JobSpec {
 void apply_overrides(Scene& scene, const SceneOverrides& overrides);
 
 nlohmann::json to_json(const JobSpec& spec);
-// Throws ProtocolError for missing or mistyped fields.
+// Throws ProtocolError for missing, mistyped or out-of-range fields.
 JobSpec job_spec_from_json(const nlohmann::json& j);
+
+// A setting's value as JSON, and back in the setting's type (an integer for Integer, any number
+// for Number); nullopt when the JSON holds another type. The job request reads its settings
+// with it too.
+nlohmann::json setting_to_json(const SettingValue& value);
+std::optional<SettingValue> setting_from_json(const SettingSpec& spec, const nlohmann::json& j);
 
 nlohmann::json to_json(const RenderStats& stats);
 RenderStats stats_from_json(const nlohmann::json& j);

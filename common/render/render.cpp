@@ -37,10 +37,12 @@ int time_samples(const PreparedScene& scene, const RenderSettings& settings) {
 }
 
 // Time sample j of `count` over a shutter of `length` frames centred on 0 (eq. 4.53-4.54):
-// the middle of the j-th of `count` equal stretches, jittered within it by `jitter` (0..1)
-// times `u` - 1/2.
+// the middle of the j-th of `count` equal stretches, jittered within it by `jitter` times
+// `u` - 1/2. The seeds jitter the times by the render's jitter strength, a share of a block
+// (eq. 4.52) that may exceed 1 for positions; a time's block is its stretch, so the strength
+// is capped at 1 here: the times stay stratified and inside the shutter.
 double shutter_time(double length, int j, int count, double jitter, double u) {
-  return length * ((j + 0.5 + jitter * (u - 0.5)) / count - 0.5);
+  return length * ((j + 0.5 + std::min(jitter, 1.0) * (u - 0.5)) / count - 0.5);
 }
 
 // One pass of one pixel: the mean of its samples. With T motion-blur times and A samples per

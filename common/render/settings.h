@@ -1,4 +1,5 @@
-// How to render: the accuracy knobs users set per render (CLI flags, job settings).
+// How to render: the accuracy knobs users set per render (CLI flags, job settings). Their
+// names, ranges and help are in settings_schema.h.
 #pragma once
 
 #include <cstdint>
@@ -39,6 +40,14 @@ struct RenderSettings {
   // exceeds 1 the image is scaled so that it becomes 1; then multiplied by the brightness.
   bool normalize_colors = false;
   double normalize_brightness = 1.0;
+};
+
+// The scene globals a job may override (the page's controls, Glazer §4.4.2): unset keeps the
+// scene's value. Coordinator and worker apply them to the same parsed scene.
+struct SceneOverrides {
+  std::optional<int> max_depth;      // maxRecursionDepth
+  std::optional<double> min_weight;  // minReflectivity and minTransparency
+  friend bool operator==(const SceneOverrides&, const SceneOverrides&) = default;
 };
 
 }  // namespace tessera

@@ -1,5 +1,6 @@
 #include "coordinator/jobs/job_request.h"
 
+#include <algorithm>
 #include <map>
 #include <set>
 
@@ -41,35 +42,27 @@ class RecordingSource : public SceneSource {
   mutable std::map<std::string, std::string> read_;
 };
 
-int get_int(const json& s, const char* key, int fallback, int lo, int hi) {
-  if (!s.contains(key)) return fallback;
-  const json& v = s[key];
-  if (!v.is_number_integer() || v.get<long long>() < lo || v.get<long long>() > hi)
-    throw bad_request(std::string("settings.") + key + " must be an integer in [" +
-                      std::to_string(lo) + ", " + std::to_string(hi) + "]");
-  return v.get<int>();
-}
-
-double get_double(const json& s, const char* key, double fallback, double lo, double hi) {
-  if (!s.contains(key)) return fallback;
-  const json& v = s[key];
-  if (!v.is_number() || v.get<double>() < lo || v.get<double>() > hi)
-    throw bad_request(std::string("settings.") + key + " must be a number in [" +
-                      std::to_string(lo) + ", " + std::to_string(hi) + "]");
-  return v.get<double>();
-}
-
-bool get_bool(const json& s, const char* key, bool fallback) {
-  if (!s.contains(key)) return fallback;
-  if (!s[key].is_boolean())
-    throw bad_request(std::string("settings.") + key + " must be true or false");
-  return s[key].get<bool>();
-}
-
 std::string get_string(const json& s, const char* key, const std::string& fallback) {
   if (!s.contains(key)) return fallback;
   if (!s[key].is_string()) throw bad_request(std::string("settings.") + key + " must be a string");
   return s[key].get<std::string>();
+}
+
+// The most a job request may ask of a setting: its range, narrowed by this service's limits.
+double request_max(const SettingSpec& spec, const ServiceLimits& limits) {
+  switch (spec.cap) {
+    case ServiceCap::None:
+      break;
+    case ServiceCap::Side:
+      return std::min<double>(spec.max, limits.max_side);
+    case ServiceCap::Passes:
+      return std::min<double>(spec.max, limits.max_passes);
+    case ServiceCap::ConeSamples:
+      return std::min<double>(spec.max, limits.max_cone_samples);
+    case ServiceCap::Depth:
+      return std::min<double>(spec.max, limits.max_depth);
+  }
+  return spec.max;
 }
 
 // Query values of a tar upload, typed the way a JSON body would have them.
@@ -269,55 +262,31 @@ void check_scene(const Submission& sub, const std::optional<std::filesystem::pat
 }  // namespace
 
 void parse_settings(const json& s, const ServiceLimits& limits, JobRequest& out) {
-  static const std::set<std::string> known = {
-      "width",       "height",     "aa",        "stochastic",   "jitter",
-      "seed",        "passes",     "order",     "priority",     "preview",
-      "progressive", "bvh",        "shadows",   "cone_samples", "shadow_jitter",
-      "normalize",   "brightness", "max_depth", "min_weight",   "time_samples"};
-  for (const auto& [key, value] : s.items())
-    if (!known.count(key)) throw bad_request("unknown setting \"" + key + "\"");
-  RenderSettings& r = out.spec.settings;
-  const RenderSettings defaults;
-  r.width = get_int(s, "width", defaults.width, 1, limits.max_side);
-  r.height = get_int(s, "height", defaults.height, 1, limits.max_side);
+  JobSettings settings;
+  for (const auto& [key, value] : s.items()) {
+    const SettingSpec* spec = find_setting(key);
+    if (!spec || !(spec->layers & kJobRequest))
+      throw bad_request("unknown setting \"" + key + "\"");
+    const double max = request_max(*spec, limits);
+    const std::optional<SettingValue> parsed = setting_from_json(*spec, value);
+    const std::optional<std::string> error =
+        parsed ? setting_error(*spec, *parsed, max) : "must be " + describe_values(*spec, max);
+    if (error) throw bad_request("settings." + key + " " + *error);
+    spec->access.set(settings, *parsed);
+  }
+  const RenderSettings& r = settings.render;
   if (static_cast<long long>(r.width) * r.height > limits.max_pixels)
     throw bad_request("width x height is over this service's limit of " +
                       std::to_string(limits.max_pixels) + " pixels");
-  r.aa_samples = get_int(s, "aa", defaults.aa_samples, 1, 9);
-  if (r.aa_samples != 1 && r.aa_samples != 5 && r.aa_samples != 9)
-    throw bad_request("settings.aa must be 1, 5 or 9");
-  r.stochastic = get_bool(s, "stochastic", defaults.stochastic);
-  r.jitter = get_double(s, "jitter", defaults.jitter, 0, 16);
-  if (s.contains("seed")) {
-    if (!s["seed"].is_number_unsigned()) throw bad_request("settings.seed must be an integer >= 0");
-    r.seed = s["seed"].get<std::uint64_t>();
-  }
-  r.passes = get_int(s, "passes", defaults.passes, 1, limits.max_passes);
-  r.bvh = get_bool(s, "bvh", true) ? BvhMode::Sah : BvhMode::None;
-  const std::optional<ShadowMode> shadows =
-      parse_shadow_mode(get_string(s, "shadows", to_string(defaults.shadows)));
-  if (!shadows) throw bad_request("settings.shadows must be \"none\", \"hard\" or \"soft\"");
-  r.shadows = *shadows;
-  r.cone_samples = get_int(s, "cone_samples", defaults.cone_samples, 1, limits.max_cone_samples);
-  r.shadow_jitter = get_double(s, "shadow_jitter", defaults.shadow_jitter, 0, 2);
-  r.normalize_colors = get_bool(s, "normalize", defaults.normalize_colors);
-  r.normalize_brightness = get_double(s, "brightness", defaults.normalize_brightness, 0, 16);
-  r.time_samples = get_int(s, "time_samples", defaults.time_samples, 0, kMaxTimeSamples);
-  if (s.contains("max_depth"))
-    out.spec.overrides.max_depth = get_int(s, "max_depth", 0, 0, limits.max_depth);
-  if (s.contains("min_weight"))
-    out.spec.overrides.min_weight = get_double(s, "min_weight", 0, 0, 1);
-  out.priority = get_int(s, "priority", 1, 1, 100);
+  out.spec = {r, settings.overrides};
+  out.priority = settings.schedule.priority;
   out.plan.width = r.width;
   out.plan.height = r.height;
   out.plan.passes = r.passes;
-  out.plan.progressive = get_bool(s, "progressive", true);
-  try {
-    out.plan.order = parse_unit_order(get_string(s, "order", "centre"));
-    out.plan.preview = parse_preview_mode(get_string(s, "preview", "anchor"));
-  } catch (const std::invalid_argument& e) {
-    throw bad_request(std::string("settings.") + e.what());
-  }
+  out.plan.progressive = settings.schedule.progressive;
+  // The schema's choices are the names these take (tests/service/coordinator_test.cpp).
+  out.plan.order = parse_unit_order(settings.schedule.order);
+  out.plan.preview = parse_preview_mode(settings.schedule.preview);
 }
 
 JobRequest parse_job_request(const JobUpload& upload, const ServiceLimits& limits,

@@ -65,6 +65,22 @@ TEST(JobSpec, MistypedFieldsAreProtocolErrors) {
   EXPECT_THROW(job_spec_from_json(nlohmann::json::object()), ProtocolError);
 }
 
+// The wire takes each setting's one range (common/render/settings_schema.h), as the job request
+// and tessera-render do; an unset override is left out of the message.
+TEST(JobSpec, OutOfRangeSettingsAreProtocolErrors) {
+  const nlohmann::json good = to_json(JobSpec{});
+  EXPECT_FALSE(good.contains("max_depth"));
+  for (const auto& [key, bad] : std::vector<std::pair<std::string, nlohmann::json>>{
+           {"aa", 3}, {"jitter", 16.5}, {"width", 0}, {"seed", -1}, {"max_depth", 17}}) {
+    nlohmann::json j = good;
+    j[key] = bad;
+    EXPECT_THROW(job_spec_from_json(j), ProtocolError) << key;
+  }
+  nlohmann::json j = good;
+  j["jitter"] = 16;
+  EXPECT_EQ(job_spec_from_json(j).settings.jitter, 16.0);
+}
+
 TEST(JobSpec, OverridesChangeTheSceneGlobals) {
   Scene scene;
   apply_overrides(scene, {.max_depth = 1, .min_weight = 0.05});

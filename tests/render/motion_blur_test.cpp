@@ -57,6 +57,22 @@ TEST(MotionBlur, AZeroLengthShutterIsAStillRenderAndCostsNothing) {
   EXPECT_TRUE(PreparedScene(moving, BvhMode::Sah).effects().has(Effect::MotionBlur));
 }
 
+// Jitter strengths above 1 move sample positions further (docs/SERVICE.md takes up to 16), but
+// the times stay inside the shutter: a sphere the centre pixel would see only just before the
+// shutter opens (centre 2.6 + 4 t, seen while |2.6 + 4 t| < 0.5, t in (-0.775, -0.525)) stays
+// unseen at any strength.
+TEST(MotionBlur, JitterAboveOneKeepsTheTimesInsideTheShutter) {
+  const Scene scene = load_text(
+      "eyePoint 0 0 100 viewPoint 0 0 0 viewAngle 2 background 0 0 0\n"
+      "emissive 1 1 1 ambient 0 0 0 diffuse 0 0 0\n"
+      "mbTranslate 4 0 0 mbEnable translate 2.6 0 0 scale 0.5 0.5 0.5 sphere");
+  for (const double jitter : {1.0, 1.5, 16.0}) {
+    RenderSettings s = blur_settings();
+    s.jitter = jitter;
+    EXPECT_EQ(render(scene, s).get(kCentre, kCentre).r, 0.0f) << "jitter " << jitter;
+  }
+}
+
 // A white floor (top face at y = 0) under a light straight above the origin, seen at a grazing
 // angle from below the occluder's path; a sphere of radius 0.5 at height 2 crosses above the
 // origin, moving 4 units along x in the frame.

@@ -5,6 +5,7 @@
 
 #include <algorithm>
 
+#include "common/render/settings_schema.h"
 #include "coordinator/http/api.h"
 #include "coordinator/http/submit_policy.h"
 #include "coordinator/jobs/api_error.h"
@@ -65,6 +66,38 @@ TEST(ParseSettings, RefusesWhatIsOutOfLimits) {
     JobRequest r;
     EXPECT_THROW(parse_settings(nlohmann::json::parse(bad), limits, r), ApiError) << bad;
   }
+}
+
+TEST(ParseSettings, TakesEveryChoiceOfTheSchema) {
+  for (const char* name : {"order", "preview", "shadows"})
+    for (const std::string_view choice : find_setting(name)->choices) {
+      JobRequest r;
+      EXPECT_NO_THROW(parse_settings({{name, std::string(choice)}}, ServiceLimits{}, r))
+          << name << choice;
+    }
+}
+
+TEST(ParseSettings, ServiceLimitsNarrowTheSchemasRange) {
+  ServiceLimits limits;
+  limits.max_passes = 4096;  // the schema's own range
+  JobRequest r;
+  parse_settings({{"passes", 4096}}, limits, r);
+  EXPECT_EQ(r.spec.settings.passes, 4096);
+  limits.max_passes = 8;
+  try {
+    parse_settings({{"passes", 9}}, limits, r);
+    FAIL() << "expected the service's limit";
+  } catch (const ApiError& e) {
+    EXPECT_EQ(e.body()["detail"], "settings.passes must be an integer in [1, 8]");
+  }
+}
+
+// Jitter takes the same range as tessera-render's --jitter and the wire (issue 19 §2).
+TEST(ParseSettings, JitterTakesTheSchemasRange) {
+  JobRequest r;
+  parse_settings({{"jitter", 16}}, ServiceLimits{}, r);
+  EXPECT_EQ(r.spec.settings.jitter, 16.0);
+  EXPECT_THROW(parse_settings({{"jitter", 16.5}}, ServiceLimits{}, r), ApiError);
 }
 
 TEST(ParseJobRequest, SceneErrorsNameLineAndColumn) {
@@ -299,6 +332,133 @@ TEST(CoordinatorOptions, DurationsAndSizesTakeTheirUnits) {
     EXPECT_THROW(parse_duration("--keep-finished", bad), std::invalid_argument) << bad;
   for (const char* bad : {"", "M", "2T", "0", "2 G", "9999999999999G"})
     EXPECT_THROW(parse_bytes("--max-disk", bad), std::invalid_argument) << bad;
+}
+
+std::variant<CoordinatorOptions, CoordinatorHelp, std::string> parse_options(
+    std::vector<std::string> args) {
+  return parse_coordinator_options(args);
+}
+
+std::string options_error(std::vector<std::string> args) {
+  const auto parsed = parse_coordinator_options(args);
+  const auto* error = std::get_if<std::string>(&parsed);
+  return error ? *error : "(accepted)";
+}
+
+// Every flag the tests, scripts, docker/entrypoint.sh and docs/SERVICE.md use keeps its name
+// and meaning under CLI11 (issue 19 §6); a flag given twice takes its last value, as before.
+TEST(CoordinatorOptions, EveryFlagKeepsItsNameAndMeaning) {
+  const auto parsed = parse_options({"--http-port",
+                                     "0",
+                                     "--worker-port",
+                                     "7702",
+                                     "--http-port",
+                                     "8081",
+                                     "--secret",
+                                     "s",
+                                     "--local-workers",
+                                     "3",
+                                     "--local-threads",
+                                     "2",
+                                     "--scenes-dir",
+                                     "scenes",
+                                     "--web-dir",
+                                     "web",
+                                     "--bind",
+                                     "127.0.0.1",
+                                     "--port-file",
+                                     "ports.json",
+                                     "--worker-binary",
+                                     "w",
+                                     "--max-job-seconds",
+                                     "30",
+                                     "--max-body-bytes",
+                                     "2048",
+                                     "--heartbeat-ms",
+                                     "100",
+                                     "--silence-ms",
+                                     "500",
+                                     "--intake-threads",
+                                     "3",
+                                     "--max-intake-seconds",
+                                     "5",
+                                     "--max-http-connections",
+                                     "9",
+                                     "--api-token",
+                                     "t",
+                                     "--open-submit",
+                                     "--allow-origin",
+                                     "https://a.example",
+                                     "--allow-origin",
+                                     "https://b.example",
+                                     "--max-jobs-per-client",
+                                     "4",
+                                     "--tls-cert",
+                                     "c.pem",
+                                     "--tls-key",
+                                     "k.pem",
+                                     "--data-dir",
+                                     "d",
+                                     "--keep-finished",
+                                     "90m",
+                                     "--max-disk",
+                                     "2G"});
+  ASSERT_TRUE(std::holds_alternative<CoordinatorOptions>(parsed)) << std::get<std::string>(parsed);
+  const CoordinatorOptions& o = std::get<CoordinatorOptions>(parsed);
+  EXPECT_EQ(o.http_port, 8081);
+  EXPECT_EQ(o.worker_port, 7702);
+  EXPECT_EQ(o.secret, "s");
+  EXPECT_EQ(o.local_workers, 3);
+  EXPECT_EQ(o.local_threads, 2);
+  EXPECT_EQ(o.scenes_dir, std::filesystem::path("scenes"));
+  EXPECT_EQ(o.web_dir, std::filesystem::path("web"));
+  EXPECT_EQ(o.bind, "127.0.0.1");
+  EXPECT_EQ(o.port_file, std::filesystem::path("ports.json"));
+  EXPECT_EQ(o.worker_binary, std::filesystem::path("w"));
+  EXPECT_EQ(o.limits.max_job_seconds, 30.0);
+  EXPECT_EQ(o.limits.max_body_bytes, 2048u);
+  EXPECT_EQ(o.timing.heartbeat, std::chrono::milliseconds(100));
+  EXPECT_EQ(o.timing.silence, std::chrono::milliseconds(500));
+  EXPECT_EQ(o.intake_threads, 3);
+  EXPECT_EQ(o.max_intake_seconds, 5);
+  EXPECT_EQ(o.max_http_connections, 9);
+  EXPECT_EQ(o.submit.api_token, "t");
+  EXPECT_TRUE(o.submit.open_submit);
+  EXPECT_EQ(o.submit.allowed_origins,
+            (std::vector<std::string>{"https://a.example", "https://b.example"}));
+  EXPECT_EQ(o.max_jobs_per_client, 4);
+  EXPECT_EQ(o.tls_cert, std::filesystem::path("c.pem"));
+  EXPECT_EQ(o.tls_key, std::filesystem::path("k.pem"));
+  EXPECT_EQ(o.data_dir, std::filesystem::path("d"));
+  EXPECT_EQ(o.keep_finished, std::chrono::minutes(90));
+  EXPECT_EQ(o.max_disk_bytes, 2LL << 30);
+  EXPECT_FALSE(o.insecure);
+  const auto defaults = parse_options({"--insecure"});
+  ASSERT_TRUE(std::holds_alternative<CoordinatorOptions>(defaults));
+  EXPECT_EQ(std::get<CoordinatorOptions>(defaults).http_port, 8080);
+  EXPECT_FALSE(std::get<CoordinatorOptions>(defaults).scenes_dir.has_value());
+  EXPECT_TRUE(std::holds_alternative<CoordinatorHelp>(parse_options({"--help"})));
+}
+
+TEST(CoordinatorOptions, ErrorsNameTheFlagAndTheBadValue) {
+  for (const auto& [flag, value] :
+       std::vector<std::pair<std::string, std::string>>{{"--http-port", "70000"},
+                                                        {"--http-port", "eighty"},
+                                                        {"--local-workers", "65"},
+                                                        {"--heartbeat-ms", "5"},
+                                                        {"--keep-finished", "7x"},
+                                                        {"--max-disk", "2T"}}) {
+    const std::string error = options_error({flag, value});
+    EXPECT_NE(error.find(flag), std::string::npos) << error;
+    EXPECT_NE(error.find(value), std::string::npos) << error;
+  }
+  EXPECT_NE(options_error({"--nosuchflag"}).find("--nosuchflag"), std::string::npos);
+  EXPECT_NE(options_error({"--http-port"}).find("--http-port"), std::string::npos);
+  EXPECT_EQ(options_error({"--secret", "s", "--insecure"}),
+            "--secret and --insecure exclude each other");
+  EXPECT_EQ(options_error({"--tls-cert", "c.pem"}), "--tls-cert and --tls-key go together");
+  EXPECT_EQ(options_error({"--heartbeat-ms", "500", "--silence-ms", "500"}),
+            "--silence-ms must exceed --heartbeat-ms");
 }
 
 }  // namespace

@@ -15,11 +15,12 @@ int main(int argc, char** argv) {
   using namespace tessera;
   const auto parsed = parse_render_cli(std::vector<std::string>(argv + 1, argv + argc));
   if (std::holds_alternative<CliHelp>(parsed)) {
-    std::fputs(kRenderCliUsage, stdout);
+    std::fputs(render_cli_usage().c_str(), stdout);
     return 0;
   }
   if (const auto* error = std::get_if<std::string>(&parsed)) {
-    std::fprintf(stderr, "tessera-render: %s\n%s", error->c_str(), kRenderCliUsage);
+    std::fprintf(stderr, "tessera-render: %s (tessera-render --help lists the options)\n",
+                 error->c_str());
     return 2;
   }
   const auto& options = std::get<RenderCliOptions>(parsed);

@@ -1,44 +1,90 @@
 #include "worker/render_cli/options.h"
 
-#include <charconv>
-#include <cmath>
-#include <functional>
-#include <map>
+#include <algorithm>
+#include <memory>
 #include <optional>
 
+#include <CLI/CLI.hpp>
+
+#include "common/render/settings_schema.h"
+
 namespace tessera {
-
-const char* const kRenderCliUsage =
-    "usage: tessera-render SCENE.{sdl,wrl,wrl.gz,wrz} -o OUT.{png,exr} [options]\n"
-    "  --width W        image width in pixels (default 640)\n"
-    "  --height H       image height in pixels (default 480)\n"
-    "  --aa 1|5|9       samples per pixel per pass (default 1)\n"
-    "  --stochastic     jitter the sample positions\n"
-    "  --jitter J       jitter strength in pixels, 0..1 (default 1)\n"
-    "  --passes P       sample passes, averaged (default 1)\n"
-    "  --time-samples N motion-blur times per sample, 1..256 (default: the scene's motionBlur)\n"
-    "  --seed S         seed of every random number (default 0)\n"
-    "  --shadows none|hard|soft\n"
-    "                   shadow mode (default hard): no shadow feelers, one per light, or a\n"
-    "                   cone of them (soft)\n"
-    "  --cone-samples N rays per gloss, translucency and soft-shadow cone, 1..64 (default 9)\n"
-    "  --shadow-jitter S\n"
-    "                   soft-shadow cone diameter one unit from the point, 0..2 (default 0.2)\n"
-    "  --normalize      post-normalize: scale the image so its highest value is at most 1\n"
-    "  --brightness B   multiply the post-normalized image by B, 0..16 (default 1)\n"
-    "  --threads T      threads (default: all cores)\n"
-    "  --no-bvh         trace without the bounding volume hierarchy (for comparison)\n"
-    "  --debug-view V   writes a debug view instead of the render: normals (the first hit's\n"
-    "                   shading normal as colour) or cost (intersection tests per pixel)\n"
-    "  --quiet          no progress or statistics\n";
-
 namespace {
 
-template <typename T>
-bool parse_number(const std::string& text, T& value) {
-  const char* end = text.data() + text.size();
-  auto [ptr, ec] = std::from_chars(text.data(), end, value);
-  return ec == std::errc() && ptr == end;
+// What CLI11 shows after a flag that takes a value.
+std::string value_name(const SettingSpec& spec) {
+  switch (spec.type) {
+    case SettingType::Integer:
+      return "INT";
+    case SettingType::Number:
+      return "NUMBER";
+    case SettingType::Seed:
+      return "UINT";
+    case SettingType::Choice: {
+      std::string names;
+      for (const std::string_view choice : spec.choices)
+        names += (names.empty() ? "" : "|") + std::string(choice);
+      return names;
+    }
+    case SettingType::Boolean:
+      break;
+  }
+  return {};
+}
+
+// The setting as a flag: a Boolean sets the opposite of its default; any other checks its value
+// against the schema ("--width: bad value '0': must be an integer in [1, 16384]").
+void add_setting(CLI::App& app, const SettingSpec& spec, JobSettings& settings) {
+  const std::string help(spec.help);
+  if (spec.type == SettingType::Boolean) {
+    const bool set_to = !std::get<bool>(spec.default_value());
+    app.add_flag_callback(
+        cli_flag(spec), [&spec, &settings, set_to] { spec.access.set(settings, set_to); },
+        set_to ? help : "turns off: " + help);
+    return;
+  }
+  app.add_option_function<std::string>(
+         cli_flag(spec),
+         [&spec, &settings](const std::string& text) {
+           spec.access.set(settings, *setting_from_text(spec, text));
+         },
+         help + " (default " + to_text(spec.default_value()) + ")")
+      ->type_name(value_name(spec))
+      ->check(CLI::Validator(
+          [&spec](std::string& text) -> std::string {
+            const std::optional<SettingValue> value = setting_from_text(spec, text);
+            const std::optional<std::string> error =
+                value ? setting_error(spec, *value) : "must be " + describe_values(spec);
+            return error ? "bad value '" + text + "': " + *error : std::string();
+          },
+          describe_values(spec)));
+}
+
+// tessera-render's command line, writing into `o` and `settings` as it parses.
+std::unique_ptr<CLI::App> make_app(RenderCliOptions& o, JobSettings& settings) {
+  auto app = std::make_unique<CLI::App>(
+      "tessera-render: renders a scene file to an image on this machine (README.md)",
+      "tessera-render");
+  app->option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
+  app->add_option("scene", o.scene_path, "the scene: SCENE.sdl, or WORLD.wrl, .wrl.gz, .wrz")
+      ->type_name("SCENE");
+  app->add_option("-o", o.output_path, "the image: .exr keeps floats, .png clamps to [0, 1]")
+      ->type_name("OUT");
+  for (const SettingSpec& spec : settings_schema())
+    if (spec.layers & kRenderCli) add_setting(*app, spec, settings);
+  app->add_option("--threads", o.threads, "threads (default: all cores)")
+      ->check(CLI::Range(0, 1024));
+  app->add_option_function<std::string>(
+         "--debug-view",
+         [&o](const std::string& view) {
+           o.debug_view = view == "normals" ? DebugView::Normals : DebugView::Cost;
+         },
+         "writes a debug view instead of the render: normals (the first hit's shading normal as "
+         "colour) or cost (intersection tests per pixel)")
+      ->check(CLI::IsMember({"normals", "cost"}))
+      ->type_name("normals|cost");
+  app->add_flag("--quiet", o.quiet, "no progress or statistics");
+  return app;
 }
 
 }  // namespace
@@ -46,104 +92,26 @@ bool parse_number(const std::string& text, T& value) {
 std::variant<RenderCliOptions, CliHelp, std::string> parse_render_cli(
     const std::vector<std::string>& args) {
   RenderCliOptions o;
-  std::string error;
-  // Options with a value: name -> how to store it (returns false when the value is bad).
-  const std::map<std::string, std::function<bool(const std::string&)>> valued{
-      {"-o",
-       [&](const std::string& v) {
-         o.output_path = v;
-         return !v.empty();
-       }},
-      {"--width",
-       [&](const std::string& v) {
-         return parse_number(v, o.settings.width) && o.settings.width >= 1 &&
-                o.settings.width <= 16384;
-       }},
-      {"--height",
-       [&](const std::string& v) {
-         return parse_number(v, o.settings.height) && o.settings.height >= 1 &&
-                o.settings.height <= 16384;
-       }},
-      {"--aa",
-       [&](const std::string& v) {
-         return parse_number(v, o.settings.aa_samples) &&
-                (o.settings.aa_samples == 1 || o.settings.aa_samples == 5 ||
-                 o.settings.aa_samples == 9);
-       }},
-      {"--jitter",
-       [&](const std::string& v) {
-         return parse_number(v, o.settings.jitter) && o.settings.jitter >= 0 &&
-                o.settings.jitter <= 1;
-       }},
-      {"--passes",
-       [&](const std::string& v) {
-         return parse_number(v, o.settings.passes) && o.settings.passes >= 1 &&
-                o.settings.passes <= 4096;
-       }},
-      {"--time-samples",
-       [&](const std::string& v) {
-         return parse_number(v, o.settings.time_samples) && o.settings.time_samples >= 1 &&
-                o.settings.time_samples <= kMaxTimeSamples;
-       }},
-      {"--seed", [&](const std::string& v) { return parse_number(v, o.settings.seed); }},
-      {"--debug-view",
-       [&](const std::string& v) {
-         o.debug_view = v == "normals" ? DebugView::Normals
-                        : v == "cost"  ? DebugView::Cost
-                                       : DebugView::None;
-         return o.debug_view != DebugView::None;
-       }},
-      {"--shadows",
-       [&](const std::string& v) {
-         const std::optional<ShadowMode> mode = parse_shadow_mode(v);
-         if (mode) o.settings.shadows = *mode;
-         return mode.has_value();
-       }},
-      {"--cone-samples",
-       [&](const std::string& v) {
-         return parse_number(v, o.settings.cone_samples) && o.settings.cone_samples >= 1 &&
-                o.settings.cone_samples <= 64;
-       }},
-      {"--shadow-jitter",
-       [&](const std::string& v) {
-         return parse_number(v, o.settings.shadow_jitter) && o.settings.shadow_jitter >= 0 &&
-                o.settings.shadow_jitter <= 2;
-       }},
-      {"--brightness",
-       [&](const std::string& v) {
-         return parse_number(v, o.settings.normalize_brightness) &&
-                o.settings.normalize_brightness >= 0 && o.settings.normalize_brightness <= 16;
-       }},
-      {"--threads",
-       [&](const std::string& v) {
-         return parse_number(v, o.threads) && o.threads >= 0 && o.threads <= 1024;
-       }},
-  };
-  for (std::size_t i = 0; i < args.size(); ++i) {
-    const std::string& a = args[i];
-    if (a == "-h" || a == "--help") return CliHelp{};
-    if (a == "--stochastic") {
-      o.settings.stochastic = true;
-    } else if (a == "--normalize") {
-      o.settings.normalize_colors = true;
-    } else if (a == "--no-bvh") {
-      o.settings.bvh = BvhMode::None;
-    } else if (a == "--quiet") {
-      o.quiet = true;
-    } else if (auto it = valued.find(a); it != valued.end()) {
-      if (i + 1 >= args.size()) return "option " + a + " needs a value";
-      if (!it->second(args[++i])) return "bad value '" + args[i] + "' for " + a;
-    } else if (!a.empty() && a[0] == '-') {
-      return "unknown option " + a;
-    } else if (o.scene_path.empty()) {
-      o.scene_path = a;
-    } else {
-      return "unexpected argument '" + a + "' (the scene is " + o.scene_path + ")";
-    }
+  JobSettings settings;
+  const std::unique_ptr<CLI::App> app = make_app(o, settings);
+  std::vector<std::string> reversed(args.rbegin(), args.rend());  // as CLI11 reads them
+  try {
+    app->parse(reversed);
+  } catch (const CLI::CallForHelp&) {
+    return CliHelp{};
+  } catch (const CLI::ParseError& e) {
+    return std::string(e.what());
   }
   if (o.scene_path.empty()) return std::string("no scene file given");
   if (o.output_path.empty()) return std::string("no output file given (-o OUT.png)");
+  o.settings = settings.render;
   return o;
+}
+
+std::string render_cli_usage() {
+  RenderCliOptions o;
+  JobSettings settings;
+  return make_app(o, settings)->help();
 }
 
 }  // namespace tessera

@@ -1,4 +1,6 @@
-// Command-line options of tessera-render.
+// Command line of tessera-render (CLI11): the scene, -o OUT, the render settings of
+// common/render/settings_schema.h as flags (their help and ranges come from it), and the
+// options of this program alone (--threads, --debug-view, --quiet).
 #pragma once
 
 #include <string>
@@ -22,10 +24,12 @@ struct RenderCliOptions {
 
 struct CliHelp {};  // --help was asked for
 
-// Parses argv; returns the options, CliHelp, or an error message naming the bad argument.
+// Parses the arguments after the program's name; returns the options, CliHelp, or an error
+// message naming the bad flag and value.
 std::variant<RenderCliOptions, CliHelp, std::string> parse_render_cli(
     const std::vector<std::string>& args);
 
-extern const char* const kRenderCliUsage;
+// The help: usage, the settings with their ranges and defaults, the other options.
+std::string render_cli_usage();
 
 }  // namespace tessera

@@ -1,0 +1,97 @@
+// The settings schema (common/render/settings_schema.h): its table agrees with itself, with the
+// structs it sets and with the docs' table of settings in docs/SERVICE.md.
+#include "common/render/settings_schema.h"
+
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <sstream>
+
+namespace tessera {
+namespace {
+
+TEST(SettingsSchema, DefaultsAreInRangeAndReadBackFromText) {
+  for (const SettingSpec& spec : settings_schema()) {
+    const SettingValue value = spec.default_value();
+    if (std::holds_alternative<std::monostate>(value)) continue;  // an override: the scene's
+    EXPECT_EQ(setting_error(spec, value), std::nullopt) << spec.name;
+    EXPECT_EQ(setting_from_text(spec, to_text(value)), value) << spec.name;
+  }
+}
+
+TEST(SettingsSchema, EverySettingSetsItsOwnField) {
+  for (const SettingSpec& spec : settings_schema()) {
+    JobSettings settings;
+    const SettingValue changed = [&]() -> SettingValue {
+      switch (spec.type) {
+        case SettingType::Integer:
+          return spec.only.empty() ? static_cast<std::int64_t>(spec.max) : spec.only.back();
+        case SettingType::Number:
+          return spec.max;
+        case SettingType::Boolean:
+          return !std::get<bool>(spec.default_value());
+        case SettingType::Choice:
+          return std::string(spec.choices.back());
+        case SettingType::Seed:
+          return std::uint64_t{12345};
+      }
+      return {};
+    }();
+    ASSERT_NE(changed, spec.default_value()) << spec.name;
+    spec.access.set(settings, changed);
+    EXPECT_EQ(spec.access.get(settings), changed) << spec.name;
+    for (const SettingSpec& other : settings_schema()) {
+      if (&other == &spec) continue;
+      EXPECT_EQ(other.access.get(settings), other.default_value())
+          << spec.name << " changed " << other.name;
+    }
+  }
+}
+
+// What tessera-render renders with must reach the workers, and what workers get must be
+// something a job request can set: else the service and the command line differ.
+TEST(SettingsSchema, LayersNest) {
+  for (const SettingSpec& spec : settings_schema()) {
+    EXPECT_TRUE(!(spec.layers & kRenderCli) || (spec.layers & kWire)) << spec.name;
+    EXPECT_TRUE(!(spec.layers & kWire) || (spec.layers & kJobRequest)) << spec.name;
+    EXPECT_EQ(find_setting(spec.name), &spec);
+  }
+  EXPECT_EQ(find_setting("nosuchsetting"), nullptr);
+  EXPECT_EQ(cli_flag(*find_setting("time_samples")), "--time-samples");
+  EXPECT_EQ(cli_flag(*find_setting("bvh")), "--no-bvh");
+  EXPECT_EQ(cli_flag(*find_setting("stochastic")), "--stochastic");
+}
+
+TEST(SettingsSchema, ValuesOfTheWrongTypeOrOutOfRangeAreRefused) {
+  const SettingSpec& width = *find_setting("width");
+  EXPECT_EQ(setting_error(width, std::int64_t{16384}), std::nullopt);
+  EXPECT_EQ(setting_error(width, std::int64_t{16385}), "must be an integer in [1, 16384]");
+  EXPECT_EQ(setting_error(width, std::int64_t{4097}, 4096), "must be an integer in [1, 4096]");
+  EXPECT_EQ(setting_error(width, 12.0), "must be an integer in [1, 16384]");
+  EXPECT_EQ(setting_error(*find_setting("aa"), std::int64_t{3}), "must be 1, 5 or 9");
+  EXPECT_EQ(setting_error(*find_setting("jitter"), 16.5), "must be a number in [0, 16]");
+  EXPECT_EQ(setting_error(*find_setting("seed"), std::int64_t{2}), "must be an integer >= 0");
+  EXPECT_EQ(setting_from_text(width, "12px"), std::nullopt);
+  EXPECT_EQ(setting_from_text(*find_setting("seed"), "-1"), std::nullopt);
+}
+
+// The table between the markers in docs/SERVICE.md is settings_table_markdown(); on a change
+// of the schema, paste the table this test prints.
+TEST(SettingsSchema, TheDocsTableIsTheSchemas) {
+  std::ifstream in(std::string(TESSERA_SOURCE_DIR) + "/docs/SERVICE.md");
+  ASSERT_TRUE(in);
+  std::stringstream text;
+  text << in.rdbuf();
+  const std::string doc = text.str();
+  const std::string begin = "<!-- settings table: settings_table_markdown() -->\n";
+  const std::string end = "<!-- end of settings table -->";
+  const std::size_t from = doc.find(begin), to = doc.find(end);
+  ASSERT_NE(from, std::string::npos);
+  ASSERT_NE(to, std::string::npos);
+  EXPECT_EQ(doc.substr(from + begin.size(), to - from - begin.size()), settings_table_markdown())
+      << "the table docs/SERVICE.md should hold:\n"
+      << settings_table_markdown();
+}
+
+}  // namespace
+}  // namespace tessera
