@@ -18,11 +18,12 @@ const char* const kCoordinatorUsage =
     "       [--max-intake-seconds S] [--max-http-connections N] [--api-token T | --open-submit]\n"
     "       [--allow-origin ORIGIN]... [--max-jobs-per-client N]\n"
     "       [--tls-cert FILE --tls-key FILE] [--data-dir DIR]\n"
-    "       [--keep-finished DURATION] [--max-disk BYTES]\n"
+    "       [--keep-finished DURATION] [--max-disk BYTES] [--max-pixels N]\n"
     "  --data-dir DIR            where jobs are kept across restarts (default ./tessera-data)\n"
     "  --keep-finished DURATION  how long finished jobs are kept: 3600s, 90m, 12h, 7d (default "
     "7d)\n"
-    "  --max-disk BYTES          the data directory's budget: 512M, 2G (default unlimited)";
+    "  --max-disk BYTES          the data directory's budget: 512M, 2G (default unlimited)\n"
+    "  --max-pixels N            a job's width x height at most (default 33177600, 7680x4320)";
 
 namespace {
 
@@ -104,6 +105,8 @@ CoordinatorOptions parse_coordinator_options(int argc, char** argv) {
       o.worker_binary = value();
     else if (arg == "--max-job-seconds")
       o.limits.max_job_seconds = static_cast<double>(parse_number(arg, value(), 1, 86400));
+    else if (arg == "--max-pixels")
+      o.limits.max_pixels = parse_number(arg, value(), 1, 16384LL * 16384);
     else if (arg == "--max-body-bytes")
       o.limits.max_body_bytes =
           static_cast<std::size_t>(parse_number(arg, value(), 1024, 1L << 30));
