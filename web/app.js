@@ -10,6 +10,7 @@ const POLL_MS = 250;
 const WORKERS_MS = 1000;
 const TILES_WAIT_MS = 10000;  // how long the coordinator may hold a /tiles request
 const RATE_WINDOW_MS = 5000;  // a worker's throughput: its pixels over the last few seconds
+const PAINT_SLICE_MS = 8;     // script time painting tiles before the browser gets a turn
 
 const view = {
   job: null,          // id of the job shown
@@ -336,7 +337,7 @@ async function followTiles(id, generation) {
     }
     const finished = (answer.flags & 2) !== 0;
     if (answer.flags & 1) await loadWhole(id, finished);
-    else paintAnswer(answer, finished);
+    else await paintAnswer(answer, finished, current);
     if (!current()) return;
     for (const r of answer.records) view.tiles.push([r.x0, r.y0, r.x1, r.y1, r.worker, r.stage]);
     if ($("overlay").checked && answer.records.length) drawOverlay();
@@ -354,20 +355,27 @@ async function jobSize(id) {
   return [job.width, job.height];
 }
 
-function paintAnswer(answer, finished) {
-  const started = performance.now();
+// Paints an answer's records, in slices of at most PAINT_SLICE_MS of script between which the
+// browser may draw and take input, so that a large answer never holds the page.
+async function paintAnswer(answer, finished, current) {
   // "Once per level": a stage's records are held until a later stage's arrive, or the end.
   const perLevel = setting("update") === "level";
   view.pending.push(...answer.records.filter((r) => r.count > 0));
   const newest = Math.max(...view.pending.map((r) => r.stage));
   const now = perLevel && !finished ? view.pending.filter((r) => r.stage < newest) : view.pending;
   view.pending = perLevel && !finished ? view.pending.filter((r) => r.stage >= newest) : [];
+  let started = performance.now();
   for (const r of now) {
+    if (performance.now() - started > PAINT_SLICE_MS) {
+      view.longestPaintMs = Math.max(view.longestPaintMs, performance.now() - started);
+      await new Promise((resolve) => setTimeout(resolve, 0));
+      if (!current()) return;
+      started = performance.now();
+    }
     paintRecord(r);
     if (r.level > 0 && !finished) view.levelsPainted.add(r.level);
   }
-  const took = performance.now() - started;
-  view.longestPaintMs = Math.max(view.longestPaintMs, took);
+  view.longestPaintMs = Math.max(view.longestPaintMs, performance.now() - started);
   if (!now.length) return;
   const last = now[now.length - 1];
   $("shown-level").textContent = last.level > 0 ? `level ${last.level}` : `pass ${last.pass + 1}`;

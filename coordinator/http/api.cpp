@@ -384,6 +384,8 @@ namespace {
 
 // The longest a /tiles request may be held (?wait=): well under the HTTP read timeout.
 constexpr long long kMaxTilesWaitMs = 20000;
+// How long a done job keeps its last tile records for pages catching up with its end.
+constexpr auto kDoneTilesKept = std::chrono::seconds(30);
 
 HttpResponse tiles_response(const Job& job, std::size_t since, bool gzip_it) {
   HttpResponse res{http::status::ok, 11};
@@ -478,6 +480,11 @@ void Api::on_released(Job& job) {
     }
     return;
   }
+  // Pages still painting the last merges get them for a while; then only the images stay.
+  auto keep = std::make_shared<boost::asio::steady_timer>(io_, kDoneTilesKept);
+  keep->async_wait([this, id, keep](boost::system::error_code ec) {
+    if (Job* done = jobs_.find(id); done && !ec) done->free_buffers();
+  });
   // Encoded on the pool even when it is full: the service owes every done job its image.
   pool_.submit(
       [this, id, image = job.final_image] {

@@ -7,7 +7,9 @@
 
 namespace tessera {
 
-// Fast compression (level 1): it runs on the io thread, on at most kTilesAnswerBytes.
+// zlib's default level 6: on a 1920x1080 job's tile answers 1.12 times the final PNG's bytes
+// where level 1 gives 1.66 (9: 1.02). It runs on the io thread, on at most kTilesAnswerBytes
+// (256 KiB: a few milliseconds).
 std::string gzip(std::string_view bytes);
 // Whether an Accept-Encoding header value admits gzip (no q=0 for it).
 bool accepts_gzip(std::string_view accept_encoding);

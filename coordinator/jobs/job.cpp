@@ -34,6 +34,9 @@ Job::Job(std::int64_t id_, Bundle bundle_, JobSpec spec_, PlanOptions plan_optio
       priority(priority_),
       plan(make_plan(plan_options)),
       stage_timing(plan.stages.size()),
+      delta_log_bytes(std::max(
+          kDeltaLogBytes, static_cast<std::size_t>(kDeltaLogBytesPerPixel * spec.settings.width *
+                                                   static_cast<double>(spec.settings.height)))),
       frame_buffer(spec.settings.width, spec.settings.height) {}
 
 namespace {
@@ -122,7 +125,6 @@ void Job::release_buffers() {
   if (state == JobState::Done) {
     final_image = std::make_shared<const Image>(image());
     // Pages still polling get the last merges; later ones load the final image.
-    trim_delta_log(std::min(delta_log_bytes, kDoneDeltaLogBytes));
     const std::size_t keep = tiles_next() - delta_first;
     std::deque<TileRecord> tail(tiles.end() - static_cast<std::ptrdiff_t>(keep), tiles.end());
     const std::size_t next = tiles_next();

@@ -53,12 +53,12 @@ struct TileRecord {
   std::string pixels;
 };
 
-// The newest pixels of merged units a running job keeps for pages that poll: older records
-// keep their place (for the worker overlay) but not their pixels, and a page further behind
-// loads the whole image instead. About 2.8 million pixels' worth.
+// The newest pixels of merged units a job keeps for pages that poll: older records keep their
+// place (for the worker overlay) but not their pixels, and a page further behind loads the
+// whole image instead. 8 MiB (about 2.8 million pixels' worth), or 1.5 bytes a pixel of larger
+// images (half of one pass), which keeps a running job within 15.5 bytes a pixel.
 inline constexpr std::size_t kDeltaLogBytes = 8u << 20;
-// What a finished job keeps of its log for pages still catching up with its last merges.
-inline constexpr std::size_t kDoneDeltaLogBytes = 1u << 20;
+inline constexpr double kDeltaLogBytesPerPixel = 1.5;
 
 // The 8-bit value a PNG stores for an intensity: clamped to [0, 1] and rounded, exactly as
 // OpenImageIO converts float to 8 bits (so the page's deltas and the PNG agree bit for bit).
@@ -102,7 +102,7 @@ struct Job {
   // pixels of those before delta_first are dropped (kDeltaLogBytes).
   std::deque<TileRecord> tiles;
   std::size_t tiles_first = 0, delta_first = 0, delta_bytes = 0;
-  std::size_t delta_log_bytes = kDeltaLogBytes;  // the log's bound (tests make it small)
+  std::size_t delta_log_bytes;  // the log's bound (tests make it small)
   std::size_t tiles_next() const { return tiles_first + tiles.size(); }
 
   // 14 bytes a pixel: the whole of a running job's memory per pixel. What the page shows is
@@ -132,8 +132,9 @@ struct Job {
   // records); post-normalized when the settings ask for it. Only before release_buffers.
   Image image() const;
   // Called once the state is final (Scheduler::finish): keeps the final image of a done job
-  // and the newest kDoneDeltaLogBytes of its tile records, frees the frame buffer and the
-  // rest, and returns the memory to the system (malloc_trim).
+  // and the tile records that still have pixels (for pages catching up with the last merges;
+  // the coordinator frees them a little later with free_buffers), frees the frame buffer and
+  // the rest, and returns the memory to the system (malloc_trim).
   void release_buffers();
   // Frees the frame buffer and the tile records (a job restored finished never needs them).
   void free_buffers();

@@ -161,20 +161,34 @@ TEST(TileDeltas, APageBehindTheLogLoadsTheWholeImage) {
 TEST(TileDeltas, AFinishedJobKeepsOnlyItsNewestDeltas) {
   Job job = make_job(16, 16, 2);
   job.state = JobState::Running;
+  job.delta_log_bytes = 3 * 64;
   for (int u = 0; u < static_cast<int>(job.plan.units.size()); ++u)
     job.apply_result(u, values_for(job, u));
   const std::size_t next = job.tiles_next();
   job.state = JobState::Done;
-  job.delta_log_bytes = 3 * 64;
   job.release_buffers();
   EXPECT_EQ(job.frame_buffer.width(), 0);
   EXPECT_EQ(job.tiles_next(), next);
-  EXPECT_LT(job.tiles.size(), next);  // only the newest records stay
+  EXPECT_LT(job.tiles.size(), next);  // only the records that have pixels stay
+  for (const TileRecord& t : job.tiles) EXPECT_FALSE(t.pixels.empty());
   Layers layers{16, 16, {}};
   const Answer last = layers.paint(encode_tiles(job, next - 1));
   EXPECT_EQ(last.flags, 2u);  // finished, not whole
   EXPECT_EQ(last.count, 1u);
   EXPECT_EQ(layers.paint(encode_tiles(job, 0)).flags, 3u);  // too far behind: the PNG
+  job.free_buffers();                                       // what the coordinator does 30 s later
+  EXPECT_TRUE(job.tiles.empty());
+  EXPECT_EQ(job.tiles_next(), next);
+}
+
+TEST(TileDeltas, TheLogGrowsWithTheImage) {
+  EXPECT_EQ(make_job(64, 64, 1).delta_log_bytes, kDeltaLogBytes);
+  JobSpec spec;
+  spec.settings.width = 2500;
+  spec.settings.height = 2400;
+  const Job large(1, Bundle{"scene.sdl", "sdl", {{"scene.sdl", "sphere"}}}, spec,
+                  PlanOptions{.width = 2500, .height = 2400}, 1);
+  EXPECT_EQ(large.delta_log_bytes, 2500u * 2400u * 3 / 2);  // over 8 MiB: 1.5 bytes a pixel
 }
 
 TEST(TileDeltas, EightBitValuesAreThePngs) {
