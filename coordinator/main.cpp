@@ -105,9 +105,7 @@ int main(int argc, char** argv) {
             {options.limits, options.scenes_dir, options.web_dir, options.submit,
              static_cast<double>(options.max_intake_seconds), options.max_jobs_per_client,
              &persistence});
-    persistence.restore(jobs, scheduler, [&api](Job& job) {
-      job.on_released = [&api](Job& released) { api.on_released(released); };
-    });
+    persistence.restore(jobs, scheduler, [&api](Job& job) { api.watch(job); });
     HttpServer http(
         io, {address, options.http_port},
         {options.limits.max_body_bytes, options.max_http_connections, tls},

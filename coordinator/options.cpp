@@ -108,6 +108,10 @@ std::unique_ptr<CLI::App> make_app(CoordinatorOptions& o, Flags& f) {
       ->check(CLI::Range(1, 86400));
   app->add_option("--max-body-bytes", f.max_body_bytes, "request bodies over N get 413 (32 MiB)")
       ->check(CLI::Range(std::size_t{1024}, std::size_t{1} << 30));
+  app->add_option("--max-pixels", o.limits.max_pixels,
+                  "a job's width x height at most (7680 x 4320)")
+      ->check(CLI::Range(1LL, 16384LL * 16384))
+      ->capture_default_str();
   app->add_option("--heartbeat-ms", f.heartbeat_ms, "heartbeat interval (2000)")
       ->check(CLI::Range(10, 60000));
   app->add_option("--silence-ms", f.silence_ms, "silence after which a peer is dropped (10000)")

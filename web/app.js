@@ -1,21 +1,33 @@
-// The Tessera page: submits scenes, polls the job (small JSON) and fetches the image only when
-// its version changed (per block) or its level changed (per level); the browser revalidates
-// the PNG with its ETag, so an unchanged image is never sent twice.
+// The Tessera page: submits scenes, polls the job's small status JSON, and follows the units
+// it merges (GET /api/jobs/{id}/tiles, a long poll, docs/SERVICE.md): each unit's 8-bit values
+// are painted into a canvas per block side as they come, finer canvases stacked over coarser,
+// so every level shows at any image size. The whole PNG is loaded only by a page that joins a
+// job too late for the coordinator's log of recent units, and for normalized jobs.
 "use strict";
 
 const $ = (id) => document.getElementById(id);
-const POLL_MS = 100;
+const POLL_MS = 250;
 const WORKERS_MS = 1000;
+const TILES_WAIT_MS = 10000;  // how long the coordinator may hold a /tiles request
+const RATE_WINDOW_MS = 5000;  // a worker's throughput: its pixels over the last few seconds
+const PAINT_SLICE_MS = 8;     // script time painting tiles before the browser gets a turn
 
 const view = {
   job: null,          // id of the job shown
-  version: -1,        // image version shown
-  shownLevel: null,   // level of the image shown (for "once per level" updates)
-  levelsSeen: new Set(),
-  tilesNext: 0,       // tiles fetched so far, for the overlay
-  tiles: [],
+  width: 0, height: 0,
+  layers: new Map(),  // block side -> {canvas, ctx}: one pixel per block
+  tilesNext: 0,       // the sequence number of the next merged unit to ask for
+  levelsPainted: new Set(),        // levels painted while the job was running
+  pending: [],        // records held back until their stage is complete ("once per level")
+  usedWhole: false,   // the whole PNG was loaded: load the final one at the end too
+  wholeIsFinal: false,
+  wholeLoadedAt: 0,
+  tiles: [],          // [x0, y0, x1, y1, worker, stage] of every unit seen, for the overlay
+  latencies: [],      // ms from a unit's merge to its pixels painted
+  longestPaintMs: 0,  // the longest script time one answer took to paint
   workerColours: new Map(),
-  imageUrl: null,
+  workerSamples: new Map(),        // worker id -> [[time, pixels_done], ...] within the window
+  generation: 0,      // bumps with every job shown: an older /tiles loop stops
   polling: false,
 };
 
@@ -59,30 +71,85 @@ async function fetchWithToken(path, init, ask = true) {
   return send();
 }
 
+// The scene format a file name says (as the coordinator and tessera-render read it), or null.
+function formatOf(name) {
+  const lower = name.toLowerCase();
+  if (lower.endsWith(".sdl")) return "sdl";
+  if (lower.endsWith(".wrl") || lower.endsWith(".wrl.gz") || lower.endsWith(".wrz")) return "vrml";
+  return null;
+}
+const isText = (name) => /\.(sdl|wrl)$/i.test(name);
+// A file's path in the bundle: relative to the chosen folder when a folder was picked.
+const bundlePath = (f) => (f.webkitRelativePath || f.name).split("/").slice(
+  f.webkitRelativePath ? 1 : 0).join("/");
+
+// The format of a tar bundle's scene: its top-level scene files' (ustar names, 512-byte headers).
+async function tarFormat(file) {
+  const bytes = new Uint8Array(await file.arrayBuffer());
+  const formats = new Set();
+  for (let at = 0; at + 512 <= bytes.length;) {
+    const header = bytes.subarray(at, at + 512);
+    if (header.every((b) => b === 0)) break;
+    const text = (from, length) => new TextDecoder().decode(header.subarray(from, from + length)).replace(/\0.*$/s, "");
+    const prefix = text(345, 155);
+    const name = (prefix ? prefix + "/" : "") + text(0, 100);
+    const size = parseInt(text(124, 12).trim() || "0", 8);
+    if (!name.includes("/") && formatOf(name)) formats.add(formatOf(name));
+    at += 512 + Math.ceil(size / 512) * 512;
+  }
+  return formats.has("sdl") || formats.size === 0 ? "sdl" : "vrml";
+}
+
+// A scene file's text, gzip'd worlds (.wrl.gz, .wrz) inflated; "" when unreadable.
+async function sceneText(file) {
+  try {
+    if (isText(file.name)) return await file.text();
+    return await new Response(file.stream().pipeThrough(new DecompressionStream("gzip"))).text();
+  } catch (e) {
+    return "";
+  }
+}
+
+// Of several files, the scene to render: the SDL file, else the VRML world that no other scene
+// file names (the others being its Inlines), else the first.
+async function mainScene(files) {
+  const scenes = files.filter((f) => formatOf(f.name));
+  const sdl = scenes.find((f) => formatOf(f.name) === "sdl");
+  if (sdl) return sdl;
+  const texts = await Promise.all(scenes.map(sceneText));
+  const named = (f) => texts.some((t, i) => scenes[i] !== f && t.includes(f.name));
+  return scenes.find((f) => !named(f)) || scenes[0] || files[0];
+}
+
 // POSTs the scene and settings of the form to `path` (/api/jobs, or /api/predict, which takes
-// the same request and only answers how long it would take).
+// the same request and only answers how long it would take). SDL and VRML alike: a text scene
+// as JSON, a compressed world or a scene with its files as a form (binary files stay binary),
+// a tar as it is.
 async function postScene(path, ask = true) {
   const settings = collectSettings();
   const files = [...$("scene-file").files];
   const file = files[0];
-  if (files.length > 1) {
-    // The scene and the files it names, as a form; file names are their bundle paths.
-    const scene = files.find((f) => f.name.endsWith(".sdl")) || file;
-    const form = new FormData();
-    form.append("main", scene.name);
-    form.append("settings", JSON.stringify(settings));
-    for (const f of files) form.append("file", f, f.name);
-    return fetchWithToken(path, { method: "POST", body: form }, ask);
-  }
-  if (file && file.name.endsWith(".tar")) {
+  if (file && file.name.toLowerCase().endsWith(".tar")) {
     const query = new URLSearchParams(Object.entries(settings).map(([k, v]) => [k, String(v)]));
+    query.set("format", await tarFormat(file));
     return fetchWithToken(`${path}?${query}`, {
       method: "POST", headers: { "Content-Type": "application/x-tar" }, body: file }, ask);
   }
+  if (files.length > 1 || (file && !isText(file.name))) {
+    // The scene and the files it names, as a form; file names are their bundle paths.
+    const main = await mainScene(files);
+    const form = new FormData();
+    form.append("main", bundlePath(main));
+    form.append("format", formatOf(main.name) || "sdl");
+    form.append("settings", JSON.stringify(settings));
+    for (const f of files) form.append("file", f, bundlePath(f));
+    return fetchWithToken(path, { method: "POST", body: form }, ask);
+  }
   const scene = file ? await file.text() : $("scene-text").value;
+  const format = file ? formatOf(file.name) || "sdl" : /^\s*#VRML/.test(scene) ? "vrml" : "sdl";
   return fetchWithToken(path, {
     method: "POST", headers: { "Content-Type": "application/json" },
-    body: JSON.stringify({ scene, format: "sdl", settings }) }, ask);
+    body: JSON.stringify({ scene, format, settings }) }, ask);
 }
 
 // The predicted time of the form's scene with its settings, shown beside the Render button
@@ -119,17 +186,23 @@ async function submit(event) {
 }
 
 function show(id) {
-  Object.assign(view, { job: id, version: -1, shownLevel: null, levelsSeen: new Set(),
-                        tilesNext: 0, tiles: [], lastState: null, overlayJob: null });
+  if (id === view.job) return;
+  Object.assign(view, { job: id, width: 0, height: 0, tilesNext: 0, levelsPainted: new Set(),
+                        pending: [], usedWhole: false, wholeIsFinal: false, wholeLoadedAt: 0, tiles: [],
+                        latencies: [], longestPaintMs: 0, lastState: null });
+  clearImage();
   $("levels-seen").textContent = "";
+  $("shown-level").textContent = "-";
   $("job-title").textContent = `Job ${id}`;
   $("download-png").href = `/api/jobs/${id}/image`;
   $("download-exr").href = `/api/jobs/${id}/image?format=exr`;
   $("download-png").classList.remove("disabled");
   $("download-exr").classList.remove("disabled");
+  history.replaceState(null, "", `#job=${id}`);
   document.querySelectorAll("#jobs li").forEach((li) =>
     li.classList.toggle("current", +li.dataset.id === id));
   if (!view.polling) poll();
+  followTiles(id, ++view.generation);
 }
 
 async function poll() {
@@ -137,7 +210,7 @@ async function poll() {
   const id = view.job;
   try {
     const response = await fetch(`/api/jobs/${id}`, { cache: "no-store" });
-    if (response.ok && id === view.job) await update(await response.json());
+    if (response.ok && id === view.job) update(await response.json());
   } catch (e) { /* the coordinator restarted or the network hiccuped: try again */ }
   const job = view.job;
   const finished = view.lastState && !["queued", "running"].includes(view.lastState);
@@ -145,54 +218,225 @@ async function poll() {
   view.polling = false;
 }
 
-async function update(job) {
+function update(job) {
   view.lastState = job.state;
   renderStatus(job);
-  const finished = !["queued", "running"].includes(job.state);
-  const perLevel = setting("update") === "level";
-  const levelChanged = job.level !== view.shownLevel || job.pass !== view.shownPass;
-  // Large images cost the coordinator an encoding each: fetch them less often while running.
-  const interval = Math.max(0, (job.width * job.height) / 1e6 - 0.3) * 1000;
-  const due = finished || Date.now() - (view.loadedAt || 0) >= interval;
-  if (job.version !== view.version && (!perLevel || levelChanged || finished) && due) {
-    view.loadedAt = Date.now();
-    await loadImage(job);
-  }
-  if ($("overlay").checked) await loadTiles(job);
+  if (view.width !== job.width || view.height !== job.height) sizeImage(job.width, job.height);
+  if (["failed", "cancelled"].includes(job.state)) $("base-canvas").dataset.state = job.state;
 }
 
-async function loadImage(job) {
-  const response = await fetch(`/api/jobs/${job.id}/image`, { cache: "no-cache" });
-  if (!response.ok || job.id !== view.job) return;
-  const url = URL.createObjectURL(await response.blob());
-  const img = $("image");
-  const loaded = await new Promise((resolve) => {
-    img.onload = () => resolve(true);
-    img.onerror = () => resolve(false);
-    img.src = url;
-  });
-  // An image that did not load shows nothing new: the previous one stays, and no version or
-  // level is recorded for it, so the next poll fetches it again.
-  if (!loaded) {
-    if (view.imageUrl) img.src = view.imageUrl;
-    return URL.revokeObjectURL(url);
-  }
-  if (view.imageUrl) URL.revokeObjectURL(view.imageUrl);
-  view.imageUrl = url;
-  view.version = job.version;
-  view.shownLevel = job.level;
-  view.shownPass = job.pass;
-  // The level whose blocks the picture shows: a finished level, or the one being refined.
-  view.levelsSeen.add(job.level);
-  $("levels-seen").textContent = [...view.levelsSeen].join(",");
-  $("shown-level").textContent = `${job.level} / ${job.levels}`;
-  img.dataset.state = job.state;
-  img.dataset.version = job.version;
+// ---- The image: a canvas per block side, painted from the tile records ----
+
+// A new job's image starts empty.
+function clearImage() {
+  for (const { canvas } of view.layers.values()) canvas.remove();
+  view.layers = new Map();
+  const base = $("base-canvas");
+  base.width = base.height = 0;
+  delete base.dataset.state;
   resizeOverlay();
 }
 
+// The base canvas stays empty (0 x 0) until a whole PNG is drawn into it.
+function sizeImage(width, height) {
+  Object.assign(view, { width, height });
+  $("stage").style.aspectRatio = `${width} / ${height}`;
+  for (const [step, layer] of view.layers) placeLayer(layer.canvas, step);
+  resizeOverlay();
+}
+
+// A layer holds one pixel per block of side `step`; it is shown scaled up by `step` (pixelated),
+// so the last, clipped block column and row reach past the image and are cut off by #stage.
+function placeLayer(canvas, step) {
+  if (!view.width) return;
+  canvas.style.width = `${(100 * canvas.width * step) / view.width}%`;
+  canvas.style.height = `${(100 * canvas.height * step) / view.height}%`;
+}
+
+function layerFor(step) {
+  let layer = view.layers.get(step);
+  if (layer) return layer;
+  const canvas = document.createElement("canvas");
+  canvas.className = "layer";
+  canvas.width = Math.ceil(view.width / step);
+  canvas.height = Math.ceil(view.height / step);
+  canvas.dataset.step = step;
+  canvas.style.zIndex = String(40 - Math.log2(step));  // finer over coarser
+  placeLayer(canvas, step);
+  $("stage").insertBefore(canvas, $("overlay-canvas"));
+  layer = { canvas, ctx: canvas.getContext("2d") };
+  view.layers.set(step, layer);
+  return layer;
+}
+
+// Parses a /tiles answer (coordinator/http/tile_deltas.h): header, then records with their
+// pixels as differences from the previous pixel's bytes.
+function parseTiles(buffer) {
+  const dv = new DataView(buffer);
+  if (buffer.byteLength < 16 || dv.getUint32(0) !== 0x54534431) throw new Error("not a tiles answer");
+  const answer = { next: dv.getUint32(4, true), flags: dv.getUint32(12, true), records: [] };
+  let at = 16;
+  for (let n = dv.getUint32(8, true); n > 0; --n) {
+    const r = {
+      x0: dv.getUint16(at, true), y0: dv.getUint16(at + 2, true),
+      x1: dv.getUint16(at + 4, true), y1: dv.getUint16(at + 6, true),
+      step: dv.getUint16(at + 8, true), level: dv.getUint8(at + 10), pass: dv.getUint8(at + 11),
+      flags: dv.getUint8(at + 12), stage: dv.getUint16(at + 14, true),
+      worker: dv.getUint32(at + 16, true), count: dv.getUint32(at + 20, true),
+      mergedAt: dv.getFloat64(at + 24, true),
+    };
+    r.pixels = new Uint8Array(buffer, at + 32, 3 * r.count);
+    at += 32 + 3 * r.count;
+    answer.records.push(r);
+  }
+  return answer;
+}
+
+// Paints one record into its layer: each pixel fills its cell, the cells of coarser levels'
+// anchors (flag 1) stay as they are.
+function paintRecord(r) {
+  const { ctx } = layerFor(r.step);
+  const cols = Math.ceil((r.x1 - r.x0) / r.step), rows = Math.ceil((r.y1 - r.y0) / r.step);
+  const x0 = r.x0 / r.step, y0 = r.y0 / r.step;
+  const skips = (r.flags & 1) !== 0;
+  // Skipped cells stay transparent: no record of this layer paints them.
+  const image = ctx.createImageData(cols, rows);
+  const out = image.data, d = r.pixels;
+  let red = 0, green = 0, blue = 0, i = 0;
+  for (let y = 0; y < rows; ++y) {
+    const skipRow = skips && (y0 + y) % 2 === 0;
+    for (let x = 0; x < cols; ++x) {
+      if (skipRow && (x0 + x) % 2 === 0) continue;
+      red = (red + d[i]) & 255; green = (green + d[i + 1]) & 255; blue = (blue + d[i + 2]) & 255;
+      i += 3;
+      const o = 4 * (y * cols + x);
+      out[o] = red; out[o + 1] = green; out[o + 2] = blue; out[o + 3] = 255;
+    }
+  }
+  ctx.putImageData(image, x0, y0);
+}
+
+// Follows a job's merged units: asks for those since the last, the coordinator holding the
+// request until one merges; paints them; until the job is finished and nothing is left.
+async function followTiles(id, generation) {
+  const current = () => view.generation === generation;
+  while (current()) {
+    let answer;
+    try {
+      const response = await fetch(
+        `/api/jobs/${id}/tiles?since=${view.tilesNext}&wait=${TILES_WAIT_MS}`, { cache: "no-store" });
+      if (response.status === 404) return;
+      if (!response.ok) throw new Error(`HTTP ${response.status}`);
+      const buffer = await response.arrayBuffer();
+      if (!current()) return;
+      answer = parseTiles(buffer);
+      if (!view.width) sizeImage(...await jobSize(id));
+    } catch (e) {
+      await new Promise((r) => setTimeout(r, 500));  // the coordinator restarted: try again
+      continue;
+    }
+    const finished = (answer.flags & 2) !== 0;
+    if (answer.flags & 1) await loadWhole(id, finished);
+    else await paintAnswer(answer, finished, current);
+    if (!current()) return;
+    for (const r of answer.records) view.tiles.push([r.x0, r.y0, r.x1, r.y1, r.worker, r.stage]);
+    if ($("overlay").checked && answer.records.length) drawOverlay();
+    view.tilesNext = answer.next;
+    if (finished && !answer.records.length) {
+      if (view.usedWhole && !view.wholeIsFinal) await loadWhole(id, true);
+      if (current()) $("base-canvas").dataset.state = "done";
+      return;
+    }
+  }
+}
+
+async function jobSize(id) {
+  const job = await (await fetch(`/api/jobs/${id}`, { cache: "no-store" })).json();
+  return [job.width, job.height];
+}
+
+// Paints an answer's records, in slices of at most PAINT_SLICE_MS of script between which the
+// browser may draw and take input, so that a large answer never holds the page.
+async function paintAnswer(answer, finished, current) {
+  // "Once per level": a stage's records are held until a later stage's arrive, or the end.
+  const perLevel = setting("update") === "level";
+  view.pending.push(...answer.records.filter((r) => r.count > 0));
+  const newest = Math.max(...view.pending.map((r) => r.stage));
+  const now = perLevel && !finished ? view.pending.filter((r) => r.stage < newest) : view.pending;
+  view.pending = perLevel && !finished ? view.pending.filter((r) => r.stage >= newest) : [];
+  let started = performance.now();
+  for (const r of now) {
+    if (performance.now() - started > PAINT_SLICE_MS) {
+      view.longestPaintMs = Math.max(view.longestPaintMs, performance.now() - started);
+      await new Promise((resolve) => setTimeout(resolve, 0));
+      if (!current()) return;
+      started = performance.now();
+    }
+    paintRecord(r);
+    if (r.level > 0 && !finished) view.levelsPainted.add(r.level);
+  }
+  view.longestPaintMs = Math.max(view.longestPaintMs, performance.now() - started);
+  if (!now.length) return;
+  const last = now[now.length - 1];
+  $("shown-level").textContent = last.level > 0 ? `level ${last.level}` : `pass ${last.pass + 1}`;
+  $("levels-seen").textContent = [...view.levelsPainted].sort((a, b) => a - b).join(",");
+  // Painted once the browser draws the next frame: the delay from the coordinator's merge.
+  requestAnimationFrame(() => {
+    const painted = Date.now();
+    for (const r of now) view.latencies.push(painted - r.mergedAt);
+    if (view.latencies.length > 100000) view.latencies.splice(0, 50000);
+    $("paint-delay").textContent = `${Math.round(painted - last.mergedAt)} ms`;
+  });
+}
+
+// The whole image as the coordinator has it, when the page is too far behind for the log of
+// recent units (or the job is normalized): it becomes the base, the layers start again. While
+// the job runs this is fetched at most about once per second per megapixel.
+async function loadWhole(id, finished) {
+  const interval = Math.max(0, (view.width * view.height) / 1e6 - 0.3) * 1000;
+  const wait = view.wholeLoadedAt + interval - Date.now();
+  if (!finished && wait > 0) await new Promise((r) => setTimeout(r, wait));
+  view.usedWhole = true;
+  view.wholeIsFinal = finished;
+  view.wholeLoadedAt = Date.now();
+  try {
+    const response = await fetch(`/api/jobs/${id}/image`, { cache: "no-cache" });
+    if (!response.ok || view.job !== id) return;
+    const bitmap = await createImageBitmap(await response.blob());
+    if (view.job !== id) return;
+    sizeImage(bitmap.width, bitmap.height);
+    for (const { canvas } of view.layers.values()) canvas.remove();
+    view.layers = new Map();
+    view.pending = [];
+    const base = $("base-canvas");
+    Object.assign(base, { width: bitmap.width, height: bitmap.height });  // cleared, too
+    base.getContext("2d").drawImage(bitmap, 0, 0);
+  } catch (e) { /* shown again with the next answer */ }
+}
+
+// What the page shows, as one full-size canvas: the base, then the layers coarsest first,
+// each scaled up by its block side (for the test, and for "copy image").
+function composite() {
+  const canvas = document.createElement("canvas");
+  Object.assign(canvas, { width: view.width, height: view.height });
+  const ctx = canvas.getContext("2d");
+  ctx.imageSmoothingEnabled = false;
+  ctx.fillStyle = "#000";  // as #stage shows what nothing has painted yet
+  ctx.fillRect(0, 0, view.width, view.height);
+  if ($("base-canvas").width) ctx.drawImage($("base-canvas"), 0, 0);
+  for (const [step, { canvas: layer }] of [...view.layers].sort((a, b) => b[0] - a[0]))
+    ctx.drawImage(layer, 0, 0, layer.width * step, layer.height * step);
+  return canvas;
+}
+window.tessera = {
+  composite,
+  stats: () => ({ latencies: view.latencies.slice(), longestPaintMs: view.longestPaintMs,
+                  levelsPainted: [...view.levelsPainted], usedWhole: view.usedWhole,
+                  tilesNext: view.tilesNext }),
+};
+
 function fmtSeconds(s) {
-  if (s === null || s === undefined) return "-";
+  if (s === null || s === undefined) return "—";
   if (s < 1) return `${(s * 1000).toFixed(0)} ms`;
   if (s < 120) return `${s.toFixed(1)} s`;
   return `${Math.floor(s / 60)} min ${Math.round(s % 60)} s`;
@@ -206,7 +450,10 @@ function renderStatus(job) {
   $("pass").textContent = `${job.pass + 1} of ${job.passes}`;
   $("percent").textContent = `${job.percent.toFixed(1)} %`;
   $("progress-bar").style.width = `${job.percent}%`;
-  $("eta").textContent = fmtSeconds(job.eta_seconds);
+  // The time left is the rate so far carried forward: it means little until a few percent
+  // and about a second of the job are behind it (the coarse levels' first units cost little).
+  const settled = job.state !== "running" || (job.percent >= 3 && job.elapsed_seconds >= 1);
+  $("eta").textContent = settled ? fmtSeconds(job.eta_seconds) : "—";
   $("predicted").textContent = fmtSeconds(job.predicted_seconds);
   $("elapsed").textContent = fmtSeconds(job.elapsed_seconds);
   $("job-error").textContent = job.error || "";
@@ -256,15 +503,29 @@ function colourOf(worker) {
   return view.workerColours.get(worker);
 }
 
+// A worker's recent throughput: pixels done over the last RATE_WINDOW_MS (its whole-life
+// average, /api/workers' pixels_per_second, hides a worker that has just slowed down or joined).
+function recentRate(w) {
+  const now = performance.now();
+  const samples = view.workerSamples.get(w.id) || [];
+  samples.push([now, w.pixels_done]);
+  while (samples.length > 2 && now - samples[1][0] >= RATE_WINDOW_MS) samples.shift();
+  view.workerSamples.set(w.id, samples);
+  const [t0, p0] = samples[0];
+  return now - t0 > 0 ? ((w.pixels_done - p0) * 1000) / (now - t0) : 0;
+}
+
 async function refreshWorkers() {
   try {
     const workers = await (await fetch("/api/workers", { cache: "no-store" })).json();
+    const ids = new Set(workers.map((w) => w.id));
+    for (const id of view.workerSamples.keys()) if (!ids.has(id)) view.workerSamples.delete(id);
     const shares = view.shares || new Map();
     $("workers-table").tBodies[0].innerHTML = workers.map((w) => {
       const share = shares.get(w.id);
       return `<tr><td><span class="swatch" style="background:${colourOf(w.id)}"></span></td>
         <td>${w.name} <small>${w.address}</small></td><td>${w.threads}</td><td>${w.in_flight}</td>
-        <td>${Math.round(w.pixels_per_second)}</td>
+        <td>${Math.round(recentRate(w))}</td>
         <td>${share ? (100 * share.share).toFixed(1) + " %" : "-"}</td></tr>`;
     }).join("");
   } catch (e) { /* shown again on the next tick */ }
@@ -279,22 +540,10 @@ async function refreshJobs() {
   } catch (e) { /* shown again on the next tick */ }
 }
 
-async function loadTiles(job) {
-  if (job.tiles === view.tilesNext) return;
-  const response = await fetch(`/api/jobs/${job.id}/tiles?since=${view.tilesNext}`, { cache: "no-store" });
-  if (!response.ok) return;
-  const body = await response.json();
-  view.tiles.push(...body.tiles);
-  view.tilesNext = body.next;
-  view.overlayJob = job;
-  drawOverlay();
-}
-
 function resizeOverlay() {
   const canvas = $("overlay-canvas");
-  const img = $("image");
-  canvas.width = img.naturalWidth;
-  canvas.height = img.naturalHeight;
+  canvas.width = view.width;
+  canvas.height = view.height;
   drawOverlay();
 }
 
@@ -305,6 +554,7 @@ function drawOverlay() {
   if (!$("overlay").checked) return;
   ctx.lineWidth = 1;
   // The latest stage's tiles: coarser stages' tiles would cover the whole picture.
+  if (!view.tiles.length) return;
   const stage = Math.max(...view.tiles.map((t) => t[5]));
   for (const [x0, y0, x1, y1, worker] of view.tiles.filter((t) => t[5] === stage)) {
     ctx.fillStyle = colourOf(worker).replace("60%)", "60%, 0.18)").replace("hsl", "hsla");
@@ -320,28 +570,30 @@ $("submit-form").addEventListener("change", schedulePrediction);
 $("cancel").addEventListener("click", async () => {
   if (view.job !== null) await fetchWithToken(`/api/jobs/${view.job}`, { method: "DELETE" });
 });
-$("overlay").addEventListener("change", () => {
-  if (!$("overlay").checked) return drawOverlay();
-  if (view.overlayJob && view.overlayJob.id === view.job) return drawOverlay();
-  view.tiles = []; view.tilesNext = 0;
-  fetch(`/api/jobs/${view.job}`).then((r) => r.json()).then(loadTiles);
-});
+$("overlay").addEventListener("change", drawOverlay);
 $("jobs").addEventListener("click", (e) => {
   const li = e.target.closest("li");
   if (li) show(+li.dataset.id);
 });
 $("scene-file").addEventListener("change", async () => {
   const files = [...$("scene-file").files];
-  if (files.length === 1 && !files[0].name.endsWith(".tar")) $("scene-text").value = await files[0].text();
+  if (files.length === 1 && isText(files[0].name)) $("scene-text").value = await files[0].text();
 });
 
 setInterval(refreshWorkers, WORKERS_MS);
 setInterval(refreshJobs, 2000);
 refreshWorkers();
-// The job named in the address (#job=N, as scripts/run.sh prints it), else the newest one.
-refreshJobs().then(() => {
+// The job named in the address (#job=N, as scripts/run.sh prints it), else the newest one;
+// a new #job=N typed or linked later is followed too.
+const namedJob = () => {
   const named = /^#job=(\d+)$/.exec(location.hash);
+  return named ? +named[1] : null;
+};
+window.addEventListener("hashchange", () => {
+  if (namedJob() !== null) show(namedJob());
+});
+refreshJobs().then(() => {
   const first = document.querySelector("#jobs li");
-  if (named) show(+named[1]);
+  if (namedJob() !== null) show(namedJob());
   else if (first) show(+first.dataset.id);
 });

@@ -6,10 +6,13 @@
 
 #include <malloc.h>
 #include <spdlog/spdlog.h>
+#include <boost/asio/post.hpp>
 #include <boost/asio/steady_timer.hpp>
 
+#include "coordinator/http/gzip.h"
 #include "coordinator/http/image_codec.h"
 #include "coordinator/http/job_json.h"
+#include "coordinator/http/tile_deltas.h"
 #include "coordinator/jobs/api_error.h"
 
 namespace tessera {
@@ -166,15 +169,8 @@ void Api::route(HttpRequest& request, const std::string& path, const Query& quer
     }
     if (sub == "image" && method == http::verb::get)
       return job_image(request, *job, query, respond);
-    if (sub == "tiles" && method == http::verb::get) {
-      std::size_t since = 0;
-      if (auto it = query.find("since"); it != query.end()) {
-        const auto n = parse_id(it->second);
-        if (!n) throw ApiError(400, "bad_request", "since must be a count");
-        since = static_cast<std::size_t>(*n);
-      }
-      return respond(json_response(200, job_tiles_json(*job, since)));
-    }
+    if (sub == "tiles" && method == http::verb::get)
+      return job_tiles(request, *job, query, respond);
     if (sub.empty() || sub == "image" || sub == "tiles")
       throw ApiError(405, "method_not_allowed", std::string(request.method_string()) + " " + path);
   }
@@ -263,7 +259,7 @@ void Api::create_job(HttpRequest& request, const Query& query, const std::string
               Job* job = jobs_.create(std::move(*parsed), client, store);
               if (!job)
                 throw ApiError(503, "busy", "too many unfinished jobs; cancel some or wait");
-              job->on_released = [this](Job& released) { on_released(released); };
+              watch(*job);
               const Prediction prediction =
                   scheduler_.predict(job->seconds_per_pixel_pass, job->plan.total_cost);
               job->predicted_seconds = prediction.seconds;
@@ -334,7 +330,7 @@ void Api::job_image(const HttpRequest& request, Job& job, const Query& query,
     if (format == "exr")
       res.set(http::field::content_disposition,
               "attachment; filename=\"tessera-" + std::to_string(id) + ".exr\"");
-    res.body() = *bytes;
+    res.body() = bytes;  // shared with the job, not copied
     return res;
   };
   if (auto it = job.final_encoded.find(format); it != job.final_encoded.end())
@@ -384,6 +380,90 @@ void Api::job_image(const HttpRequest& request, Job& job, const Query& query,
   });
 }
 
+namespace {
+
+// The longest a /tiles request may be held (?wait=): well under the HTTP read timeout.
+constexpr long long kMaxTilesWaitMs = 20000;
+// How long a done job keeps its last tile records for pages catching up with its end.
+constexpr auto kDoneTilesKept = std::chrono::seconds(30);
+
+HttpResponse tiles_response(const Job& job, std::size_t since, bool gzip_it) {
+  HttpResponse res{http::status::ok, 11};
+  res.set(http::field::content_type, "application/octet-stream");
+  res.set(http::field::cache_control, "no-store");
+  std::string body = encode_tiles(job, since);
+  if (gzip_it) {
+    res.set(http::field::content_encoding, "gzip");
+    body = gzip(body);
+  }
+  res.body() = std::move(body);
+  return res;
+}
+
+}  // namespace
+
+void Api::job_tiles(const HttpRequest& request, Job& job, const Query& query,
+                    HttpRespond& respond) {
+  const auto count = [&](const char* name, long long most) -> long long {
+    auto it = query.find(name);
+    if (it == query.end()) return 0;
+    const auto n = parse_id(it->second);
+    if (!n || *n > most)
+      throw ApiError(400, "bad_request",
+                     std::string(name) + " must be a count up to " + std::to_string(most));
+    return *n;
+  };
+  const auto since = static_cast<std::size_t>(count("since", 0xffffffffLL));
+  const long long wait_ms = count("wait", kMaxTilesWaitMs);
+  const auto encoding = request[http::field::accept_encoding];
+  const bool gzip_it = accepts_gzip(std::string_view(encoding.data(), encoding.size()));
+  if (wait_ms == 0 || since < job.tiles_next() || job.finished_state())
+    return respond(tiles_response(job, since, gzip_it));
+  auto waiter = std::make_shared<TilesWaiter>();
+  waiter->since = since;
+  waiter->gzip = gzip_it;
+  waiter->respond = std::move(respond);
+  waiter->timer = std::make_unique<boost::asio::steady_timer>(io_);
+  waiter->timer->expires_after(std::chrono::milliseconds(wait_ms));
+  waiter->timer->async_wait(
+      [this, id = job.id, weak = std::weak_ptr(waiter)](boost::system::error_code ec) {
+        auto w = weak.lock();
+        if (ec || !w) return;  // answered by a merge first
+        auto held = tile_waiters_.find(id);
+        if (held == tile_waiters_.end() || std::erase(held->second, w) == 0) return;
+        if (held->second.empty()) tile_waiters_.erase(held);
+        if (Job* still = jobs_.find(id))
+          return w->respond(tiles_response(*still, w->since, w->gzip));
+        w->respond(json_response(404, {{"error", "not_found"}, {"detail", "the job is gone"}}));
+      });
+  tile_waiters_[job.id].push_back(std::move(waiter));
+}
+
+void Api::watch(Job& job) {
+  job.on_released = [this](Job& released) { on_released(released); };
+  job.on_changed = [this](Job& changed) { on_changed(changed); };
+}
+
+void Api::on_changed(Job& job) {
+  if (!tile_waiters_.count(job.id)) return;
+  boost::asio::post(io_, [this, id = job.id] { answer_tile_waiters(id); });
+}
+
+void Api::answer_tile_waiters(std::int64_t job_id) {
+  auto it = tile_waiters_.find(job_id);
+  if (it == tile_waiters_.end()) return;
+  auto waiters = std::move(it->second);
+  tile_waiters_.erase(it);
+  Job* job = jobs_.find(job_id);
+  for (auto& w : waiters) {
+    w->timer->cancel();
+    if (job)
+      w->respond(tiles_response(*job, w->since, w->gzip));
+    else
+      w->respond(json_response(404, {{"error", "not_found"}, {"detail", "the job is gone"}}));
+  }
+}
+
 void Api::on_released(Job& job) {
   const std::int64_t id = job.id;
   if (!job.final_image) {
@@ -400,6 +480,11 @@ void Api::on_released(Job& job) {
     }
     return;
   }
+  // Pages still painting the last merges get them for a while; then only the images stay.
+  auto keep = std::make_shared<boost::asio::steady_timer>(io_, kDoneTilesKept);
+  keep->async_wait([this, id, keep](boost::system::error_code ec) {
+    if (Job* done = jobs_.find(id); done && !ec) done->free_buffers();
+  });
   // Encoded on the pool even when it is full: the service owes every done job its image.
   pool_.submit(
       [this, id, image = job.final_image] {

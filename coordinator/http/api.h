@@ -11,6 +11,7 @@
 #include <vector>
 
 #include <boost/asio/io_context.hpp>
+#include <boost/asio/steady_timer.hpp>
 
 #include "coordinator/http/http_server.h"
 #include "coordinator/http/intake_pool.h"
@@ -45,9 +46,13 @@ class Api {
         config_(std::move(config)) {}
   // On the io thread; `respond` is called once, at once or when the pool's work is done.
   void handle(HttpRequest request, const boost::asio::ip::tcp::endpoint& peer, HttpRespond respond);
+  // Sets the job's on_released and on_changed to the two below; every job, restored ones too.
+  void watch(Job& job);
   // A job has freed its buffers: a done one's final image is encoded on the pool (and stored).
-  // Set as every job's on_released, restored ones included.
   void on_released(Job& job);
+  // A job merged a unit or finished: the long polls waiting for its tiles are answered (posted,
+  // so that the merge's other bookkeeping comes first).
+  void on_changed(Job& job);
 
  private:
   using Query = std::map<std::string, std::string>;
@@ -61,6 +66,10 @@ class Api {
   // The time a job would take, without submitting it (the page asks as settings change).
   void predict(HttpRequest& request, const Query& query, HttpRespond& respond);
   void job_image(const HttpRequest& request, Job& job, const Query& query, HttpRespond& respond);
+  // GET /api/jobs/{id}/tiles?since=N[&wait=MS]: answered at once when units merged since the
+  // N-th (or the job is finished), else held until one merges or MS pass.
+  void job_tiles(const HttpRequest& request, Job& job, const Query& query, HttpRespond& respond);
+  void answer_tile_waiters(std::int64_t job_id);
   HttpResponse static_file(const std::string& path);
   // Runs `work` on the pool under a deadline of --max-intake-seconds: 503 when the pool's
   // queue is full, 422 when the deadline passes first (the late result is then dropped).
@@ -81,6 +90,14 @@ class Api {
     std::vector<std::function<void(std::shared_ptr<const std::string>, std::uint64_t)>> waiting;
   };
   std::map<std::pair<std::int64_t, std::string>, Encoding> encoded_;
+  // Long polls of /tiles, by job: each is answered once, by a merge or by its timer.
+  struct TilesWaiter {
+    std::size_t since = 0;
+    bool gzip = false;
+    HttpRespond respond;
+    std::unique_ptr<boost::asio::steady_timer> timer;
+  };
+  std::map<std::int64_t, std::vector<std::shared_ptr<TilesWaiter>>> tile_waiters_;
 };
 
 // "/a/b?x=1&y=%20" -> path "/a/b" and {x: "1", y: " "}.

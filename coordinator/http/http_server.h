@@ -16,13 +16,14 @@
 #include <boost/beast/http.hpp>
 #include <nlohmann/json.hpp>
 
+#include "coordinator/http/shared_body.h"
 #include "coordinator/net/backoff.h"
 #include "coordinator/net/log_limiter.h"
 
 namespace tessera {
 
 using HttpRequest = boost::beast::http::request<boost::beast::http::string_body>;
-using HttpResponse = boost::beast::http::response<boost::beast::http::string_body>;
+using HttpResponse = boost::beast::http::response<SharedStringBody>;
 // Answers the request; call it once, from any thread (the write is posted to the io thread).
 using HttpRespond = std::function<void(HttpResponse)>;
 using HttpHandler = std::function<void(

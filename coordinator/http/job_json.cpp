@@ -81,7 +81,7 @@ nlohmann::json job_status_json(const Job& job, Clock::time_point now) {
   j["effects"] = job.effects;
   j["warnings"] = job.warnings;
   j["stats"] = to_json(job.stats);
-  j["tiles"] = job.tiles.size();
+  j["tiles"] = job.tiles_next();
   j["scene"] = job.bundle.main;
   nlohmann::json workers = nlohmann::json::array();
   for (const auto& [id, share] : job.shares)
@@ -95,15 +95,6 @@ nlohmann::json job_status_json(const Job& job, Clock::time_point now) {
                                                    : 0.0}});
   j["workers"] = workers;
   return j;
-}
-
-nlohmann::json job_tiles_json(const Job& job, std::size_t since) {
-  nlohmann::json tiles = nlohmann::json::array();
-  for (std::size_t i = since; i < job.tiles.size(); ++i) {
-    const TileRecord& t = job.tiles[i];
-    tiles.push_back({t.rect.x0, t.rect.y0, t.rect.x1, t.rect.y1, t.worker, t.stage});
-  }
-  return {{"next", job.tiles.size()}, {"tiles", tiles}};
 }
 
 }  // namespace tessera

@@ -11,7 +11,5 @@ nlohmann::json job_summary_json(const Job& job, Clock::time_point now);
 // Everything the page shows: state, level, pass, progress, estimate, the per-level table
 // (Figure 5.1.1 of the seeds), effects, statistics and per-worker shares.
 nlohmann::json job_status_json(const Job& job, Clock::time_point now);
-// Units finished since the `since`-th, for the worker overlay: [x0, y0, x1, y1, worker, stage].
-nlohmann::json job_tiles_json(const Job& job, std::size_t since);
 
 }  // namespace tessera

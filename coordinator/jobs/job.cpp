@@ -1,6 +1,7 @@
 #include "coordinator/jobs/job.h"
 
 #include <algorithm>
+#include <chrono>
 
 #include <malloc.h>
 
@@ -33,60 +34,117 @@ Job::Job(std::int64_t id_, Bundle bundle_, JobSpec spec_, PlanOptions plan_optio
       priority(priority_),
       plan(make_plan(plan_options)),
       stage_timing(plan.stages.size()),
-      frame_buffer(spec.settings.width, spec.settings.height),
-      display(spec.settings.width, spec.settings.height),
-      display_rank(static_cast<std::size_t>(spec.settings.width) * spec.settings.height, 0) {}
+      delta_log_bytes(std::max(
+          kDeltaLogBytes, static_cast<std::size_t>(kDeltaLogBytesPerPixel * spec.settings.width *
+                                                   static_cast<double>(spec.settings.height)))),
+      frame_buffer(spec.settings.width, spec.settings.height) {}
 
-void Job::apply_result(int unit_index, std::span<const float> values) {
+namespace {
+
+double wall_clock_ms() {
+  return std::chrono::duration<double, std::milli>(
+             std::chrono::system_clock::now().time_since_epoch())
+      .count();
+}
+
+// Appends one pixel's 8-bit values as differences from the previous pixel's (TileRecord).
+void append_difference(std::string& out, std::uint8_t previous[3], const Rgb& value) {
+  const std::uint8_t now[3] = {to_8bit(static_cast<float>(value.r)),
+                               to_8bit(static_cast<float>(value.g)),
+                               to_8bit(static_cast<float>(value.b))};
+  for (int c = 0; c < 3; ++c) {
+    out.push_back(static_cast<char>(static_cast<std::uint8_t>(now[c] - previous[c])));
+    previous[c] = now[c];
+  }
+}
+
+}  // namespace
+
+void Job::apply_result(int unit_index, std::span<const float> values, std::int64_t worker) {
   const WorkUnit& unit = plan.units[unit_index];
   const Stage& stage = plan.stages[unit.stage];
   const std::vector<Pixel> pixels = expand(unit.pixels);
-  const int w = display.width, h = display.height;
-  // Ranks: level l fills blocks with rank l; whole-image passes rank above every level.
-  const int rank = stage.level > 0 ? stage.level : plan.levels + 1 + stage.pass;
+  // Normalized jobs' values change with the whole image's highest one: the page loads the PNG.
+  const bool log_pixels = !spec.settings.normalize_colors;
+  TileRecord record{unit.pixels.rect, unit.stage, worker, wall_clock_ms(), {}};
+  if (log_pixels) record.pixels.reserve(3 * pixels.size());
+  std::uint8_t previous[3] = {0, 0, 0};
   for (std::size_t i = 0; i < pixels.size(); ++i) {
     const Pixel p = pixels[i];
     const float* rgb = values.data() + 3 * i;
     if (!stage.preview_only) frame_buffer.add_pass(p.x, p.y, rgb);
-    if (stage.level > 0) {
-      // A coarse block takes its sample's colour wherever nothing finer has arrived yet.
-      const Pixel b = block_of(p, stage.block);
-      for (int y = b.y; y < std::min(b.y + stage.block, h); ++y)
-        for (int x = b.x; x < std::min(b.x + stage.block, w); ++x) {
-          int& shown = display_rank[static_cast<std::size_t>(y) * w + x];
-          if (shown >= rank) continue;
-          shown = rank;
-          display.set(x, y, {rgb[0], rgb[1], rgb[2]});
-        }
-    } else {
-      display_rank[static_cast<std::size_t>(p.y) * w + p.x] = rank;
-      display.set(p.x, p.y, frame_buffer.mean(p.x, p.y));
-    }
+    if (!log_pixels) continue;
+    // A level's value stands for its block; a later pass shows the pixel's mean so far.
+    append_difference(record.pixels, previous,
+                      stage.level > 0 ? Rgb{rgb[0], rgb[1], rgb[2]} : frame_buffer.mean(p.x, p.y));
   }
+  delta_bytes += record.pixels.size();
+  tiles.push_back(std::move(record));
+  trim_delta_log(delta_log_bytes);
   done_cost += unit.cost;
   ++version;
+  if (on_changed) on_changed(*this);
+}
+
+void Job::trim_delta_log(std::size_t max_bytes) {
+  while (delta_bytes > max_bytes && delta_first < tiles_next()) {
+    std::string& dropped = tiles[delta_first - tiles_first].pixels;
+    delta_bytes -= dropped.size();
+    dropped = std::string();
+    ++delta_first;
+  }
 }
 
 Image Job::image() const {
-  Image image = state == JobState::Done ? frame_buffer.resolve() : display;
+  Image image = state == JobState::Done ? frame_buffer.resolve() : known_so_far();
   // Post-normalization needs the whole image (§4.6): applied here, never to units.
   const RenderSettings& s = spec.settings;
   if (s.normalize_colors) post_normalize(image, s.normalize_brightness);
   return image;
 }
 
+Image Job::known_so_far() const {
+  const int w = frame_buffer.width(), h = frame_buffer.height();
+  Image image(w, h);
+  for (int y = 0; y < h; ++y)
+    for (int x = 0; x < w; ++x) {
+      // The finest anchor merged over the pixel: the pixel itself once it has a pass, else
+      // the anchor of its block at each coarser level (levels overlap across workers).
+      for (int level = std::max(plan.levels, 1); level >= 1; --level) {
+        const int side = plan.levels > 0 ? block_side(plan.levels, level) : 1;
+        const Pixel a = block_of({x, y}, side);
+        if (frame_buffer.passes_at(a.x, a.y) == 0) continue;
+        image.set(x, y, frame_buffer.mean(a.x, a.y));
+        break;
+      }
+    }
+  return image;
+}
+
 void Job::release_buffers() {
-  if (state == JobState::Done) final_image = std::make_shared<const Image>(image());
-  free_buffers();
+  if (state == JobState::Done) {
+    final_image = std::make_shared<const Image>(image());
+    // Pages still polling get the last merges; later ones load the final image.
+    const std::size_t keep = tiles_next() - delta_first;
+    std::deque<TileRecord> tail(tiles.end() - static_cast<std::ptrdiff_t>(keep), tiles.end());
+    const std::size_t next = tiles_next();
+    frame_buffer = FrameBuffer(0, 0);
+    tiles = std::move(tail);
+    tiles_first = next - keep;
+    malloc_trim(0);
+  } else {
+    free_buffers();
+  }
   if (on_released) on_released(*this);
+  if (on_changed) on_changed(*this);
 }
 
 void Job::free_buffers() {
   // Assigning empty containers frees their storage (clear() would keep the capacity).
   frame_buffer = FrameBuffer(0, 0);
-  display = Image();
-  display_rank = std::vector<int>();
-  tiles = std::vector<TileRecord>();
+  tiles_first = delta_first = tiles_next();
+  tiles = std::deque<TileRecord>();
+  delta_bytes = 0;
   malloc_trim(0);  // large frees go back to the system only when trimmed (glibc)
 }
 

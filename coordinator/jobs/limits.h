@@ -8,8 +8,10 @@ namespace tessera {
 
 struct ServiceLimits {
   std::size_t max_body_bytes = 32u << 20;  // POST /api/jobs, scene bundle included
-  int max_side = 4096;                     // width and height
-  long long max_pixels = 4LL << 20;        // about 180 MB of frame buffers at most
+  int max_side = 16384;  // width and height; the page's tile records hold 16-bit coordinates
+  // Width x height, --max-pixels: 7680 x 4320 (8K UHD), 464 MB of frame buffer at 14 bytes a
+  // pixel (docs/SERVICE.md, "Memory").
+  long long max_pixels = 7680LL * 4320;
   int max_passes = 256;
   int max_cone_samples = 64;  // rays per gloss, translucency and soft-shadow cone
   int max_depth = 16;         // maxRecursionDepth after overrides

@@ -268,7 +268,7 @@ void Scheduler::on_result(std::int64_t worker, const Frame& frame) {
   }
   r.state = UnitState::Done;
   run.in_flight.erase(unit);
-  job.apply_result(unit, values);
+  job.apply_result(unit, values, worker);
   if (observer_) observer_->merged(job, unit, values, stats, w.hello.name);
   job.stats += stats;
   if (ServiceMetrics* m = options_.metrics) {
@@ -287,7 +287,6 @@ void Scheduler::on_result(std::int64_t worker, const Frame& frame) {
   w.units_done += 1;
   w.pixels_done += wu.cost;
   w.busy_seconds += stats.seconds;
-  job.tiles.push_back({wu.pixels.rect, wu.stage, worker});
   StageTiming& timing = job.stage_timing[wu.stage];
   timing.units_done += 1;
   timing.last_result = now;

@@ -1,5 +1,5 @@
 // Unit tests of the coordinator's pure parts: request targets, job requests, the
-// merge of unit results into the frame buffer and the display, what finished jobs keep, and who
+// merge of unit results into the frame buffer and what is shown, what finished jobs keep, and who
 // may submit.
 #include <gtest/gtest.h>
 
@@ -57,12 +57,12 @@ TEST(ParseSettings, ReadsTheShadingSettings) {
 TEST(ParseSettings, RefusesWhatIsOutOfLimits) {
   const ServiceLimits limits;
   for (const char* bad :
-       {R"({"aa": 3})", R"({"width": 0})", R"({"width": 5000})",
-        R"({"width": 4096, "height": 4096})", R"({"passes": 1000})", R"({"seed": -2})",
-        R"({"order": "spiral"})", R"({"bvh": 1})", R"({"unknown": 1})", R"({"max_depth": 40})",
-        R"({"min_weight": 2})", R"({"shadows": "penumbral"})", R"({"shadows": 2})",
-        R"({"cone_samples": 0})", R"({"cone_samples": 65})", R"({"shadow_jitter": -0.1})",
-        R"({"normalize": "yes"})", R"({"brightness": -1})"}) {
+       {R"({"aa": 3})", R"({"width": 0})", R"({"width": 5000, "height": 7000})",
+        R"({"width": 8192, "height": 8192})", R"({"width": 16385})", R"({"passes": 1000})",
+        R"({"seed": -2})", R"({"order": "spiral"})", R"({"bvh": 1})", R"({"unknown": 1})",
+        R"({"max_depth": 40})", R"({"min_weight": 2})", R"({"shadows": "penumbral"})",
+        R"({"shadows": 2})", R"({"cone_samples": 0})", R"({"cone_samples": 65})",
+        R"({"shadow_jitter": -0.1})", R"({"normalize": "yes"})", R"({"brightness": -1})"}) {
     JobRequest r;
     EXPECT_THROW(parse_settings(nlohmann::json::parse(bad), limits, r), ApiError) << bad;
   }
@@ -190,14 +190,16 @@ std::vector<float> values_for(const Job& job, int unit) {
 
 TEST(JobMerge, CoarseBlocksShowTheirAnchorUntilFinerLevelsArrive) {
   Job job = make_job(5, 3, 1);  // levels of side 4, 2, 1
+  job.state = JobState::Running;
   job.apply_result(0, values_for(job, 0));
-  EXPECT_EQ(job.display.get(3, 2).r, 0.0f);  // block of anchor (0, 0)
-  EXPECT_EQ(job.display.get(4, 1).r, 4.0f);  // block of anchor (4, 0)
+  EXPECT_EQ(job.image().get(3, 2).r, 0.0f);  // block of anchor (0, 0)
+  EXPECT_EQ(job.image().get(4, 1).r, 4.0f);  // block of anchor (4, 0)
   // Finer results win regardless of arrival order.
   for (int u = static_cast<int>(job.plan.units.size()) - 1; u >= 1; --u)
     job.apply_result(u, values_for(job, u));
+  const Image shown = job.image();
   for (int y = 0; y < 3; ++y)
-    for (int x = 0; x < 5; ++x) EXPECT_EQ(job.display.get(x, y).r, x + 100.0 * y) << x << "," << y;
+    for (int x = 0; x < 5; ++x) EXPECT_EQ(shown.get(x, y).r, x + 100.0 * y) << x << "," << y;
   EXPECT_EQ(job.done_cost, job.plan.total_cost);
 }
 
@@ -213,7 +215,8 @@ TEST(JobMerge, FinalImageIsTheFrameBufferMean) {
       const Rgb expected{x + 100.0 * y + 0.25, x + 100.0 * y + 1.25, x + 100.0 * y + 2.25};
       EXPECT_EQ(final_image.get(x, y), expected) << x << "," << y;
     }
-  EXPECT_EQ(final_image, job.display);
+  job.state = JobState::Running;
+  EXPECT_EQ(final_image, job.image());  // what is shown once every unit merged
 }
 
 void fill(Job& job) {
@@ -223,15 +226,12 @@ void fill(Job& job) {
 
 void expect_buffers_freed(const Job& job) {
   EXPECT_EQ(job.frame_buffer.width(), 0);
-  EXPECT_EQ(job.display.rgb.capacity(), 0u);
-  EXPECT_EQ(job.display_rank.capacity(), 0u);
-  EXPECT_EQ(job.tiles.capacity(), 0u);
+  EXPECT_EQ(job.frame_buffer.height(), 0);
 }
 
 TEST(JobMemory, ADoneJobKeepsOnlyItsFinalImage) {
   Job job = make_job(6, 4, 3);
   fill(job);
-  job.tiles.push_back({});
   job.state = JobState::Done;
   const Image final_image = job.image();
   int released = 0;
@@ -252,12 +252,13 @@ TEST(JobMemory, CancellingThroughTheSchedulerFreesEverything) {
   r.spec.settings.height = r.plan.height = 32;
   Job* job = store.create(std::move(r), "10.0.0.7");
   scheduler.add_job(*job);
-  EXPECT_EQ(job->display_rank.size(), 64u * 32u);
+  EXPECT_EQ(job->frame_buffer.width(), 64);
   EXPECT_EQ(store.unfinished_of("10.0.0.7"), 1);
   EXPECT_TRUE(scheduler.cancel(job->id));
   EXPECT_EQ(job->state, JobState::Cancelled);
   expect_buffers_freed(*job);
   EXPECT_FALSE(job->final_image);
+  EXPECT_TRUE(job->tiles.empty());
   EXPECT_EQ(store.unfinished_of("10.0.0.7"), 0);
 }
 

@@ -285,7 +285,8 @@ def case_memory():
         after = rss_mb(pid)
         print("RSS before %.0f MB, ten jobs held %.0f MB, cancelled %.0f MB" %
               (before, held, after))
-        assert held > before + 1000, (before, held)  # the jobs' buffers were really there
+        # The jobs' buffers were really there: 10 x 2048 x 2048 x 14 bytes is 587 MB.
+        assert held > before + 400, (before, held)
         assert after < before + 100, (before, after)
         status, _, reply = service.request("GET", "/api/jobs/%d/image" % jobs[0]["id"])
         assert status == 404 and json.loads(reply)["error"] == "no_image", (status, reply)

@@ -16,6 +16,7 @@ import time
 sys.path.insert(0, os.path.dirname(os.path.abspath(__file__)))
 import service_test  # noqa: E402  (the Service helpers; ARGS is set below)
 from service_test import SETTINGS, Service, demo_scene  # noqa: E402
+from tiles_test import get_tiles  # noqa: E402
 
 SMALL = {"width": 32, "height": 24}
 STORE_JOBS = 64  # ServiceLimits::max_jobs (coordinator/jobs/limits.h)
@@ -43,18 +44,18 @@ def case_full_store():
 
 
 def case_tiles_since():
-    """/tiles lists one tile per merged unit, in merge order; ?since=k returns the tiles from
-    the k-th on, and `next` is the count to ask from next time. Asked of a running job (a
-    finished job's tiles are released): its only worker is stopped (SIGSTOP) meanwhile, so
-    the count does not move under the test."""
+    """/tiles lists one record per merged unit, in merge order; ?since=k returns the records
+    from the k-th on, and `next` is the count to ask from next time. Asked of a running job (a
+    finished job keeps only its newest records): its only worker is stopped (SIGSTOP)
+    meanwhile, so the count does not move under the test."""
     with Service() as service:
         worker = service.worker("w1", threads=1)
         service.wait_workers(1)
         settings = dict(SETTINGS, width=320, height=240, aa=9, passes=4)
         job = service.submit(open(demo_scene()).read(), settings)
-        path = "/api/jobs/%d/tiles" % job["id"]
+        tiles = lambda since=0: get_tiles(service, job["id"], since)  # noqa: E731
         deadline = time.time() + 30
-        while service.get(path)["next"] < 5:
+        while tiles()["next"] < 5:
             assert time.time() < deadline, service.get("/api/jobs/%d" % job["id"])
             time.sleep(0.02)
         worker.send_signal(signal.SIGSTOP)
@@ -62,19 +63,20 @@ def case_tiles_since():
         status = service.get("/api/jobs/%d" % job["id"])
         assert status["state"] == "running", status
         merges = sum(w["units"] for w in status["workers"])
-        everything = service.get(path)
+        everything = tiles()
         assert everything["next"] == merges == status["tiles"] >= 5, (everything, merges)
-        tiles = everything["tiles"]
-        assert len(tiles) == merges
+        records = everything["records"]
+        assert len(records) == merges and not everything["whole"]
         worker_id = status["workers"][0]["id"]
-        for x0, y0, x1, y1, tile_worker, stage in tiles:
+        for r in records:
+            x0, y0, x1, y1 = r["rect"]
             assert 0 <= x0 < x1 <= settings["width"] and 0 <= y0 < y1 <= settings["height"]
-            assert tile_worker == worker_id and stage >= 0
-        assert tiles[0][5] == 0  # the first merge is of the first stage
+            assert r["worker"] == worker_id and r["stage"] >= 0 and r["values"]
+        assert records[0]["stage"] == 0  # the first merge is of the first stage
         for since in (0, 1, merges // 2, merges - 1, merges, merges + 5):
-            part = service.get("%s?since=%d" % (path, since))
-            assert part == {"next": merges, "tiles": tiles[since:]}, (since, part)
-        status, _, reply = service.request("GET", path + "?since=abc")
+            part = tiles(since)
+            assert part["next"] == merges and part["records"] == records[since:], since
+        status, _, reply = service.request("GET", "/api/jobs/%d/tiles?since=abc" % job["id"])
         assert status == 400 and json.loads(reply)["error"] == "bad_request", (status, reply)
         worker.send_signal(signal.SIGCONT)
         service.request("DELETE", "/api/jobs/%d" % job["id"])

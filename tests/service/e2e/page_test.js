@@ -1,135 +1,81 @@
-// End-to-end test of the page (issue 4, item 7; issue 23, §2): a real coordinator and a worker,
-// the page in headless Chromium (Debian's), a scene submitted through the form. The test reads
-// the pixels the page shows and compares them with the server's image of the same version:
-// at three or more intermediate levels (painted while the job runs, finer levels still to
-// come) and at the end. So that this does not depend on timing, the test stops the worker
-// (SIGSTOP) whenever the job reaches a level it has not checked yet, waits for the image to
-// settle and the page to show it, compares, and lets the worker go on (SIGCONT).
+// End-to-end test of the page (issue 4 item 7; issue 23 §2; issue 21 §1, §6, §7): a real
+// coordinator and a worker, the page in headless Chromium (Debian's), scenes submitted through
+// the form.
+//
+// 1. The demo scene at 1920x1080: the page paints the units as they merge (/tiles), and at
+//    least six distinct levels are painted before the job is done. In three stages while the
+//    job runs (the worker paused with SIGSTOP, so that nothing depends on timing) and at the end,
+//    what the page shows is compared pixel for pixel with the server's PNG.
+// 2. A gzip'd VRML world with an Inline and an image texture, chosen as three files in the
+//    form's file input, is submitted as VRML and renders; the page shows its final PNG.
+// 3. #job=N typed later is followed: the page switches to job 1, its canvas empty at first,
+//    then job 1's final image.
 //
 // usage: node page_test.js BUILD_DIR SOURCE_DIR
 "use strict";
 
-const { chromium } = require("playwright-core");
-const { spawn } = require("child_process");
 const fs = require("fs");
 const os = require("os");
 const path = require("path");
+const zlib = require("zlib");
+const { sleep, startService, launchChromium, submitScene, submitForm } = require("./harness");
 
 const [buildDir, sourceDir] = process.argv.slice(2);
 
-// The coordinator listens on ports the system picks and writes them to --port-file once both
-// listen, so the test never races another program for a port.
-async function readPortFile(file, coordinator, ms) {
-  const deadline = Date.now() + ms;
-  while (!fs.existsSync(file)) {
-    if (coordinator.exitCode !== null) throw new Error(`the coordinator exited (${coordinator.exitCode})`);
-    if (Date.now() > deadline) throw new Error("the coordinator did not write its ports");
-    await new Promise((r) => setTimeout(r, 20));
-  }
-  return JSON.parse(fs.readFileSync(file, "utf8"));
-}
-
-async function waitForHttp(url, ms) {
-  const deadline = Date.now() + ms;
-  for (;;) {
-    try {
-      if ((await fetch(url)).ok) return;
-    } catch (e) { /* not listening yet */ }
-    if (Date.now() > deadline) throw new Error(`${url} did not answer`);
-    await new Promise((r) => setTimeout(r, 50));
-  }
-}
-
-const sleep = (ms) => new Promise((r) => setTimeout(r, ms));
-
-async function until(what, ms, test) {
-  const deadline = Date.now() + ms;
-  for (;;) {
-    const value = await test();
-    if (value) return value;
-    if (Date.now() > deadline) throw new Error(`timed out waiting for ${what}`);
-    await sleep(20);
-  }
-}
-
-// In the page: the pixels of the image it shows, and those of the server's image fetched
-// afresh (no cache, so no revalidation with an old ETag), decoded and drawn the same way.
-// Answers both versions and how many bytes differ.
+// In the page: what it shows (its layers composited, tessera.composite()) against the server's
+// PNG fetched afresh. Answers the sizes, the PNG's version and how many bytes differ.
 async function comparePixels(page, jobId) {
   return page.evaluate(async (id) => {
-    const pixels = (img) => {
-      if (!img.naturalWidth) return new Uint8ClampedArray(0);  // a broken or empty image
-      const canvas = document.createElement("canvas");
-      canvas.width = img.naturalWidth;
-      canvas.height = img.naturalHeight;
-      const ctx = canvas.getContext("2d");
-      ctx.drawImage(img, 0, 0);
-      return ctx.getImageData(0, 0, canvas.width, canvas.height).data;
-    };
-    const shown = document.getElementById("image");
+    const rgba = (canvas) => canvas.width ?
+      canvas.getContext("2d").getImageData(0, 0, canvas.width, canvas.height).data : new Uint8ClampedArray(0);
+    const shown = window.tessera.composite();
     const response = await fetch(`/api/jobs/${id}/image`, { cache: "no-store" });
-    const served = new Image();
-    served.src = URL.createObjectURL(await response.blob());
-    await served.decode().catch(() => {});
-    const a = pixels(shown), b = pixels(served);
+    const bitmap = await createImageBitmap(await response.blob());
+    const served = document.createElement("canvas");
+    Object.assign(served, { width: bitmap.width, height: bitmap.height });
+    served.getContext("2d").drawImage(bitmap, 0, 0);
+    const a = rgba(shown), b = rgba(served);
     let differing = a.length === b.length ? 0 : Math.max(a.length, b.length);
-    for (let i = 0; i < Math.min(a.length, b.length); ++i) differing += a[i] !== b[i];
+    const colours = new Set();
+    for (let i = 0; i < Math.min(a.length, b.length); ++i) {
+      differing += a[i] !== b[i];
+      if (i % 4 === 0) colours.add((a[i] << 16) | (a[i + 1] << 8) | a[i + 2]);
+    }
     const etag = /-(\d+)-png/.exec(response.headers.get("ETag") || "");
-    return { shownVersion: +shown.dataset.version, servedVersion: etag ? +etag[1] : -1,
-             size: [shown.naturalWidth, shown.naturalHeight], differing };
+    return { servedVersion: etag ? +etag[1] : -1, size: [shown.width, shown.height],
+             servedSize: [served.width, served.height], differing, colours: colours.size };
   }, jobId);
 }
 
 async function main() {
   const profile = fs.mkdtempSync(path.join(os.tmpdir(), "tessera-chromium-"));
-  const portFile = path.join(profile, "ports.json");
-  // A long --silence-ms: the stopped worker must not be dropped while the test looks.
-  const coordinator = spawn(path.join(buildDir, "coordinator", "tessera-coordinator"),
-    ["--bind", "127.0.0.1", "--http-port", "0", "--worker-port", "0", "--port-file", portFile,
-     "--insecure", "--silence-ms", "120000", "--data-dir", path.join(profile, "data")],
-    { stdio: "inherit" });
-  let context, worker;
+  let context, service;
   try {
-    const { http_port: httpPort, worker_port: workerPort } =
-      await readPortFile(portFile, coordinator, 10000);
-    const base = `http://127.0.0.1:${httpPort}`;
-    const env = { ...process.env };
-    delete env.TESSERA_SECRET;
-    worker = spawn(path.join(buildDir, "worker", "tessera-worker"),
-      ["--coordinator", `127.0.0.1:${workerPort}`, "--threads", "1", "--name", "page-worker"],
-      { stdio: "inherit", env });
-    const api = async (route) => (await fetch(base + route, { cache: "no-store" })).json();
-    await waitForHttp(`${base}/api/workers`, 10000);
-    await until("the worker", 10000, async () => (await api("/api/workers")).length === 1);
-    context = await chromium.launchPersistentContext(profile, {
-      executablePath: "/usr/bin/chromium",
-      headless: true,
-      args: ["--headless", "--no-sandbox", "--disable-gpu", "--disable-quic", "--no-first-run",
-             "--disable-background-networking", "--disable-component-update", "--disable-sync"],
-    });
+    service = await startService(buildDir, profile, 1);
+    const { api, worker } = service;
+    context = await launchChromium(profile);
     const page = context.pages()[0] || await context.newPage();
-    await page.goto(base + "/");
-    await page.fill("#scene-text", fs.readFileSync(path.join(sourceDir, "scenes", "demo.sdl"), "utf8"));
-    await page.fill("#width", "640");
-    await page.fill("#height", "480");
-    await page.selectOption("#aa", "9");
-    // The predicted time shows beside the button before anything is submitted.
-    await page.waitForFunction(() => /^about .* on 1 worker threads$/.test(
-      document.getElementById("prediction").textContent), null, { timeout: 10000 });
-    await page.click("#submit");
-    const jobId = await until("the job", 10000, async () => {
-      const jobs = await api("/api/jobs");
-      return jobs.length ? jobs[0].id : null;
-    });
+    const pageErrors = [];
+    page.on("pageerror", (e) => pageErrors.push(e.message));
+    await page.goto(service.base + "/");
 
-    // Every level below the last that the job is seen refining, checked while it is paused.
+    // 1. The demo scene at 1920x1080.
+    // The predicted time shows beside the button before anything is submitted. The worker is
+    // stopped until the loop below looks, so that the first levels are not over before it does.
+    worker.kill("SIGSTOP");
+    const jobId = await submitScene(
+      page, api, fs.readFileSync(path.join(sourceDir, "scenes", "demo.sdl"), "utf8"), 1920, 1080, 1);
+    // The page names the job in the address, so that a reload or a link shows it again.
+    await page.waitForFunction((id) => location.hash === `#job=${id}`, jobId, { timeout: 5000 });
+
     const checked = [];
     for (;;) {
       const job = await api(`/api/jobs/${jobId}`);
       if (job.state !== "running" && job.state !== "queued") break;
-      // Version 0 is the empty image before the first result: nothing of any level painted.
-      if (job.state === "queued" || job.version === 0 || job.level >= job.levels ||
-          checked.includes(job.level)) {
+      // A stage (level or pass) not checked yet, while the job runs: its picture mixes levels.
+      if (job.state === "queued" || job.version === 0 || checked.includes(job.stage) ||
+          checked.length >= 3) {
+        worker.kill("SIGCONT");
         await sleep(5);
         continue;
       }
@@ -144,34 +90,31 @@ async function main() {
           settled = again;
         }
         if (settled.state !== "running") break;
-        await page.waitForFunction((v) =>
-          +document.getElementById("image").dataset.version === v, settled.version,
-          { timeout: 10000 });
+        // The page has painted every unit merged so far.
+        await page.waitForFunction((n) => window.tessera.stats().tilesNext === n, settled.tiles,
+                                   { timeout: 10000 });
         const seen = await comparePixels(page, jobId);
-        const shownLevel = await page.textContent("#shown-level");
-        console.log(`level ${settled.level} of ${settled.levels}, version ${settled.version}: ` +
-                    `page shows ${shownLevel}, ${seen.differing} bytes differ from the server's`);
-        if (seen.differing !== 0)
-          throw new Error(`the page shows other pixels than the server's image ${settled.version}`);
-        if (seen.shownVersion !== settled.version || seen.servedVersion !== settled.version)
-          throw new Error(`versions differ: ${JSON.stringify(seen)} at ${settled.version}`);
-        if (shownLevel !== `${settled.level} / ${settled.levels}`)
-          throw new Error(`the page names level ${shownLevel}, the job is at ${settled.level}`);
-        checked.push(settled.level);
+        console.log(`level ${settled.level} of ${settled.levels}, ${settled.tiles} units: ` +
+                    `${seen.differing} bytes differ from the server's image`);
+        if (seen.differing !== 0 || seen.servedVersion !== settled.version)
+          throw new Error(`the page shows other pixels than the server's image: ${JSON.stringify(seen)}`);
+        checked.push(settled.stage);
       } finally {
         worker.kill("SIGCONT");
       }
     }
-    console.log(`intermediate levels checked pixel for pixel: ${checked.join(", ")}`);
-    if (checked.length < 3) throw new Error(`only ${checked.length} intermediate levels checked`);
+    console.log(`stages checked pixel for pixel while running: ${checked.join(", ")}`);
+    if (checked.length < 3) throw new Error(`only ${checked.length} intermediate stages checked`);
 
-    await page.waitForSelector("#image[data-state=done]", { timeout: 90000 });
+    await page.waitForSelector("#base-canvas[data-state=done]", { timeout: 120000 });
     const final = await comparePixels(page, jobId);
-    const done = await api(`/api/jobs/${jobId}`);
-    if (final.size[0] !== 640 || final.size[1] !== 480)
-      throw new Error(`final image is ${final.size.join("x")}`);
-    if (final.shownVersion !== done.version || final.differing !== 0)
+    if (final.size[0] !== 1920 || final.size[1] !== 1080 || final.differing !== 0)
       throw new Error(`the final image shown is not the server's: ${JSON.stringify(final)}`);
+    const stats = await page.evaluate(() => window.tessera.stats());
+    console.log(`levels painted before the job was done: ${stats.levelsPainted.join(", ")}`);
+    if (stats.levelsPainted.length < 6)
+      throw new Error(`only ${stats.levelsPainted.length} levels painted before the end`);
+    if (stats.usedWhole) throw new Error("a page following from the start loaded the whole PNG");
     const rows = await page.$$eval("#levels-table tbody tr", (trs) => trs.length);
     if (rows < 3) throw new Error("the per-level table is missing");
     const predicted = await page.textContent("#predicted");
@@ -180,13 +123,48 @@ async function main() {
     const inked = await page.$eval("#level-chart", (c) =>
       c.getContext("2d").getImageData(0, 0, c.width, c.height).data.some((v, i) => i % 4 === 3 && v > 0));
     if (!inked) throw new Error("the chart of time per level is empty");
+
+    // 2. A gzip'd VRML world with an Inline and a texture, as three files.
+    const world = path.join(profile, "world.wrl.gz");
+    const vrml = path.join(sourceDir, "scenes", "vrml");
+    fs.writeFileSync(world, zlib.gzipSync(fs.readFileSync(path.join(vrml, "world.wrl"), "utf8")
+      .replace("parts/arch.wrl", "arch.wrl").replace("textures/gradient.bmp", "gradient.bmp")));
+    fs.copyFileSync(path.join(vrml, "parts", "arch.wrl"), path.join(profile, "arch.wrl"));
+    fs.copyFileSync(path.join(vrml, "textures", "gradient.bmp"), path.join(profile, "gradient.bmp"));
+    await page.fill("#scene-text", "");
+    await page.setInputFiles("#scene-file", ["arch.wrl", "gradient.bmp", "world.wrl.gz"].map(
+      (f) => path.join(profile, f)));
+    await page.fill("#width", "160");
+    await page.fill("#height", "120");
+    const vrmlId = await submitForm(page, api, 2);
+    await page.waitForSelector("#base-canvas[data-state=done]", { timeout: 60000 });
+    const vrmlJob = await api(`/api/jobs/${vrmlId}`);
+    console.log(`VRML job ${vrmlId}: ${vrmlJob.state} ${vrmlJob.scene}, effects ${vrmlJob.effects.join(" ")}`);
+    if (vrmlJob.state !== "done" || vrmlJob.scene !== "world.wrl.gz" ||
+        !vrmlJob.effects.includes("image_texture"))
+      throw new Error(`the VRML world did not render as submitted: ${JSON.stringify(vrmlJob)}`);
+    const vrmlShown = await comparePixels(page, vrmlId);
+    if (vrmlShown.differing !== 0 || vrmlShown.colours < 50)
+      throw new Error(`the VRML world's image: ${JSON.stringify(vrmlShown)}`);
+
+    // 3. #job=1 typed later: the page follows it, starting from an empty canvas.
+    const fresh = await page.evaluate((id) => new Promise((resolve) => {
+      window.addEventListener("hashchange", () => resolve({
+        title: document.getElementById("job-title").textContent,
+        layers: document.querySelectorAll("#stage canvas[data-step]").length,
+        base: document.getElementById("base-canvas").width,
+      }), { once: true });
+      location.hash = `#job=${id}`;
+    }), jobId);
+    if (fresh.title !== `Job ${jobId}` || fresh.layers !== 0 || fresh.base !== 0)
+      throw new Error(`the hash change did not start job ${jobId} afresh: ${JSON.stringify(fresh)}`);
+    await page.waitForSelector("#base-canvas[data-state=done]", { timeout: 30000 });
+    const again = await comparePixels(page, jobId);
+    if (again.differing !== 0) throw new Error(`job ${jobId} shown again: ${JSON.stringify(again)}`);
+    if (pageErrors.length) throw new Error(`errors in the page: ${pageErrors.join("; ")}`);
   } finally {
     if (context) await context.close();
-    if (worker) {
-      worker.kill("SIGCONT");
-      worker.kill("SIGKILL");
-    }
-    coordinator.kill("SIGTERM");
+    if (service) service.stop();
     fs.rmSync(profile, { recursive: true, force: true });
   }
 }

@@ -1,0 +1,82 @@
+// The page's figures of docs/PERFORMANCE.md ("The page", issue 21 §1): for the demo scene at
+// each size, in headless Chromium with one local worker, the delay from a unit's merge to its
+// pixels painted (median and 90th percentile over every unit), the bytes the page received for
+// the image (/tiles answers and any PNG, as sent: gzip'd) against the final PNG, and the longest
+// task on the page's main thread (Chromium's long tasks: 50 ms and over; 0 when none).
+//
+// usage: node page_bench.js BUILD_DIR SOURCE_DIR [--threads N] [--aa A] WxH...
+"use strict";
+
+const fs = require("fs");
+const os = require("os");
+const path = require("path");
+const { startService, launchChromium, submitScene } = require("./harness");
+
+const [buildDir, sourceDir, ...rest] = process.argv.slice(2);
+const option = (name, fallback) => {
+  const i = rest.indexOf(name);
+  return i < 0 ? fallback : rest.splice(i, 2)[1];
+};
+const threads = +option("--threads", "1");
+const aa = +option("--aa", "1");
+const sizes = rest.length ? rest : ["1920x1080", "3840x2160"];
+
+const quantile = (values, q) => {
+  const sorted = [...values].sort((a, b) => a - b);
+  return sorted.length ? sorted[Math.min(sorted.length - 1, Math.floor(q * sorted.length))] : NaN;
+};
+
+async function measure(page, service, scene, width, height) {
+  let imageBytes = 0;
+  const counting = async (request) => {
+    if (!/\/api\/jobs\/\d+\/(tiles|image)/.test(request.url())) return;
+    imageBytes += (await request.sizes()).responseBodySize;
+  };
+  page.on("requestfinished", counting);
+  await page.evaluate(() => { window.longestTask = 0; });
+  const id = await submitScene(page, service.api, scene, width, height, aa);
+  await page.waitForSelector("#base-canvas[data-state=done]", { timeout: 600000 });
+  page.off("requestfinished", counting);
+  const stats = await page.evaluate(() => window.tessera.stats());
+  const longestTask = await page.evaluate(() => window.longestTask);
+  const job = await service.api(`/api/jobs/${id}`);
+  const png = (await (await fetch(`${service.base}/api/jobs/${id}/image`)).arrayBuffer()).byteLength;
+  return {
+    size: `${width}x${height}`, units: job.tiles, seconds: +job.elapsed_seconds.toFixed(1),
+    delay_median_ms: quantile(stats.latencies, 0.5), delay_p90_ms: quantile(stats.latencies, 0.9),
+    image_bytes: imageBytes, final_png_bytes: png, ratio: +(imageBytes / png).toFixed(2),
+    longest_task_ms: longestTask, longest_paint_ms: +stats.longestPaintMs.toFixed(1),
+    levels_painted: stats.levelsPainted.length, whole_png_loaded: stats.usedWhole,
+  };
+}
+
+async function main() {
+  const profile = fs.mkdtempSync(path.join(os.tmpdir(), "tessera-bench-"));
+  let context, service;
+  try {
+    service = await startService(buildDir, profile, threads);
+    context = await launchChromium(profile);
+    const page = context.pages()[0] || await context.newPage();
+    await page.addInitScript(() => {
+      window.longestTask = 0;
+      new PerformanceObserver((list) => {
+        for (const e of list.getEntries()) window.longestTask = Math.max(window.longestTask, e.duration);
+      }).observe({ type: "longtask", buffered: true });
+    });
+    await page.goto(service.base + "/");
+    const scene = fs.readFileSync(path.join(sourceDir, "scenes", "demo.sdl"), "utf8");
+    for (const size of sizes) {
+      const [width, height] = size.split("x").map(Number);
+      console.log(JSON.stringify(await measure(page, service, scene, width, height)));
+    }
+  } finally {
+    if (context) await context.close();
+    if (service) service.stop();
+    fs.rmSync(profile, { recursive: true, force: true });
+  }
+}
+
+main().catch((e) => {
+  console.error(e);
+  process.exit(1);
+});
