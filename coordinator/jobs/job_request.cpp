@@ -216,6 +216,7 @@ void check_scene(const Submission& sub, const std::optional<std::filesystem::pat
   RecordingSource source(submitted, folder ? &*folder : nullptr);
   LoadBudget load_budget;  // the defaults of docs/SERVICE.md's "Load budget", and our deadline
   load_budget.deadline = budget.deadline;
+  load_budget.strict = out.strict;
   try {
     Scene scene = load_scene(source, sub.main, *scene_format_named(sub.format), load_budget);
     budget.check("loading the scene");
@@ -255,7 +256,8 @@ void parse_settings(const json& s, const ServiceLimits& limits, JobRequest& out)
       "width",       "height",     "aa",        "stochastic",   "jitter",
       "seed",        "passes",     "order",     "priority",     "preview",
       "progressive", "bvh",        "shadows",   "cone_samples", "shadow_jitter",
-      "normalize",   "brightness", "max_depth", "min_weight",   "time_samples"};
+      "normalize",   "brightness", "max_depth", "min_weight",   "time_samples",
+      "strict"};
   for (const auto& [key, value] : s.items())
     if (!known.count(key)) throw bad_request("unknown setting \"" + key + "\"");
   RenderSettings& r = out.spec.settings;
@@ -290,6 +292,7 @@ void parse_settings(const json& s, const ServiceLimits& limits, JobRequest& out)
   if (s.contains("min_weight"))
     out.spec.overrides.min_weight = get_double(s, "min_weight", 0, 0, 1);
   out.priority = get_int(s, "priority", 1, 1, 100);
+  out.strict = get_bool(s, "strict", false);
   out.plan.width = r.width;
   out.plan.height = r.height;
   out.plan.passes = r.passes;

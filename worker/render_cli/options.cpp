@@ -30,7 +30,11 @@ const char* const kRenderCliUsage =
     "  --no-bvh         trace without the bounding volume hierarchy (for comparison)\n"
     "  --debug-view V   writes a debug view instead of the render: normals (the first hit's\n"
     "                   shading normal as colour) or cost (intersection tests per pixel)\n"
-    "  --quiet          no progress or statistics\n";
+    "  --quiet          no progress or statistics\n"
+    "  --strict         a missing texture, an unknown node or field, an unsupported url is an\n"
+    "                   error, not a warning\n"
+    "  --root DIR       the files the scene names must lie inside DIR (default: any file,\n"
+    "                   relative paths against the naming file's folder)\n";
 
 namespace {
 
@@ -52,6 +56,11 @@ std::variant<RenderCliOptions, CliHelp, std::string> parse_render_cli(
       {"-o",
        [&](const std::string& v) {
          o.output_path = v;
+         return !v.empty();
+       }},
+      {"--root",
+       [&](const std::string& v) {
+         o.root = v;
          return !v.empty();
        }},
       {"--width",
@@ -130,6 +139,8 @@ std::variant<RenderCliOptions, CliHelp, std::string> parse_render_cli(
       o.settings.bvh = BvhMode::None;
     } else if (a == "--quiet") {
       o.quiet = true;
+    } else if (a == "--strict") {
+      o.strict = true;
     } else if (auto it = valued.find(a); it != valued.end()) {
       if (i + 1 >= args.size()) return "option " + a + " needs a value";
       if (!it->second(args[++i])) return "bad value '" + args[i] + "' for " + a;
