@@ -28,8 +28,9 @@ declare -A count=([ok]=0 [warn]=0 [fail]=0)
 printf '%-60s %-5s %7s  %s\n' file state seconds reason
 while IFS= read -r -d '' file; do
   start=$EPOCHREALTIME
+  # Not --quiet: that hides the warnings too.
   timeout --kill-after=5 "$limit" "$render" "$file" -o "$out/image.png" --width 64 --height 48 \
-    --quiet "$@" >/dev/null 2>"$out/stderr"
+    "$@" >/dev/null 2>"$out/stderr"
   status=$?
   seconds=$(awk -v a="$start" -v b="$EPOCHREALTIME" 'BEGIN { printf "%.1f", b - a }')
   if [[ $status -eq 0 ]] && ! grep -q '^warning: ' "$out/stderr"; then
