@@ -49,6 +49,10 @@ struct LoadBudget {
   std::uint64_t max_push_depth = 65'536;       // SDL transforms saved by push
 
   std::uint64_t max_warnings = 100;  // further warnings are dropped, not an error
+  // Lenient loading (false) warns about a missing or undecodable texture, a node or field
+  // outside VRML97, an unsupported url, and goes on without that part; strict loading
+  // (tessera-render --strict, the job setting "strict") makes each an error.
+  bool strict = false;
 
   // ---- Stopping from outside, checked every few thousand counted items
   std::chrono::steady_clock::time_point deadline = std::chrono::steady_clock::time_point::max();

@@ -25,8 +25,20 @@ Scene load_scene(const SceneSource& source, const std::string& path, SceneFormat
                                      : load_sdl(source, path, budget);
 }
 
-Scene load_scene_file(const std::filesystem::path& file, const LoadBudget& budget) {
-  return load_scene(folder_of(file), file.filename().string(), scene_format_of(file), budget);
+Scene load_scene_file(const std::filesystem::path& file, const LoadBudget& budget,
+                      const std::optional<std::filesystem::path>& root) {
+  namespace fs = std::filesystem;
+  const SceneFormat format = scene_format_of(file);
+  if (!root) {
+    const fs::path folder = file.parent_path().empty() ? fs::path(".") : file.parent_path();
+    return load_scene(DirectorySource(folder, /*confined=*/false), file.filename().string(), format,
+                      budget);
+  }
+  const fs::path inside = fs::absolute(file).lexically_normal().lexically_relative(
+      fs::absolute(*root).lexically_normal());
+  if (inside.empty() || *inside.begin() == "..")
+    throw SceneError({file.string(), 1, 1}, "the scene file is outside --root " + root->string());
+  return load_scene(DirectorySource(*root), inside.generic_string(), format, budget);
 }
 
 }  // namespace tessera

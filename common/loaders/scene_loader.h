@@ -26,7 +26,10 @@ SceneFormat scene_format_of(const std::filesystem::path& file);
 Scene load_scene(const SceneSource& source, const std::string& path, SceneFormat format,
                  const LoadBudget& budget = {});
 
-// Convenience for the command line: the file's folder is the root, its name picks the format.
-Scene load_scene_file(const std::filesystem::path& file, const LoadBudget& budget = {});
+// For the command line: the file's name picks the format. Without `root`, the paths the scene
+// names resolve against the folder of the file that names them, wherever they lead; with it,
+// they must stay inside `root` (and so must `file`).
+Scene load_scene_file(const std::filesystem::path& file, const LoadBudget& budget = {},
+                      const std::optional<std::filesystem::path>& root = std::nullopt);
 
 }  // namespace tessera

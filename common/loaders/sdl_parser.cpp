@@ -52,6 +52,7 @@ class LoadContext {
 
   Scene& scene() { return scene_; }
   LoadMeter& meter() { return meter_; }
+  const SceneSource& source() const { return source_; }
   const LoadBudget& budget() const { return meter_.budget(); }
   std::unordered_map<std::string, Macro>& macros() { return macros_; }
   const std::string& path_of(const Token& token) const { return files_[token.file]->path; }
@@ -454,7 +455,7 @@ void FileParser::add_light(const Light& light) {
 std::string FileParser::resolve(const Token& name) {
   const std::optional<std::string> path =
       resolve_scene_path(context_.path_of(name), std::string(name.text));
-  if (!path) {
+  if (!path || !context_.source().admits(*path)) {
     fail(name,
          std::string(keyword_name_) + " " + in_quotes(name.text) + " leaves the scene's folder");
   }

@@ -9,20 +9,6 @@
 namespace tessera::vrml {
 namespace {
 
-// A PROTO's interface field: its type and default value (none for events and EXTERNPROTOs).
-struct ProtoField {
-  FieldType type = FieldType::SFFloat;
-  std::optional<FieldValue> value;
-};
-
-struct Proto {
-  std::string name;
-  std::map<std::string, ProtoField> interface;
-  std::vector<NodePtr> body;  // the first node is what an instance renders as
-  bool external = false;
-  std::uint64_t nested_instances = 0;  // PROTO instances its body holds, each made anew
-};
-
 bool is_number_start(const Token& t) {
   if (t.kind != Token::Kind::Word || t.text.empty()) return false;
   const char c = t.text[0];
@@ -41,10 +27,12 @@ std::uint64_t field_bytes(const FieldValue& v) {
   return bytes;
 }
 
+constexpr std::string_view kBuiltInUrn = "urn:web3d:vrml97:node:";
+
 class Parser {
  public:
-  Parser(const LexedFile& file, LoadMeter& meter, ParsedWorld& world)
-      : file_(file), meter_(meter), world_(world) {}
+  Parser(const LexedFile& file, LoadMeter& meter, ParsedWorld& world, ProtoFiles* files)
+      : file_(file), meter_(meter), world_(world), files_(files) {}
 
   void run() {
     while (!at_end())
@@ -64,6 +52,9 @@ class Parser {
   SourceLocation location(const Token& t) const { return {file_.path, t.line, t.column}; }
   [[noreturn]] void fail(const Token& at, const std::string& message) const {
     throw SceneError(location(at), message);
+  }
+  void leave_out(const Token& at, const std::string& message) {
+    vrml::leave_out(meter_.budget(), world_.warnings, location(at), message);
   }
   const Token& take(const std::string& what) {
     if (at_end())
@@ -125,6 +116,11 @@ class Parser {
     if (first.text == "DEF") {
       const Token& name = take_word("a node name after 'DEF'");
       const Token& type = take_word("a node type after 'DEF " + name.text + "'");
+      // A Script may USE the node it is DEFined as (§4.6.2 allows it); a Script is not drawn,
+      // so the name stands for no node until its body is read.
+      if (const NodeSpec* spec = find_node_spec(type.text);
+          spec && spec->role != NodeRole::Rendered)
+        defs_[name.text] = nullptr;
       NodePtr node = node_body(type);
       defs_[name.text] = node;
       return node;
@@ -138,7 +134,10 @@ class Parser {
                   "nodes nest deeper than " + std::to_string(meter_.budget().max_node_nesting));
     count_node();
     NodePtr out;
-    if (const auto declared = protos_.find(type.text); declared != protos_.end()) {
+    if (const auto declared = protos_.find(type.text);
+        declared != protos_.end() && declared->second.built_in) {
+      out = built_in_node(*declared->second.built_in, type);
+    } else if (declared != protos_.end()) {
       out = proto_instance(declared->second, type);
     } else if (const NodeSpec* spec = find_node_spec(type.text)) {
       if (spec->role == NodeRole::Rendered) {
@@ -149,7 +148,9 @@ class Parser {
         ++(spec->role == NodeRole::NonVisual ? world_.ignored : world_.unsupported)[type.text];
       }
     } else {
-      fail(type, "unknown node type " + in_quotes(type.text));
+      leave_out(type, "unknown node type " + in_quotes(type.text));
+      expect("{", "after " + in_quotes(type.text));
+      skip_fields();
     }
     --depth_;
     return out;
@@ -157,7 +158,7 @@ class Parser {
 
   NodePtr built_in_node(const NodeSpec& spec, const Token& type) {
     auto node = std::make_shared<Node>();
-    node->type = type.text;
+    node->type = spec.type;
     node->where = location(type);
     expect("{", "after " + in_quotes(type.text));
     while (!peek_is("}")) {
@@ -176,7 +177,11 @@ class Parser {
         if (field) node->is_links[name.text] = file_.tokens[next_ - 1].text;
         continue;
       }
-      if (!field) fail(name, "unknown field " + in_quotes(name.text) + " of " + type.text);
+      if (!field) {
+        leave_out(name, "unknown field " + in_quotes(name.text) + " of " + type.text);
+        skip_value(name);
+        continue;
+      }
       FieldValue& value = node->fields[name.text];
       value = field_value(field->type, name.text + " of " + type.text);
       count_bytes(field_bytes(value));
@@ -376,6 +381,8 @@ class Parser {
     proto.nested_instances = meter_.total(LoadLimit::ProtoInstances) - instances_before;
     proto_ = outer_proto;
     defs_.swap(outer_defs);
+    if (world_.first_proto.empty()) world_.first_proto = proto.name;
+    world_.protos[proto.name] = proto;
     protos_[proto.name] = std::move(proto);
   }
 
@@ -385,10 +392,64 @@ class Parser {
     proto.name = take_word("an EXTERNPROTO name").text;
     proto.external = true;
     proto_interface(proto, false);
-    field_value(FieldType::MFString, "the url of EXTERNPROTO " + in_quotes(proto.name));
-    world_.warnings.push_back(location(keyword).to_string() + ": EXTERNPROTO " +
-                              in_quotes(proto.name) + " is not fetched: its instances are ignored");
+    const FieldValue urls =
+        field_value(FieldType::MFString, "the url of EXTERNPROTO " + in_quotes(proto.name));
+    std::string why;  // of the last url that could not be read
+    for (const std::string& url : urls.strings) {
+      if (const std::optional<Proto> found = external_definition(url, urls.where, why)) {
+        const std::string name = proto.name;
+        proto = *found;
+        proto.name = name;
+        protos_[proto.name] = std::move(proto);
+        return;
+      }
+    }
+    leave_out(keyword, "EXTERNPROTO " + in_quotes(proto.name) + ": " +
+                           (why.empty() ? "it has no url" : why) + ": its instances are left out");
     protos_[proto.name] = std::move(proto);
+  }
+
+  // What one EXTERNPROTO url names (§4.9.2-4.9.3): a built-in node by its urn, a PROTO of this
+  // file ("#Name"), or a PROTO of another file (the one named after '#', or its first);
+  // nullopt with `why` when it names none of these.
+  std::optional<Proto> external_definition(const std::string& url, const SourceLocation& at,
+                                           std::string& why) {
+    if (url.starts_with(kBuiltInUrn)) {
+      const std::string name = url.substr(kBuiltInUrn.size());
+      const NodeSpec* spec = find_node_spec(name);
+      if (spec && spec->role == NodeRole::Rendered) {
+        Proto alias;
+        alias.built_in = spec;
+        return alias;
+      }
+      why = in_quotes(url) + " is not a node this loader draws";
+      return std::nullopt;
+    }
+    const std::optional<std::string> local = local_path_of_url(url);
+    if (!local) {
+      why = "the url scheme of " + in_quotes(url) + " is not read (the loader fetches nothing)";
+      return std::nullopt;
+    }
+    const std::size_t hash = local->find('#');
+    const std::string path = local->substr(0, hash);
+    const std::string name = hash == std::string::npos ? "" : local->substr(hash + 1);
+    const std::map<std::string, Proto>* protos = &protos_;
+    std::string first;
+    if (!path.empty()) {
+      const ParsedWorld* world = files_ ? files_->proto_file(file_.path, path, at, why) : nullptr;
+      if (!world) {
+        if (!files_) why = in_quotes(path) + " is not read here";
+        return std::nullopt;
+      }
+      protos = &world->protos;
+      first = world->first_proto;
+    }
+    const auto found = protos->find(name.empty() ? first : name);
+    if (found == protos->end()) {
+      why = in_quotes(url) + " names no PROTO";
+      return std::nullopt;
+    }
+    return found->second;
   }
 
   NodePtr proto_instance(Proto& proto, const Token& type) {
@@ -401,8 +462,12 @@ class Parser {
     while (!peek_is("}")) {
       const Token& name = take_word("a field of PROTO " + in_quotes(proto.name) + " or '}'");
       const auto field = proto.interface.find(name.text);
-      if (field == proto.interface.end())
-        fail(name, "unknown field " + in_quotes(name.text) + " of PROTO " + in_quotes(proto.name));
+      if (field == proto.interface.end()) {
+        leave_out(name,
+                  "unknown field " + in_quotes(name.text) + " of PROTO " + in_quotes(proto.name));
+        skip_value(name);
+        continue;
+      }
       if (peek_is("IS")) {
         is_link(name);
         relinks[name.text] = file_.tokens[next_ - 1].text;
@@ -447,6 +512,7 @@ class Parser {
   const LexedFile& file_;
   LoadMeter& meter_;
   ParsedWorld& world_;
+  ProtoFiles* files_;
   std::size_t next_ = 0;
   std::uint64_t depth_ = 0;
   std::map<std::string, NodePtr> defs_;
@@ -456,9 +522,34 @@ class Parser {
 
 }  // namespace
 
-ParsedWorld parse_vrml(const LexedFile& file, LoadMeter& meter) {
+void leave_out(const LoadBudget& budget, std::vector<std::string>& warnings,
+               const SourceLocation& where, const std::string& message) {
+  if (budget.strict) throw SceneError(where, message);
+  if (warnings.size() < budget.max_warnings) warnings.push_back(where.to_string() + ": " + message);
+}
+
+std::optional<std::string> local_path_of_url(const std::string& url) {
+  std::size_t colon = url.find(':');
+  const std::size_t end_of_scheme = url.find_first_of("/#?");
+  if (colon == std::string::npos || colon < 2 || colon > end_of_scheme) return url;
+  for (std::size_t i = 0; i < colon; ++i)
+    if (!std::isalnum(static_cast<unsigned char>(url[i])) && url[i] != '+' && url[i] != '-' &&
+        url[i] != '.')
+      return url;
+  if (to_lower(url.substr(0, colon)) != "file") return std::nullopt;
+  std::string path = url.substr(colon + 1);
+  if (path.starts_with("//")) {  // file://host/path: only the local host, written empty
+    const std::size_t slash = path.find('/', 2);
+    const std::string host = path.substr(2, slash == std::string::npos ? slash : slash - 2);
+    if (!host.empty() && host != "localhost") return std::nullopt;
+    path = slash == std::string::npos ? "" : path.substr(slash);
+  }
+  return path;
+}
+
+ParsedWorld parse_vrml(const LexedFile& file, LoadMeter& meter, ProtoFiles* files) {
   ParsedWorld world;
-  Parser(file, meter, world).run();
+  Parser(file, meter, world, files).run();
   return world;
 }
 

@@ -6,6 +6,7 @@
 #include <memory>
 #include <numbers>
 #include <optional>
+#include <set>
 #include <span>
 #include <string>
 #include <unordered_set>
@@ -43,7 +44,7 @@ struct BoundingSphere {
   double radius = 0;
 };
 
-class Converter {
+class Converter : public ProtoFiles {
  public:
   Converter(const SceneSource& source, const std::string& path, LoadMeter& meter)
       : source_(source), path_(path), meter_(meter) {}
@@ -51,7 +52,7 @@ class Converter {
   Scene run() {
     const SourceLocation start{path_, 1, 1};
     const ParsedWorld* parsed = parsed_world(path_, start);
-    if (!parsed) throw SceneError(start, "cannot read " + quoted(path_));
+    if (!parsed) throw SceneError(start, quoted(path_) + " " + why_unreadable(source_, path_));
     world(*parsed, path_, Affine::identity(), 0);
     finish();
     return std::move(scene_);
@@ -63,14 +64,54 @@ class Converter {
   // name it; null when the source has no such file.
   const ParsedWorld* parsed_world(const std::string& path, const SourceLocation& from) {
     if (const auto known = worlds_.find(path); known != worlds_.end()) return known->second.get();
+    if (!being_parsed_.insert(path).second) return nullptr;  // an EXTERNPROTO cycle
     const std::optional<std::string> bytes = read(path, from);
-    if (!bytes) return nullptr;
+    if (!bytes) {
+      being_parsed_.erase(path);
+      return nullptr;
+    }
     auto parsed = std::make_unique<const ParsedWorld>(
-        parse_vrml(lex_vrml(vrml_text(*bytes, path, meter_), path, meter_), meter_));
+        parse_vrml(lex_vrml(vrml_text(*bytes, path, meter_), path, meter_), meter_, this));
+    being_parsed_.erase(path);
     for (const auto& [name, count] : parsed->ignored) ignored_[name] += count;
     for (const auto& [name, count] : parsed->unsupported) unsupported_[name] += count;
     for (const std::string& w : parsed->warnings) scene_.warnings.push_back(w);
     return worlds_.emplace(path, std::move(parsed)).first->second.get();
+  }
+
+  // The world of the file an EXTERNPROTO names, as Inline's.
+  const ParsedWorld* proto_file(const std::string& from_file, const std::string& url,
+                                const SourceLocation& at, std::string& why) override {
+    const std::optional<std::string> path = resolve_scene_path(from_file, url);
+    if (!path) {
+      why = quoted(url) + " names no file";
+      return nullptr;
+    }
+    if (being_parsed_.contains(*path)) {
+      why = quoted(*path) + " is being read: the EXTERNPROTO names its own file";
+      return nullptr;
+    }
+    const ParsedWorld* world = parsed_world(*path, at);
+    if (!world) why = quoted(*path) + " " + why_unreadable(source_, *path);
+    return world;
+  }
+
+  // Leaves out a part of the world with a warning, or under --strict stops (leave_out).
+  void leave_out(const SourceLocation& where, const std::string& message) {
+    vrml::leave_out(meter_.budget(), scene_.warnings, where, message);
+  }
+
+  // The file the url `name` of a node in the current file names: nullopt, with `why`, when it
+  // is of a scheme the loader does not read or names no file.
+  std::optional<std::string> url_path(const std::string& name, std::string& why) const {
+    const std::optional<std::string> local = local_path_of_url(name);
+    if (!local) {
+      why = "the url scheme of " + quoted(name) + " is not read (the loader fetches nothing)";
+      return std::nullopt;
+    }
+    std::optional<std::string> path = resolve_scene_path(file_, *local);
+    if (!path) why = quoted(name) + " names no file";
+    return path;
   }
 
   // A file's roots are a group: the Inline's children.
@@ -159,6 +200,9 @@ class Converter {
       shape(n, ct);
     } else if (t == "DirectionalLight" || t == "PointLight" || t == "SpotLight") {
       light(n, ct);
+    } else if (depth > 0 &&
+               (t == "Viewpoint" || t == "NavigationInfo" || t == "Background" || t == "Fog")) {
+      // Bindable nodes of Inlined files are not bound at load (§4.6.10, §6.53).
     } else if (t == "Viewpoint") {
       if (!viewpoint_) viewpoint_ = viewpoint(n, ct);
     } else if (t == "NavigationInfo") {
@@ -191,16 +235,18 @@ class Converter {
     if (static_cast<std::uint64_t>(depth) + 1 > max_depth)
       meter_.fail(LoadLimit::InlineDepth, n.where,
                   "Inlines nest deeper than " + std::to_string(max_depth));
+    std::string why = "it has no url";  // of the last url that could not be read
     for (const std::string& name : url->strings) {
-      const std::optional<std::string> path = resolve_scene_path(file_, name);
-      if (const ParsedWorld* parsed = path ? parsed_world(*path, n.where) : nullptr) {
+      const std::optional<std::string> path = url_path(name, why);
+      if (!path) continue;
+      if (const ParsedWorld* parsed = parsed_world(*path, n.where)) {
         meter_.add(LoadLimit::InlineExpansions, 1, n.where);
         world(*parsed, *path, ct, depth + 1);
         return;
       }
+      why = quoted(*path) + " " + why_unreadable(source_, *path);
     }
-    throw SceneError(n.where,
-                     "Inline: none of its urls names a file inside the scene's folder or bundle");
+    leave_out(n.where, "Inline: " + why + ": left out");
   }
 
   // ---- Shapes
@@ -211,18 +257,24 @@ class Converter {
     const Material material = appearance(look);
     const std::string& t = geometry->type;
     if (t == "Sphere") {
-      // Turned so that the texture's poles lie on y, as VRML's do.
+      // Turned so that the texture's poles lie on y, as VRML's do, and its s = 0 (on +x) at
+      // -z, wrapping counter-clockwise seen from +y (§6.44).
       const double r = sf_float(*geometry, "radius", 1);
-      add(Sphere{}, ct * Affine::scaling({r, r, r}) * *Affine::rotation(-90, {1, 0, 0}), material,
-          *geometry);
+      add(Sphere{},
+          ct * Affine::scaling({r, r, r}) * *Affine::rotation(-90, {1, 0, 0}) *
+              *Affine::rotation(90, {0, 0, 1}),
+          material, *geometry);
     } else if (t == "Box") {
       add(Cube{}, ct * Affine::scaling(sf_vec3(*geometry, "size", {2, 2, 2}) * 0.5), material,
           *geometry);
     } else if (t == "Cone" || t == "Cylinder") {
       const bool cone = t == "Cone";
-      TaperedCylinder shape{cone ? 0.0 : 1.0, false, sf_bool(*geometry, "side", true),
+      TaperedCylinder shape{cone ? 0.0 : 1.0,
+                            false,
+                            sf_bool(*geometry, "side", true),
                             sf_bool(*geometry, "bottom", true),
-                            !cone && sf_bool(*geometry, "top", true)};
+                            !cone && sf_bool(*geometry, "top", true),
+                            /*vrml_texture=*/true};
       // With a part left out the inside shows: light it as well.
       Material m = material;
       if (!shape.wall || !shape.base_cap || (!cone && !shape.top_cap)) m.light_back_faces = true;
@@ -329,13 +381,12 @@ class Converter {
   // (FlatTexture::transform). No node: the identity, so that coordinates beyond [0, 1] repeat
   // the texture.
   // One or two channels (intensity, and alpha): an image that modulates the colour under it.
-  // An image that cannot be opened is taken as RGB here; decoding it for the render reports
-  // it.
-  static bool is_intensity_image(const std::string& bytes, const std::string& path) {
+  // Nullopt for bytes that cannot be opened as an image.
+  static std::optional<bool> is_intensity_image(const std::string& bytes, const std::string& path) {
     try {
       return texture_channels(bytes, path) <= 2;
     } catch (const std::runtime_error&) {
-      return false;
+      return std::nullopt;
     }
   }
 
@@ -356,15 +407,25 @@ class Converter {
   // face set's texture coordinates. An RGB texture replaces the diffuse colour; on a lit
   // shape, an intensity texture modulates it (§4.14.2).
   void texture(const Node& t, const Node* material, Material& out) {
+    if (t.type != "ImageTexture") return;  // PixelTexture, MovieTexture: listed as not rendered
+    std::string why = "it has no url";     // of the last url that could not be read
     for (const std::string& name :
          t.field("url") ? t.field("url")->strings : std::vector<std::string>{}) {
-      const std::optional<std::string> path = resolve_scene_path(file_, name);
+      const std::optional<std::string> path = url_path(name, why);
       if (!path) continue;
       if (!images_.contains(*path)) {  // read once, however many shapes it textures
         std::optional<std::string> bytes = read(*path, t.where);
-        if (!bytes) continue;
+        if (!bytes) {
+          why = quoted(*path) + " " + why_unreadable(source_, *path);
+          continue;
+        }
+        const std::optional<bool> intensity = is_intensity_image(*bytes, *path);
+        if (!intensity) {
+          why = quoted(*path) + " is not an image this loader can decode";
+          continue;
+        }
         meter_.add(LoadLimit::BytesProduced, bytes->size(), t.where);  // kept in the scene
-        images_[*path] = is_intensity_image(*bytes, *path);
+        images_[*path] = *intensity;
         scene_.images.push_back({*path, std::move(*bytes), t.where});
       }
       FlatTexture& flat = out.flat_texture;
@@ -376,9 +437,7 @@ class Converter {
       flat.clamp_t = !sf_bool(t, "repeatT", true);
       return;
     }
-    throw SceneError(t.where,
-                     "ImageTexture: none of its urls names a file inside the scene's folder or "
-                     "bundle");
+    leave_out(t.where, "ImageTexture: " + why + ": the shape is drawn untextured");
   }
 
   // ---- Lights (§6.16, §6.36, §6.43)
@@ -499,7 +558,7 @@ class Converter {
   void finish() {
     SceneGlobals& g = scene_.globals;
     g.global_ambient = clamp_unit(ambient_);
-    scene_.camera = viewpoint_ ? *viewpoint_ : framing_camera();
+    scene_.camera = viewpoint_ ? *viewpoint_ : framing_camera(billboard_spheres());
     // Billboards nested in billboards are turned as they come: this loop sees them appended.
     // Each is walked inside a group holding the DirectionalLights it inherited from the groups
     // around it, so that they light its objects too.
@@ -514,6 +573,8 @@ class Converter {
       Light headlight;  // along the view, intensity 1, ambientIntensity 0 (§6.29)
       headlight.is_directional = true;
       headlight.direction = view_direction(scene_.camera);
+      // A browser's headlight casts no shadow; traced ones would fringe foreground objects.
+      headlight.casts_shadows = false;
       scene_.lights.push_back(headlight);
     }
     if (!ignored_.empty())
@@ -523,6 +584,36 @@ class Converter {
                                 listing(ignored_));
     if (!unsupported_.empty())
       scene_.warnings.push_back(path_ + ": not rendered (yet): " + listing(unsupported_));
+  }
+
+  // For framing a world without a Viewpoint, before the Billboards can be turned: about each
+  // Billboard's origin, the sphere that holds its children however it turns (exactly under a
+  // uniform scale). Its children are laid down unturned, measured, and taken away again.
+  std::vector<BoundingSphere> billboard_spheres() {
+    const std::size_t objects = scene_.objects.size(), lights = scene_.lights.size(),
+                      billboards = billboards_.size(), warnings = scene_.warnings.size();
+    std::vector<BoundingSphere> out;
+    for (std::size_t i = 0; i < billboards_.size(); ++i) {  // nested ones are appended
+      const Billboard b = billboards_[i];
+      const std::size_t first = scene_.objects.size();
+      file_ = b.file;
+      group(mf_nodes(*b.node, "children"), b.ct, b.depth);
+      BoundingSphere around{b.ct.apply_point({}), 0};
+      for (std::size_t k = first; k < scene_.objects.size(); ++k) {
+        const BoundingSphere part = bounding_sphere(scene_.objects[k]);
+        around.radius = std::max(around.radius, length(part.centre - around.centre) + part.radius);
+      }
+      if (scene_.objects.size() > first) out.push_back(around);
+    }
+    scene_.objects.erase(scene_.objects.begin() + static_cast<std::ptrdiff_t>(objects),
+                         scene_.objects.end());
+    scene_.lights.erase(scene_.lights.begin() + static_cast<std::ptrdiff_t>(lights),
+                        scene_.lights.end());
+    billboards_.erase(billboards_.begin() + static_cast<std::ptrdiff_t>(billboards),
+                      billboards_.end());
+    scene_.warnings.erase(scene_.warnings.begin() + static_cast<std::ptrdiff_t>(warnings),
+                          scene_.warnings.end());
+    return out;
   }
 
   // Billboard (§6.6): the turn about axisOfRotation that points the children's +z at the eye;
@@ -545,16 +636,15 @@ class Converter {
     return Affine::rotation(degrees(angle), axis).value_or(Affine::identity());
   }
 
-  // No Viewpoint: look at the centre of the world's bounds down -z, from the distance at which
-  // their bounding sphere fills the field of view (`000_…` §4.4.2). An empty world gets VRML's
-  // default Viewpoint.
-  Camera framing_camera() const {
+  // No Viewpoint: look at the centre of the world's bounds (its objects' and `spheres`, the
+  // Billboards') down -z, from the distance at which their bounding sphere fills the field of
+  // view (`000_…` §4.4.2). An empty world gets VRML's default Viewpoint.
+  Camera framing_camera(std::vector<BoundingSphere> spheres) const {
     Camera camera;
     camera.eye = {0, 0, 10};
     camera.look_at = {0, 0, 0};
     camera.view_angle = 45;
     camera.view_angle_on_smaller_side = true;
-    std::vector<BoundingSphere> spheres;
     for (const SceneObject& object : scene_.objects) spheres.push_back(bounding_sphere(object));
     if (spheres.empty()) return camera;
     Vec3 lo{kHuge, kHuge, kHuge}, hi = -lo;
@@ -610,6 +700,7 @@ class Converter {
   // Every file's parsed world by path, alive for the whole conversion: Billboards and the mesh
   // cache hold nodes by address until the end.
   std::map<std::string, std::unique_ptr<const ParsedWorld>> worlds_;
+  std::set<std::string> being_parsed_;       // files whose parse has not finished
   std::unordered_set<const Node*> visited_;  // nodes the walk has been through
   std::string file_;                         // the file being converted, for resolving Inline urls
   Scene scene_;

@@ -56,6 +56,7 @@ constexpr SettingAccess field = {
 constexpr auto kRender = &JobSettings::render;
 constexpr auto kOverrides = &JobSettings::overrides;
 constexpr auto kSchedule = &JobSettings::schedule;
+constexpr auto kLoad = &JobSettings::load;
 constexpr unsigned kEverywhere = kJobRequest | kWire | kRenderCli;
 constexpr unsigned kJobs = kJobRequest | kWire;  // the service's, not tessera-render's
 
@@ -207,6 +208,12 @@ const SettingSpec kSchema[] = {
      .layers = kJobRequest,
      .help = "share of the workers while several jobs run",
      .access = field<kSchedule, &ScheduleSettings::priority>},
+    {.name = "strict",
+     .type = SettingType::Boolean,
+     .layers = kJobRequest | kRenderCli,
+     .help = "a missing texture, an unknown node or field, an unsupported url is an error, not a "
+             "warning",
+     .access = field<kLoad, &LoadSettings::strict>},
 };
 
 // ---- Text -------------------------------------------------------------------------------

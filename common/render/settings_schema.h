@@ -25,11 +25,18 @@ struct ScheduleSettings {
   std::string preview = "anchor";  // parse_preview_mode
 };
 
+// How the scene is loaded (common/loaders/load_budget.h): settings of a job request and of
+// tessera-render, not of the wire (workers load what the coordinator accepted, leniently).
+struct LoadSettings {
+  bool strict = false;  // what lenient loading warns about is an error
+};
+
 // Everything a setting sets.
 struct JobSettings {
   RenderSettings render;
   SceneOverrides overrides;
   ScheduleSettings schedule;
+  LoadSettings load;
 };
 
 enum class SettingType { Integer, Number, Boolean, Choice, Seed };

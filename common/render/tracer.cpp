@@ -278,10 +278,11 @@ Rgb Tracer::local_illumination(const Hit& hit, const Material& m, const SurfaceC
     }
 
     double shadow = 1;  // eq. 4.24-4.26: the share of the light that reaches the hit
-    if constexpr (kShadows == ShadowMode::Hard)
-      shadow = shadow_factor(feeler(hit, directional, l, light.position));
-    else if constexpr (kShadows == ShadowMode::Soft)
-      shadow = soft_visibility(hit, light, l, distance, rng);
+    if constexpr (kShadows == ShadowMode::Hard) {
+      if (light.casts_shadows) shadow = shadow_factor(feeler(hit, directional, l, light.position));
+    } else if constexpr (kShadows == ShadowMode::Soft) {
+      if (light.casts_shadows) shadow = soft_visibility(hit, light, l, distance, rng);
+    }
     if (shadow <= 0) continue;
 
     Rgb contribution = colours.diffuse * light.color * (n_dot_l * diffuse_scale);  // eq. 4.8

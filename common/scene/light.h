@@ -51,6 +51,9 @@ struct Light {
   // light lights nothing. SDL lights have neither.
   std::optional<LightAttenuation> attenuation;
   double radius = std::numeric_limits<double>::infinity();
+  // False for VRML's headlight: a directional light along the view whose shadows a viewer
+  // would see as black fringes beside foreground objects, where a browser shows none.
+  bool casts_shadows = true;
   bool lights(std::uint32_t object) const {
     if (scope.empty()) return true;
     for (const ObjectRange& range : scope)

@@ -29,6 +29,10 @@ struct TaperedCylinder {
   // Which parts are drawn (VRML's Cylinder and Cone may leave out side, bottom or top). An
   // open shape has no inside: it is no operand for a boolean object.
   bool wall = true, base_cap = true, top_cap = true;
+  // VRML97's texture mapping (§6.12, §6.17) instead of the manual's: the wall's s starts at +y
+  // (the VRML loader turns it to -z) rather than +x, and the base cap's t runs the other way,
+  // so that seen from outside it reads right side up.
+  bool vrml_texture = false;
   friend bool operator==(const TaperedCylinder&, const TaperedCylinder&) = default;
 };
 struct MeshShape {

@@ -94,9 +94,15 @@ TexCoord cube_texture_coordinates(const Vec3& p, std::uint32_t face) {
 
 TexCoord tapered_cylinder_texture_coordinates(const TaperedCylinder& shape, const Vec3& p,
                                               std::uint32_t part) {
-  if (part == 0) return {turn_fraction(p.y, p.x), std::clamp(p.z, 0.0, 1.0)};
+  if (part == 0) {
+    double s = turn_fraction(p.y, p.x);
+    if (shape.vrml_texture) s = s < 0.25 ? s + 0.75 : s - 0.25;
+    return {s, std::clamp(p.z, 0.0, 1.0)};
+  }
   const double radius = part == 1 ? 1 : shape.top_radius;
-  return cap_coordinates(p.x, p.y, radius, shape.distort_texture);
+  TexCoord c = cap_coordinates(p.x, p.y, radius, shape.distort_texture);
+  if (shape.vrml_texture && part == 1) c.t = 1 - c.t;
+  return c;
 }
 
 TexCoord torus_texture_coordinates(const Torus& shape, const Vec3& p) {

@@ -225,6 +225,7 @@ void check_scene(const Submission& sub, const std::optional<std::filesystem::pat
   std::map<std::string, std::string> textures;
   LoadBudget load_budget;  // the defaults of docs/SERVICE.md's "Load budget", and our deadline
   load_budget.deadline = budget.deadline;
+  load_budget.strict = out.strict;
   try {
     Scene scene = load_scene(source, sub.main, *scene_format_named(sub.format), load_budget);
     budget.check("loading the scene");
@@ -280,6 +281,7 @@ void parse_settings(const json& s, const ServiceLimits& limits, JobRequest& out)
                       std::to_string(limits.max_pixels) + " pixels");
   out.spec = {r, settings.overrides};
   out.priority = settings.schedule.priority;
+  out.strict = settings.load.strict;
   out.plan.width = r.width;
   out.plan.height = r.height;
   out.plan.passes = r.passes;

@@ -26,6 +26,7 @@ struct JobRequest {
   std::vector<std::string> effects, warnings;
   double seconds_per_pixel_pass = 0;  // measured by a probe on the coordinator (issue 5)
   bool probe_cut_short = false;       // the probe hit its deadline: the cost is a lower bound
+  bool strict = false;  // settings.strict: what loading warns about is a 400 (LoadBudget::strict)
 };
 
 struct JobUpload {

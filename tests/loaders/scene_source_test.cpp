@@ -6,7 +6,8 @@
 #include <fstream>
 #include <string>
 
-#include "tests/loaders/loader_test_util.h"
+#include "common/loaders/scene_loader.h"
+#include "tests/loaders/vrml_test_util.h"
 
 namespace tessera::test {
 namespace {
@@ -24,14 +25,28 @@ TEST(ResolveScenePath, RelativeToTheFolderOfTheFile) {
   EXPECT_EQ(resolve_scene_path("", "y.obj"), "y.obj");
 }
 
-TEST(ResolveScenePath, RefusesWhatLeavesTheRoot) {
-  EXPECT_EQ(resolve_scene_path("s.sdl", "../a.obj"), std::nullopt);
-  EXPECT_EQ(resolve_scene_path("sub/s.sdl", "../../a.obj"), std::nullopt);
-  EXPECT_EQ(resolve_scene_path("s.sdl", "x/../../a.obj"), std::nullopt);
-  EXPECT_EQ(resolve_scene_path("s.sdl", "/etc/passwd"), std::nullopt);
+TEST(ResolveScenePath, KeepsWhatClimbsOutOfTheRootForTheSourceToJudge) {
+  EXPECT_EQ(resolve_scene_path("s.sdl", "../a.obj"), "../a.obj");
+  EXPECT_EQ(resolve_scene_path("sub/s.sdl", "../../t/a.obj"), "../t/a.obj");
+  EXPECT_EQ(resolve_scene_path("s.sdl", "x/../../a.obj"), "../a.obj");
+  EXPECT_EQ(resolve_scene_path("../w/s.wrl", "../t/y.jpg"), "../t/y.jpg");
+  EXPECT_EQ(resolve_scene_path("s.sdl", "/etc/passwd"), "/etc/passwd");
+  EXPECT_EQ(resolve_scene_path("/a/s.sdl", "../../../b.obj"), "/b.obj");
   EXPECT_EQ(resolve_scene_path("s.sdl", ""), std::nullopt);
   EXPECT_EQ(resolve_scene_path("s.sdl", "."), std::nullopt);  // the root is not a file
   EXPECT_EQ(resolve_scene_path("s.sdl", std::string("a\0b", 3)), std::nullopt);
+}
+
+TEST(SceneSource, AdmitsOnlyPathsInsideTheRoot) {
+  const MemorySource memory;
+  EXPECT_TRUE(memory.admits("a/b.obj"));
+  EXPECT_FALSE(memory.admits("../a.obj"));
+  EXPECT_FALSE(memory.admits("/etc/passwd"));
+  EXPECT_EQ(why_unreadable(memory, "a.obj"), "not found");
+  EXPECT_EQ(why_unreadable(memory, "../a.obj"), "is outside the scene's root");
+  EXPECT_TRUE(DirectorySource("/tmp/r").admits("../r/a.obj"));
+  EXPECT_FALSE(DirectorySource("/tmp/r").admits("../q/a.obj"));
+  EXPECT_TRUE(DirectorySource("/tmp/r", /*confined=*/false).admits("../q/a.obj"));
 }
 
 TEST(MemorySource, ReadsWhatWasAdded) {
@@ -131,6 +146,38 @@ TEST_F(DirectorySourceTest, LoadSdlFileRefusesIncludesOutsideTheFolder) {
   } catch (const SceneError& e) {
     EXPECT_STREQ(e.what(), "scene.sdl:1:9: included file 'x.sdl' not found");
   }
+}
+
+// The command line reads what its user can read: `../` leads out of the scene's folder,
+// unless --root confines it.
+TEST_F(DirectorySourceTest, LoadSceneFileFollowsDotDotUnlessARootConfinesIt) {
+  fs::create_directories(base_ / "textures");
+  std::ofstream(base_ / "textures" / "y.ppm", std::ios::binary) << kTinyPpm;
+  write(root() / "x.wrl",
+        "#VRML V2.0 utf8\nShape { appearance Appearance { texture ImageTexture {\n"
+        "  url \"../textures/y.ppm\" } } geometry Box {} }\n"
+        "Inline { url \"../outside/part.wrl\" }\n");
+  write(base_ / "outside" / "part.wrl", "#VRML V2.0 utf8\nShape { geometry Sphere {} }\n");
+  LoadBudget strict;
+  strict.strict = true;
+  const Scene scene = load_scene_file(root() / "x.wrl", strict);
+  EXPECT_EQ(scene.objects.size(), 2u);
+  ASSERT_EQ(scene.images.size(), 1u);
+  EXPECT_EQ(scene.images[0].path, "../textures/y.ppm");
+  // --root at the common folder: the same files, named from there.
+  const Scene rooted = load_scene_file(root() / "x.wrl", strict, base_);
+  ASSERT_EQ(rooted.images.size(), 1u);
+  EXPECT_EQ(rooted.images[0].path, "textures/y.ppm");
+  // --root at the scene's own folder: outside it, and said so (not "not found").
+  try {
+    load_scene_file(root() / "x.wrl", strict, root());
+    FAIL() << "no error";
+  } catch (const SceneError& e) {
+    EXPECT_STREQ(e.what(),
+                 "x.wrl:2:41: ImageTexture: '../textures/y.ppm' is outside the scene's root: the "
+                 "shape is drawn untextured");
+  }
+  EXPECT_THROW(load_scene_file(root() / "x.wrl", strict, base_ / "outside"), SceneError);
 }
 
 }  // namespace

@@ -87,13 +87,13 @@ TEST(VrmlColour, ColoursReplaceTheDiffuseColourOrShowUnlit) {
 
 TEST(VrmlColour, ATextureReplacesTheColoursAndBringsTextureCoordinates) {
   const Scene scene = load_world(
-      "Shape { appearance Appearance { texture ImageTexture { url \"t.png\" } }\n"
+      "Shape { appearance Appearance { texture ImageTexture { url \"t.ppm\" } }\n"
       "  geometry DEF F IndexedFaceSet { " +
           std::string(kTriangle) + kColours +
           "coordIndex [0 1 2]\n"
           "    texCoord TextureCoordinate { point [0 0, 2 0, 0 3] } texCoordIndex [2 1 0] } }\n"
           "Shape { geometry USE F }\n",
-      {{"t.png", "bytes"}});
+      {{"t.ppm", kTinyPpm}});
   ASSERT_EQ(scene.meshes.size(), 2u);  // the textured face set and the coloured one
   const Mesh& textured = scene.meshes[0];
   EXPECT_TRUE(textured.corner_colours.empty());
@@ -139,7 +139,7 @@ TexCoord tex_coord_at(const Mesh& mesh, const Vec3& p) {
          << "(" << got.s << ", " << got.t << ") instead of (" << s << ", " << t << ")";
 }
 
-const char* const kTextured = "appearance Appearance { texture ImageTexture { url \"t.png\" } } ";
+const char* const kTextured = "appearance Appearance { texture ImageTexture { url \"t.ppm\" } } ";
 
 TEST(VrmlColour, DefaultTextureCoordinatesFollowTheLongestSides) {
   // A box 4 long in z, 2 in x, 1 in y: s along z from 0 to 1, t along x from 0 to 1/2.
@@ -147,7 +147,7 @@ TEST(VrmlColour, DefaultTextureCoordinatesFollowTheLongestSides) {
       std::string("Shape { ") + kTextured +
           "geometry IndexedFaceSet { coord Coordinate { point [0 0 -1, 2 0 -1, 2 1 3, 0 0 3] }"
           " coordIndex [0 1 2 3] } }",
-      {{"t.png", ""}});
+      {{"t.ppm", kTinyPpm}});
   const Mesh& m = only_mesh(scene);
   EXPECT_TRUE(near(tex_coord_at(m, {0, 0, -1}), 0, 0));
   EXPECT_TRUE(near(tex_coord_at(m, {2, 0, -1}), 0, 0.5));
@@ -168,8 +168,8 @@ TEST(VrmlColour, ElevationGridHasColoursPerQuadAndDefaultTextureCoordinates) {
     for (const std::uint32_t v : c.triangles[i].v) x += c.positions[v].x / 3;
     for (int k = 0; k < 3; ++k) EXPECT_EQ(c.corner_colours[3 * i + k], x < 1 ? kRed : kBlue);
   }
-  const Scene t_scene =
-      load_world(std::string("Shape { ") + kTextured + "geometry " + grid + "} }", {{"t.png", ""}});
+  const Scene t_scene = load_world(std::string("Shape { ") + kTextured + "geometry " + grid + "} }",
+                                   {{"t.ppm", kTinyPpm}});
   const Mesh& t = only_mesh(t_scene);
   // (0, 0) at the first point, (1, 1) at the last: s along x, t along z.
   EXPECT_TRUE(near(tex_coord_at(t, {0, 0, 0}), 0, 0));
@@ -181,7 +181,7 @@ TEST(VrmlColour, ExtrusionTextureCoordinatesRunAlongSectionAndSpine) {
   // The default square section (2 x 2, 8 long) along a spine 0 to 1 to 3 in y.
   const Scene m_scene = load_world(
       std::string("Shape { ") + kTextured + "geometry Extrusion { spine [0 0 0, 0 1 0, 0 3 0] } }",
-      {{"t.png", ""}});
+      {{"t.ppm", kTinyPpm}});
   const Mesh& m = only_mesh(m_scene);
   ASSERT_EQ(m.corner_tex_coords.size(), 3 * m.triangles.size());
   // The side's first edge runs from (1, y, 1) to (1, y, -1): s from 0 to 1/4.
@@ -192,10 +192,10 @@ TEST(VrmlColour, ExtrusionTextureCoordinatesRunAlongSectionAndSpine) {
 TEST(VrmlColour, TextureTransformMapsCoordinatesAsSpecified) {
   const auto transform = [](const std::string& fields) {
     const Scene scene = load_world(
-        "Shape { appearance Appearance { texture ImageTexture { url \"t.png\" }\n"
+        "Shape { appearance Appearance { texture ImageTexture { url \"t.ppm\" }\n"
         "  textureTransform TextureTransform { " +
             fields + " } } geometry Box {} }",
-        {{"t.png", ""}});
+        {{"t.ppm", kTinyPpm}});
     return scene.objects.at(0).material.flat_texture.transform.value();
   };
   const auto apply = [](const std::array<double, 6>& m, double s, double t) {

@@ -45,7 +45,9 @@ TEST(VrmlScene, PrimitivesMapOntoTheGenericShapes) {
   EXPECT_TRUE(std::holds_alternative<Cube>(scene.objects[0].geometry));
   EXPECT_TRUE(near(scene.objects[0].transform.apply_point({1, 1, 1}), {1, 2, 3}));
   EXPECT_TRUE(std::holds_alternative<Sphere>(scene.objects[1].geometry));
-  EXPECT_TRUE(near(scene.objects[1].transform.apply_point({1, 0, 0}), {3, 0, 0}));
+  // Poles on y, the texture's s = 0 (the generic sphere's +x) at -z (§6.44).
+  EXPECT_TRUE(near(scene.objects[1].transform.apply_point({1, 0, 0}), {0, 0, -3}, 1e-12));
+  EXPECT_TRUE(near(scene.objects[1].transform.apply_point({0, 0, 1}), {0, 3, 0}, 1e-12));
   // The tapered cylinder's base (z = 0) goes to y = -h/2, its top (z = 1) to y = +h/2.
   const auto& cylinder = std::get<TaperedCylinder>(scene.objects[2].geometry);
   EXPECT_EQ(cylinder.top_radius, 1);
@@ -72,7 +74,8 @@ TEST(VrmlScene, ConeAndCylinderPartsLeftOutAreNotDrawn) {
   EXPECT_TRUE(scene.objects[0].material.light_back_faces);
   EXPECT_TRUE(scene.objects[1].material.light_back_faces);
   EXPECT_FALSE(scene.objects[2].material.light_back_faces);
-  EXPECT_EQ(scene.objects[2].geometry, ShapeGeometry(TaperedCylinder{1, false}));
+  EXPECT_EQ(scene.objects[2].geometry,
+            ShapeGeometry(TaperedCylinder{1, false, true, true, true, /*vrml_texture=*/true}));
   EXPECT_TRUE(scene.warnings.empty());
 }
 
@@ -97,16 +100,16 @@ TEST(VrmlScene, MaterialMapsOntoTheLightingModel) {
 }
 
 TEST(VrmlScene, ImageTextureTravelsWithTheSceneAndReplacesTheDiffuseColour) {
-  const Files files{{"textures/wood.png", "png bytes"}};
+  const Files files{{"textures/wood.ppm", kTinyPpm}};
   const Scene scene = load_world(
-      "Shape { appearance Appearance { texture ImageTexture { url \"textures/wood.png\" }\n"
+      "Shape { appearance Appearance { texture ImageTexture { url \"textures/wood.ppm\" }\n"
       "  material Material { diffuseColor 1 0 0 ambientIntensity 0.5 } } geometry Box {} }\n"
-      "Shape { appearance Appearance { texture ImageTexture { url \"textures/wood.png\" } }\n"
+      "Shape { appearance Appearance { texture ImageTexture { url \"textures/wood.ppm\" } }\n"
       "  geometry Sphere {} }\n",
       files);
   ASSERT_EQ(scene.images.size(), 1u);  // read once
-  EXPECT_EQ(scene.images[0].path, "textures/wood.png");
-  EXPECT_EQ(scene.images[0].bytes, "png bytes");
+  EXPECT_EQ(scene.images[0].path, "textures/wood.ppm");
+  EXPECT_EQ(scene.images[0].bytes, kTinyPpm);
   ASSERT_EQ(scene.objects.size(), 2u);
   const Material& lit = scene.objects[0].material;
   EXPECT_EQ(lit.flat_texture.kind, FlatTexture::Kind::Image);
@@ -116,12 +119,33 @@ TEST(VrmlScene, ImageTextureTravelsWithTheSceneAndReplacesTheDiffuseColour) {
   const Material& unlit = scene.objects[1].material;
   EXPECT_TRUE(unlit.flat_texture.decal);
   EXPECT_TRUE(unlit.emissive.is_zero());
-  EXPECT_TRUE(
-      world_fails_at("Shape { appearance Appearance { texture ImageTexture { url \"no.png\" } }"
-                     " geometry Box {} }",
-                     2, 41,
-                     "ImageTexture: none of its urls names a file inside the scene's folder "
-                     "or bundle"));
+}
+
+TEST(VrmlScene, AMissingOrUndecodableTextureLeavesTheShapeUntextured) {
+  const std::string body =
+      "Shape { appearance Appearance { texture ImageTexture { url [\"bad.png\" \"no.png\"] }\n"
+      "  material Material { diffuseColor 1 0 0 } } geometry Box {} }\n"
+      "Shape { appearance Appearance { texture ImageTexture { url \"bad.png\" } }"
+      " geometry Box {} }\n";
+  const Files files{{"bad.png", "not an image"}};
+  const Scene scene = load_world(body, files);
+  ASSERT_EQ(scene.objects.size(), 2u);
+  EXPECT_TRUE(scene.images.empty());
+  EXPECT_EQ(scene.objects[0].material.flat_texture.kind, FlatTexture::Kind::None);
+  EXPECT_EQ(scene.objects[0].material.diffuse, (Rgb{1, 0, 0}));
+  EXPECT_EQ(scene.warnings,
+            (std::vector<std::string>{
+                "world.wrl:2:41: ImageTexture: 'no.png' not found: the shape is drawn untextured",
+                "world.wrl:4:41: ImageTexture: 'bad.png' is not an image this loader can decode: "
+                "the shape is drawn untextured"}));
+  try {
+    load_world(body, files, strict_budget());
+    FAIL() << "no error";
+  } catch (const SceneError& e) {
+    EXPECT_STREQ(e.what(),
+                 "world.wrl:2:41: ImageTexture: 'no.png' not found: the shape is drawn "
+                 "untextured");
+  }
 }
 
 TEST(VrmlScene, ConcavePolygonsAreEarClipped) {
@@ -420,8 +444,98 @@ TEST(VrmlScene, InlineReadsAFileOfTheSourceUnderTheTransform) {
       files);
   EXPECT_TRUE(near(only_object(scene).transform.apply_point({}), {3, 0, 0}));
   EXPECT_TRUE(world_fails_at("Inline { url \"../outside.wrl\" }", 2, 1,
-                             "Inline: none of its urls names a file inside the scene's folder or "
-                             "bundle"));
+                             "Inline: '../outside.wrl' is outside the scene's root: left out",
+                             strict_budget()));
+  EXPECT_TRUE(world_fails_at("Inline { url \"gone.wrl\" }", 2, 1,
+                             "Inline: 'gone.wrl' not found: left out", strict_budget()));
+  EXPECT_TRUE(world_fails_at("Inline { url \"https://example.org/a.wrl\" }", 2, 1,
+                             "Inline: the url scheme of 'https://example.org/a.wrl' is not read "
+                             "(the loader fetches nothing): left out",
+                             strict_budget()));
+  const Scene lenient = load_world("Inline { url \"gone.wrl\" }\nShape { geometry Box {} }");
+  EXPECT_EQ(lenient.objects.size(), 1u);
+  EXPECT_EQ(lenient.warnings,
+            std::vector<std::string>{"world.wrl:2:1: Inline: 'gone.wrl' not found: left out"});
+}
+
+TEST(VrmlScene, ABundleWorldInAFolderReadsItsNeighboursThroughDotDot) {
+  const Files files{
+      {"textures/y.ppm", kTinyPpm},
+      {"common/z.wrl", std::string(kVrmlHeader) + "Shape { geometry Sphere {} }"},
+      {"world/x.wrl",
+       std::string(kVrmlHeader) +
+           "Shape { appearance Appearance { texture ImageTexture { url \"../textures/y.ppm\" } }\n"
+           "  geometry Box {} }\nInline { url \"file:../common/z.wrl\" }\n"}};
+  const Scene scene = load_vrml(MemorySource(files), "world/x.wrl", strict_budget());
+  ASSERT_EQ(scene.objects.size(), 2u);
+  ASSERT_EQ(scene.images.size(), 1u);
+  EXPECT_EQ(scene.images[0].path, "textures/y.ppm");
+}
+
+TEST(VrmlScene, ExternProtoReadsALocalFileLikeInline) {
+  const Files files{
+      {"protos/lib.wrl", std::string(kVrmlHeader) +
+                             "PROTO First [ field SFFloat r 1 ] { Sphere { radius IS r } }\n"
+                             "PROTO Crate [ field SFVec3f size 1 1 1 ] { Box { size IS size } }\n"},
+      {"loop.wrl",
+       std::string(kVrmlHeader) + "EXTERNPROTO L [ ] \"loop.wrl#L\"\nPROTO L [ ] { Box {} }\n"}};
+  const Scene scene = load_world(
+      "EXTERNPROTO Crate [ field SFVec3f size ] \"protos/lib.wrl#Crate\"\n"
+      "EXTERNPROTO Ball [ field SFFloat r ] [ \"missing.wrl\" \"protos/lib.wrl\" ]\n"
+      "EXTERNPROTO L [ ] \"loop.wrl#L\"\n"
+      "Shape { geometry Crate { size 2 4 6 } }\nShape { geometry Ball { r 3 } }\n"
+      "Inline { url \"loop.wrl\" }\n",
+      files);
+  ASSERT_EQ(scene.objects.size(), 2u);
+  EXPECT_TRUE(std::holds_alternative<Cube>(scene.objects[0].geometry));
+  EXPECT_TRUE(near(scene.objects[0].transform.apply_point({1, 1, 1}), {1, 2, 3}));
+  EXPECT_TRUE(std::holds_alternative<Sphere>(scene.objects[1].geometry));
+  EXPECT_TRUE(near(scene.objects[1].transform.apply_point({0, 0, 0}), {0, 0, 0}));
+  EXPECT_NEAR(length(scene.objects[1].transform.apply_vector({1, 0, 0})), 3, 1e-12);
+  // The file that names its own EXTERNPROTO: a warning, no endless read.
+  ASSERT_FALSE(scene.warnings.empty());
+  EXPECT_NE(scene.warnings[0].find("names its own file"), std::string::npos) << scene.warnings[0];
+}
+
+TEST(VrmlScene, BindableNodesOfInlinedFilesAreNotBound) {
+  const Files files{
+      {"part.wrl", std::string(kVrmlHeader) +
+                       "Viewpoint { position 0 0 40 }\nBackground { skyColor 0 0 1 }\n"
+                       "Fog { visibilityRange 5 }\nNavigationInfo { headlight FALSE }\n"
+                       "Shape { geometry Sphere {} }\n"}};
+  const Scene scene = load_world(
+      "Inline { url \"part.wrl\" }\nViewpoint { position 0 0 6 }\n"
+      "Background { skyColor 1 0 0 }\n",
+      files);
+  EXPECT_TRUE(near(scene.camera.eye, {0, 0, 6}));
+  EXPECT_EQ(scene.globals.background, (Rgb{1, 0, 0}));
+  EXPECT_FALSE(scene.globals.fog.has_value());
+  ASSERT_EQ(scene.lights.size(), 1u);  // the main file's headlight, on by default
+  EXPECT_TRUE(scene.lights[0].is_directional);
+  // Without bindable nodes of its own, a world gets the defaults, not the Inline's.
+  const Scene defaults = load_world("Inline { url \"part.wrl\" }\n", files);
+  EXPECT_EQ(defaults.globals.background, (Rgb{}));
+  EXPECT_EQ(defaults.lights.size(), 1u);
+}
+
+TEST(VrmlScene, TheHeadlightShinesAlongTheViewAndCastsNoShadow) {
+  const Scene scene = load_world("Viewpoint { position 1 2 3 }\nShape { geometry Box {} }\n");
+  ASSERT_EQ(scene.lights.size(), 1u);
+  EXPECT_TRUE(scene.lights[0].is_directional);
+  EXPECT_TRUE(near(scene.lights[0].direction, {0, 0, -1}));
+  EXPECT_EQ(scene.lights[0].color, (Rgb{1, 1, 1}));
+  EXPECT_FALSE(scene.lights[0].casts_shadows);
+}
+
+TEST(VrmlScene, BillboardsCountInTheFramingBounds) {
+  // A lone Billboard holding a sphere of radius 2 at x = 10: the framed camera looks at it.
+  const Scene scene = load_world(
+      "Transform { translation 10 0 0 children Billboard { children Shape { geometry Sphere "
+      "{ radius 2 } } } }\n");
+  ASSERT_EQ(scene.objects.size(), 1u);
+  EXPECT_TRUE(near(scene.camera.look_at, {10, 0, 0}));
+  const double distance = 2 / std::sin(45 * std::numbers::pi / 360);
+  EXPECT_TRUE(near(scene.camera.eye, {10, 0, distance}));
 }
 
 TEST(VrmlScene, OneWarningListsWhatIsIgnored) {

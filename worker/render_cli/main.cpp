@@ -25,7 +25,11 @@ int main(int argc, char** argv) {
   }
   const auto& options = std::get<RenderCliOptions>(parsed);
   try {
-    const Scene scene = load_scene_file(options.scene_path);
+    LoadBudget budget;
+    budget.strict = options.strict;
+    const Scene scene = load_scene_file(
+        options.scene_path, budget,
+        options.root.empty() ? std::nullopt : std::optional<std::filesystem::path>(options.root));
     const PreparedScene prepared(scene, options.settings.bvh);
     if (!options.quiet) print_warnings(scene, prepared);
     if (options.debug_view != DebugView::None) {

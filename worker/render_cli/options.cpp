@@ -84,6 +84,10 @@ std::unique_ptr<CLI::App> make_app(RenderCliOptions& o, JobSettings& settings) {
       ->check(CLI::IsMember({"normals", "cost"}))
       ->type_name("normals|cost");
   app->add_flag("--quiet", o.quiet, "no progress or statistics");
+  app->add_option("--root", o.root,
+                  "the files the scene names must lie inside DIR (default: any file, relative "
+                  "paths against the naming file's folder)")
+      ->type_name("DIR");
   return app;
 }
 
@@ -105,6 +109,7 @@ std::variant<RenderCliOptions, CliHelp, std::string> parse_render_cli(
   if (o.scene_path.empty()) return std::string("no scene file given");
   if (o.output_path.empty()) return std::string("no output file given (-o OUT.png)");
   o.settings = settings.render;
+  o.strict = settings.load.strict;
   return o;
 }
 

@@ -19,6 +19,8 @@ struct RenderCliOptions {
   RenderSettings settings;
   int threads = 0;  // 0: all cores
   bool quiet = false;
+  bool strict = false;  // what lenient loading warns about is an error (LoadBudget::strict)
+  std::string root;     // non-empty: the scene's paths must stay inside this folder
   DebugView debug_view = DebugView::None;
 };
 
