@@ -15,6 +15,7 @@ packages=(
   libcli11-dev      # command lines
   libsqlite3-dev    # the coordinator's job store
   libgtest-dev libgmock-dev libbenchmark-dev
+  libembree-dev     # benchmark only: bench/embree_bench.cpp traces the same rays through Embree 3
   # tools used by tests and benchmarks; chromium and node drive the web page's test
   openimageio-tools python3 curl chromium
   # network namespaces for the multi-host test (ip, tc)

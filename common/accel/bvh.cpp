@@ -198,7 +198,29 @@ Bvh build_bvh(std::span<const Bounds3> primitive_bounds, BvhMode mode) {
     primitives.push_back({b, b.centroid(), static_cast<std::uint32_t>(i)});
   }
   Builder(std::move(primitives), bvh).build();
+  make_bvh_pairs(bvh);
   return bvh;
+}
+
+void make_bvh_pairs(Bvh& bvh) {
+  bvh.pairs.clear();
+  std::vector<std::uint32_t> pair_of(bvh.nodes.size());
+  std::uint32_t interior = 0;
+  for (std::size_t n = 0; n < bvh.nodes.size(); ++n)
+    if (bvh.nodes[n].count == 0) pair_of[n] = interior++;
+  bvh.pairs.reserve(interior);
+  for (std::size_t n = 0; n < bvh.nodes.size(); ++n) {
+    if (bvh.nodes[n].count > 0) continue;
+    const std::size_t children[2] = {n + 1, bvh.nodes[n].first_or_second_child};
+    BvhPair pair;
+    pair.boxes = make_child_boxes(bvh.nodes[children[0]].bounds, bvh.nodes[children[1]].bounds);
+    for (int c = 0; c < 2; ++c) {
+      const BvhNode& child = bvh.nodes[children[c]];
+      pair.child[c] = child.count > 0 ? child.first_or_second_child : pair_of[children[c]];
+      pair.count[c] = child.count;
+    }
+    bvh.pairs.push_back(pair);
+  }
 }
 
 }  // namespace tessera

@@ -7,6 +7,7 @@
 #include <span>
 #include <vector>
 
+#include "common/accel/child_boxes.h"
 #include "common/math/ray.h"
 
 namespace tessera {
@@ -22,16 +23,32 @@ struct BvhNode {
   std::uint8_t split_axis = 0;
 };
 
+// The form traversal reads: one entry per interior node holding both children, their boxes
+// side by side (child_boxes.h), so that one step tests two boxes and loads one cache line pair.
+struct BvhPair {
+  ChildBoxes boxes;
+  std::uint32_t child[2] = {0, 0};  // pairs index of an interior child; first primitive of a leaf
+  std::uint32_t count[2] = {0, 0};  // primitives of a leaf child; 0 for an interior child
+};
+
 struct Bvh {
   std::vector<BvhNode> nodes;                  // depth-first; nodes[0] is the root when non-empty
   std::vector<std::uint32_t> primitive_order;  // leaf ranges index into this
+  std::vector<BvhPair> pairs;  // from nodes (make_bvh_pairs); pairs[0] is the root's, if interior
 };
 
 Bvh build_bvh(std::span<const Bounds3> primitive_bounds, BvhMode mode);
+// Fills bvh.pairs from bvh.nodes (build_bvh does; for hand-made trees).
+void make_bvh_pairs(Bvh& bvh);
 
-// Visits the leaves whose boxes the ray [0, t_max] enters, nearest-first by split axis.
+// Visits the leaves whose boxes the ray [0, t_max] enters, the nearer child's first.
 // `visit(primitive_index, t_max)` returns the possibly shrunk t_max (closest hit) or a negative
 // value to stop the traversal (any-hit queries). Counts visited nodes in `nodes_visited`.
+// The same walk a leaf at a time: `visit_leaf(first, count, t_max)` gets the leaf's range
+// [first, first + count) of Bvh::primitive_order and returns t_max as `visit` does.
+template <typename VisitLeaf>
+void traverse_bvh_leaves(const Bvh& bvh, const Ray& ray, double t_max, std::uint64_t& nodes_visited,
+                         VisitLeaf&& visit_leaf);
 template <typename Visit>
 void traverse_bvh(const Bvh& bvh, const Ray& ray, double t_max, std::uint64_t& nodes_visited,
                   Visit&& visit);

@@ -1,5 +1,7 @@
-// The traversal of common/accel/bvh.h: depth-first with an explicit stack, the nearer child
-// first by the sign of the ray direction on the node's split axis.
+// The traversal of common/accel/bvh.h: depth-first with an explicit stack. An interior node
+// tests both children's boxes and descends into the one the ray enters first, keeping the
+// other with its entry distance; a kept child is skipped when a closer hit found meanwhile
+// lies before its entry (the same answer a second box test would give).
 #pragma once
 
 #include <cstdint>
@@ -11,39 +13,68 @@ namespace tessera {
 // The build keeps trees shallower than this (bvh.cpp), so the fixed stack cannot overflow.
 inline constexpr int kBvhMaxDepth = 128;
 
-template <typename Visit>
-void traverse_bvh(const Bvh& bvh, const Ray& ray, double t_max, std::uint64_t& nodes_visited,
-                  Visit&& visit) {
+template <typename VisitLeaf>
+void traverse_bvh_leaves(const Bvh& bvh, const Ray& ray, double t_max, std::uint64_t& nodes_visited,
+                         VisitLeaf&& visit_leaf) {
   if (bvh.nodes.empty()) return;
-  const Vec3 inv_dir{1 / ray.direction.x, 1 / ray.direction.y, 1 / ray.direction.z};
-  const bool negative[3] = {inv_dir.x < 0, inv_dir.y < 0, inv_dir.z < 0};
-  std::uint32_t stack[kBvhMaxDepth];
+  const BoxRay box_ray(ray);
+  ++nodes_visited;
+  const BvhNode& root = bvh.nodes[0];
+  double root_entry = 0;
+  if (!intersect_bounds(root.bounds, box_ray.origin, box_ray.inv_dir, t_max, root_entry)) return;
+  if (root.count > 0) {
+    visit_leaf(root.first_or_second_child, root.count, t_max);
+    return;
+  }
+  // A child to visit: an interior one (count 0, index into bvh.pairs) or a leaf's range.
+  struct Pending {
+    std::uint32_t index;
+    std::uint32_t count;
+    double entry;
+  };
+  Pending stack[kBvhMaxDepth];
   int size = 0;
-  std::uint32_t current = 0;
+  Pending current{0, 0, root_entry};
+  const BvhPair* pairs = bvh.pairs.data();
   for (;;) {
-    const BvhNode& node = bvh.nodes[current];
-    ++nodes_visited;
-    if (intersect_bounds(node.bounds, ray.origin, inv_dir, t_max)) {
-      if (node.count > 0) {
-        const std::uint32_t end = node.first_or_second_child + node.count;
-        for (std::uint32_t i = node.first_or_second_child; i < end; ++i) {
-          const double limit = visit(bvh.primitive_order[i], t_max);
-          if (limit < 0) return;
-          t_max = limit;
-        }
-      } else if (negative[node.split_axis]) {
-        stack[size++] = current + 1;
-        current = node.first_or_second_child;
-        continue;
-      } else {
-        stack[size++] = node.first_or_second_child;
-        current = current + 1;
+    if (current.count > 0) {
+      const double limit = visit_leaf(current.index, current.count, t_max);
+      if (limit < 0) return;
+      t_max = limit;
+    } else {
+      const BvhPair& pair = pairs[current.index];
+      double entry[2];
+      nodes_visited += 2;
+      const unsigned hits = intersect_child_boxes(pair.boxes, box_ray, t_max, entry);
+      if (hits != 0) {
+        // Both hit: the nearer first (the first child on a tie), the other kept for later.
+        const int near = hits == 2 || (hits == 3 && entry[1] < entry[0]) ? 1 : 0;
+        if (hits == 3)
+          stack[size++] = {pair.child[1 - near], pair.count[1 - near], entry[1 - near]};
+        current = {pair.child[near], pair.count[near], entry[near]};
         continue;
       }
     }
-    if (size == 0) return;
-    current = stack[--size];
+    for (;;) {
+      if (size == 0) return;
+      current = stack[--size];
+      if (current.entry <= t_max) break;
+    }
   }
+}
+
+template <typename Visit>
+void traverse_bvh(const Bvh& bvh, const Ray& ray, double t_max, std::uint64_t& nodes_visited,
+                  Visit&& visit) {
+  traverse_bvh_leaves(bvh, ray, t_max, nodes_visited,
+                      [&](std::uint32_t first, std::uint32_t count, double limit) {
+                        const std::uint32_t end = first + count;
+                        for (std::uint32_t i = first; i < end; ++i) {
+                          limit = visit(bvh.primitive_order[i], limit);
+                          if (limit < 0) return limit;
+                        }
+                        return limit;
+                      });
 }
 
 }  // namespace tessera

@@ -10,25 +10,50 @@ namespace tessera {
 bool intersect_mesh(const MeshAccel& accel, bool interpolate_normals, const Ray& ray, double t_max,
                     LocalHit& hit, IntersectionCounters& counters) {
   if (accel.mesh == nullptr) return false;
-  const Mesh& mesh = *accel.mesh;
+  const TriangleRay triangle_ray = prepare_triangle_ray(ray);
+  const Vec3* corners = accel.leaf_corners.data();
   bool found = false;
-  std::uint32_t found_index = 0;
+  std::uint32_t found_position = 0;
   TriangleHit nearest;
-  traverse_bvh(accel.bvh, ray, t_max, counters.bvh_nodes, [&](std::uint32_t index, double t_limit) {
-    ++counters.triangle_tests;
-    const MeshTriangle& tri = mesh.triangles[index];
-    TriangleHit h;
-    if (!intersect_triangle(mesh.positions[tri.v[0]], mesh.positions[tri.v[1]],
-                            mesh.positions[tri.v[2]], ray, t_limit, h))
-      return t_limit;
-    nearest = h;
-    found_index = index;
-    found = true;
-    return h.t;
-  });
+  traverse_bvh_leaves(accel.bvh, ray, t_max, counters.bvh_nodes,
+                      [&](std::uint32_t first, std::uint32_t count, double t_limit) {
+                        counters.triangle_tests += count;
+                        for (std::uint32_t i = first; i < first + count; ++i) {
+                          const Vec3* p = corners + 3 * static_cast<std::size_t>(i);
+                          if (!intersect_triangle(p[0], p[1], p[2], triangle_ray, t_limit, nearest))
+                            continue;
+                          found_position = i;
+                          found = true;
+                          t_limit = nearest.t;
+                        }
+                        return t_limit;
+                      });
   if (!found) return false;
-  hit = triangle_local_hit(mesh, found_index, interpolate_normals, nearest);
+  hit = triangle_local_hit(*accel.mesh, accel.bvh.primitive_order[found_position],
+                           interpolate_normals, nearest);
   return true;
+}
+
+bool occluded_mesh(const MeshAccel& accel, const Ray& ray, double t_max,
+                   IntersectionCounters& counters) {
+  if (accel.mesh == nullptr) return false;
+  const TriangleRay triangle_ray = prepare_triangle_ray(ray);
+  const Vec3* corners = accel.leaf_corners.data();
+  bool found = false;
+  traverse_bvh_leaves(accel.bvh, ray, t_max, counters.bvh_nodes,
+                      [&](std::uint32_t first, std::uint32_t count, double t_limit) {
+                        for (std::uint32_t i = first; i < first + count; ++i) {
+                          ++counters.triangle_tests;
+                          const Vec3* p = corners + 3 * static_cast<std::size_t>(i);
+                          TriangleHit h;
+                          if (intersect_triangle(p[0], p[1], p[2], triangle_ray, t_limit, h)) {
+                            found = true;
+                            return -1.0;  // any hit will do
+                          }
+                        }
+                        return t_limit;
+                      });
+  return found;
 }
 
 std::vector<LocalHit> mesh_crossings(const MeshAccel& accel, bool interpolate_normals,
@@ -36,16 +61,20 @@ std::vector<LocalHit> mesh_crossings(const MeshAccel& accel, bool interpolate_no
   std::vector<LocalHit> crossings;
   if (accel.mesh == nullptr) return crossings;
   const Mesh& mesh = *accel.mesh;
+  const TriangleRay triangle_ray = prepare_triangle_ray(ray);
+  const Vec3* corners = accel.leaf_corners.data();
   std::vector<std::pair<TriangleHit, std::uint32_t>> hits;
-  traverse_bvh(accel.bvh, ray, t_max, counters.bvh_nodes, [&](std::uint32_t index, double limit) {
-    ++counters.triangle_tests;
-    const MeshTriangle& tri = mesh.triangles[index];
-    TriangleHit h;
-    if (intersect_triangle(mesh.positions[tri.v[0]], mesh.positions[tri.v[1]],
-                           mesh.positions[tri.v[2]], ray, limit, h))
-      hits.emplace_back(h, index);
-    return limit;  // every hit, not only the nearest
-  });
+  traverse_bvh_leaves(accel.bvh, ray, t_max, counters.bvh_nodes,
+                      [&](std::uint32_t first, std::uint32_t count, double limit) {
+                        counters.triangle_tests += count;
+                        for (std::uint32_t i = first; i < first + count; ++i) {
+                          const Vec3* p = corners + 3 * static_cast<std::size_t>(i);
+                          TriangleHit h;
+                          if (intersect_triangle(p[0], p[1], p[2], triangle_ray, limit, h))
+                            hits.emplace_back(h, accel.bvh.primitive_order[i]);
+                        }
+                        return limit;  // every hit, not only the nearest
+                      });
   // By t, then by triangle, so that the order does not depend on the traversal.
   std::sort(hits.begin(), hits.end(), [](const auto& a, const auto& b) {
     return a.first.t != b.first.t ? a.first.t < b.first.t : a.second < b.second;

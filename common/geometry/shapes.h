@@ -25,6 +25,9 @@ bool intersect_torus(const Torus& shape, const Ray& ray, double t_max, LocalHit&
 // Meshes go through their own BVH (common/accel/mesh_accel.h).
 bool intersect_mesh(const MeshAccel& mesh, bool interpolate_normals, const Ray& ray, double t_max,
                     LocalHit& hit, IntersectionCounters& counters);
+// Whether the ray hits the mesh with t in (0, t_max): any hit ends the traversal (shadow rays).
+bool occluded_mesh(const MeshAccel& mesh, const Ray& ray, double t_max,
+                   IntersectionCounters& counters);
 
 // Every crossing of the surface with t in (0, t_max), ascending by t, for CSG (csg.h). A ray
 // touching the surface (a tangent, or the horn torus' pinch) crosses it twice at the same t,

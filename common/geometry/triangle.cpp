@@ -12,26 +12,38 @@ Vec3 permute(const Vec3& v, int x, int y, int z) { return {v[x], v[y], v[z]}; }
 
 }  // namespace
 
-bool intersect_triangle(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Ray& ray,
-                        double t_max, TriangleHit& hit) {
-  // Degenerate triangles (zero area) are never hit.
+bool triangle_is_degenerate(const Vec3& p0, const Vec3& p1, const Vec3& p2) {
   const double area2 = length_squared(cross(p1 - p0, p2 - p0));
-  if (!(area2 > 0) || !std::isfinite(area2)) return false;
+  return !(area2 > 0) || !std::isfinite(area2);
+}
 
+TriangleRay prepare_triangle_ray(const Ray& ray) {
   // Translate the vertices so that the ray starts at the origin, permute the axes so that the
   // direction's largest component is z, and shear so that the ray runs along +z. Every vertex
   // is transformed the same way whichever triangle it belongs to, which makes the edge
   // functions of a shared edge exactly opposite (watertightness).
+  TriangleRay r;
+  r.origin = ray.origin;
   const Vec3& d = ray.direction;
-  const int kz = max_axis(abs(d));
-  const int kx = kz == 2 ? 0 : kz + 1;
-  const int ky = kx == 2 ? 0 : kx + 1;
-  const Vec3 dp = permute(d, kx, ky, kz);
-  if (!(dp.z != 0) || !is_finite(dp)) return false;
+  r.kz = max_axis(abs(d));
+  r.kx = r.kz == 2 ? 0 : r.kz + 1;
+  r.ky = r.kx == 2 ? 0 : r.kx + 1;
+  const Vec3 dp = permute(d, r.kx, r.ky, r.kz);
+  r.usable = dp.z != 0 && is_finite(dp);
+  r.sx = -dp.x / dp.z;
+  r.sy = -dp.y / dp.z;
+  r.sz = 1 / dp.z;
+  return r;
+}
+
+bool intersect_triangle(const Vec3& p0, const Vec3& p1, const Vec3& p2, const TriangleRay& ray,
+                        double t_max, TriangleHit& hit) {
+  if (!ray.usable) return false;
+  const int kx = ray.kx, ky = ray.ky, kz = ray.kz;
+  const double sx = ray.sx, sy = ray.sy, sz = ray.sz;
   Vec3 q0 = permute(p0 - ray.origin, kx, ky, kz);
   Vec3 q1 = permute(p1 - ray.origin, kx, ky, kz);
   Vec3 q2 = permute(p2 - ray.origin, kx, ky, kz);
-  const double sx = -dp.x / dp.z, sy = -dp.y / dp.z, sz = 1 / dp.z;
   q0.x += sx * q0.z;
   q0.y += sy * q0.z;
   q1.x += sx * q1.z;
@@ -78,6 +90,12 @@ bool intersect_triangle(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Ra
   hit.b1 = e1 * inv_det;
   hit.b2 = e2 * inv_det;
   return true;
+}
+
+bool intersect_triangle(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Ray& ray,
+                        double t_max, TriangleHit& hit) {
+  if (triangle_is_degenerate(p0, p1, p2)) return false;
+  return intersect_triangle(p0, p1, p2, prepare_triangle_ray(ray), t_max, hit);
 }
 
 LocalHit triangle_local_hit(const Mesh& mesh, std::uint32_t index, bool interpolate_normals,

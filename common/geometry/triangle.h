@@ -22,6 +22,22 @@ struct TriangleHit {
 bool intersect_triangle(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Ray& ray,
                         double t_max, TriangleHit& hit);
 
+// The same test split for meshes, where one ray meets many triangles: the ray's share of the
+// work (axis permutation and shear) done once, and the degeneracy check done once per triangle
+// when the mesh is prepared. The results are bit-identical to the call above.
+struct TriangleRay {
+  Vec3 origin;
+  int kx = 0, ky = 1, kz = 2;  // the direction's largest component is kz
+  double sx = 0, sy = 0, sz = 0;
+  bool usable = false;  // false for a zero or non-finite direction, which hits nothing
+};
+TriangleRay prepare_triangle_ray(const Ray& ray);
+// Zero or non-finite area: never hit.
+bool triangle_is_degenerate(const Vec3& p0, const Vec3& p1, const Vec3& p2);
+// For a triangle that is not degenerate.
+bool intersect_triangle(const Vec3& p0, const Vec3& p1, const Vec3& p2, const TriangleRay& ray,
+                        double t_max, TriangleHit& hit);
+
 // The local hit on triangle `index` of `mesh`: point with its error bound, geometric normal
 // (p1 - p0) x (p2 - p0), and the shading normal interpolated from the corners' normals when
 // `interpolate_normals` is set and every corner has one.

@@ -51,8 +51,11 @@ struct Bounds3 {
 // face is never culled by rounding (pbrt-v3 §3.9.2). Inline and without early exits: the BVH
 // traversal calls it for every node it visits, and which slab empties the interval first is
 // a branch no predictor guesses.
+// `t_entry` receives t0, where the ray enters the box (ordered BVH traversal visits the nearer
+// child first).
 [[gnu::always_inline]] inline bool intersect_bounds(const Bounds3& b, const Vec3& origin,
-                                                    const Vec3& inv_dir, double t_max) {
+                                                    const Vec3& inv_dir, double t_max,
+                                                    double& t_entry) {
   constexpr double kFarScale = 1 + 2 * gamma_bound(3);
   double t0 = 0, t1 = t_max;
   for (int a = 0; a < 3; ++a) {
@@ -67,7 +70,14 @@ struct Bounds3 {
     t0 = t_near > t0 ? t_near : t0;
     t1 = t_far < t1 ? t_far : t1;
   }
+  t_entry = t0;
   return t0 <= t1;
+}
+
+[[gnu::always_inline]] inline bool intersect_bounds(const Bounds3& b, const Vec3& origin,
+                                                    const Vec3& inv_dir, double t_max) {
+  double t_entry;
+  return intersect_bounds(b, origin, inv_dir, t_max, t_entry);
 }
 
 }  // namespace tessera

@@ -95,11 +95,49 @@ TEST(MeshAccel, EmptyMeshAndDegenerateTriangles) {
     t.v = {0, 1, static_cast<std::uint32_t>(i % 2 ? 2 : 3)};
     flat.triangles.push_back(t);
   }
-  const MeshAccel flat_accel = build_mesh_accel(flat, BvhMode::Sah);
-  EXPECT_FALSE(
-      intersect_mesh(flat_accel, false, {{1, 1, -1}, {0, 0, 1}}, kInfinity, hit, counters));
-  EXPECT_FALSE(
-      intersect_mesh(flat_accel, false, {{-1, -1, 0}, {1, 1, 0}}, kInfinity, hit, counters));
+  // The tree leaves them out; the flat "acceleration off" keeps them and must reject them.
+  for (const BvhMode mode : {BvhMode::Sah, BvhMode::None}) {
+    const MeshAccel flat_accel = build_mesh_accel(flat, mode);
+    EXPECT_EQ(flat_accel.bvh.primitive_order.size(), mode == BvhMode::Sah ? 0u : 10u);
+    for (const Ray& ray : {Ray{{1, 1, -1}, {0, 0, 1}}, Ray{{-1, -1, 0}, {1, 1, 0}}}) {
+      EXPECT_FALSE(intersect_mesh(flat_accel, false, ray, kInfinity, hit, counters));
+      EXPECT_FALSE(occluded_mesh(flat_accel, ray, kInfinity, counters));
+      EXPECT_TRUE(mesh_crossings(flat_accel, false, ray, kInfinity, counters).empty());
+    }
+  }
+}
+
+// Shadow rays: any hit before t_max, found with an early exit, as by testing every triangle.
+TEST(MeshAccel, OccludedMatchesBruteForceAndStopsEarly) {
+  std::mt19937_64 rng(78);
+  std::uniform_real_distribution<double> u(0, 1);
+  const Mesh mesh = random_triangles(rng, 2000, 10, 1.2);
+  const MeshAccel sah = build_mesh_accel(mesh, BvhMode::Sah);
+  const MeshAccel none = build_mesh_accel(mesh, BvhMode::None);
+  IntersectionCounters any_hit, closest;
+  int occluded = 0, clear = 0;
+  for (int r = 0; r < 1000; ++r) {
+    const Vec3 o{30 * u(rng) - 10, 30 * u(rng) - 10, 30 * u(rng) - 10};
+    const Vec3 target{10 * u(rng), 10 * u(rng), 10 * u(rng)};
+    const Ray ray{o, target - o};
+    const double t_max = 0.2 + u(rng);
+    bool expected = false;
+    for (const MeshTriangle& tri : mesh.triangles) {
+      TriangleHit h;
+      expected = expected || intersect_triangle(mesh.positions[tri.v[0]], mesh.positions[tri.v[1]],
+                                                mesh.positions[tri.v[2]], ray, t_max, h);
+    }
+    ASSERT_EQ(occluded_mesh(sah, ray, t_max, any_hit), expected) << r;
+    IntersectionCounters none_counters;
+    ASSERT_EQ(occluded_mesh(none, ray, t_max, none_counters), expected) << r;
+    LocalHit hit;
+    ASSERT_EQ(intersect_mesh(sah, false, ray, t_max, hit, closest), expected) << r;
+    ++(expected ? occluded : clear);
+  }
+  EXPECT_GT(occluded, 200);
+  EXPECT_GT(clear, 200);
+  // Stopping at the first hit tests fewer triangles than finding the nearest.
+  EXPECT_LT(any_hit.triangle_tests, closest.triangle_tests);
 }
 
 }  // namespace

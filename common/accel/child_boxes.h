@@ -1,0 +1,79 @@
+// Both children of a BVH node tested against a ray at once: the two boxes are stored side by
+// side per axis and bound (structure of arrays), so that one SSE2 instruction (part of every
+// x86-64 CPU, so there is no other path to choose at run time) does the work of two scalar
+// ones. The operations are those of intersect_bounds (common/math/ray.h), in the same order:
+// maxpd and minpd pick their second operand on NaN, as intersect_bounds' comparisons do, and
+// nothing is fused, so both give bit-identical results (tests/accel/child_boxes_test.cpp).
+#pragma once
+
+#include <cstdint>
+
+#include "common/math/ray.h"
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
+namespace tessera {
+
+struct alignas(16) ChildBoxes {
+  double bound[3][2][2];  // [axis][0 lo, 1 hi][child]
+};
+
+// The per-ray constants of the test.
+struct BoxRay {
+  Vec3 origin;
+  Vec3 inv_dir;
+  int near_side[3];  // 0 (lo) where the direction is forward (inv_dir >= 0), else 1 (hi)
+
+  explicit BoxRay(const Ray& ray)
+      : origin(ray.origin),
+        inv_dir{1 / ray.direction.x, 1 / ray.direction.y, 1 / ray.direction.z},
+        near_side{inv_dir.x >= 0 ? 0 : 1, inv_dir.y >= 0 ? 0 : 1, inv_dir.z >= 0 ? 0 : 1} {}
+};
+
+inline ChildBoxes make_child_boxes(const Bounds3& first, const Bounds3& second) {
+  ChildBoxes boxes;
+  for (int a = 0; a < 3; ++a) {
+    boxes.bound[a][0][0] = first.lo[a];
+    boxes.bound[a][1][0] = first.hi[a];
+    boxes.bound[a][0][1] = second.lo[a];
+    boxes.bound[a][1][1] = second.hi[a];
+  }
+  return boxes;
+}
+
+// Bit c of the result is set when the ray [0, t_max] meets child c's box; entry[c] receives
+// where it enters (as t_entry of intersect_bounds).
+[[gnu::always_inline]] inline unsigned intersect_child_boxes(const ChildBoxes& boxes,
+                                                             const BoxRay& ray, double t_max,
+                                                             double entry[2]) {
+  constexpr double kFarScale = 1 + 2 * gamma_bound(3);
+  const double origin[3] = {ray.origin.x, ray.origin.y, ray.origin.z};
+  const double inv_dir[3] = {ray.inv_dir.x, ray.inv_dir.y, ray.inv_dir.z};
+#if defined(__SSE2__)
+  __m128d t0 = _mm_setzero_pd(), t1 = _mm_set1_pd(t_max);
+  for (int a = 0; a < 3; ++a) {
+    const __m128d o = _mm_set1_pd(origin[a]), inv = _mm_set1_pd(inv_dir[a]);
+    const int near = ray.near_side[a];
+    const __m128d t_near = _mm_mul_pd(_mm_sub_pd(_mm_load_pd(boxes.bound[a][near]), o), inv);
+    const __m128d t_far =
+        _mm_mul_pd(_mm_mul_pd(_mm_sub_pd(_mm_load_pd(boxes.bound[a][1 - near]), o), inv),
+                   _mm_set1_pd(kFarScale));
+    t0 = _mm_max_pd(t_near, t0);  // t_near > t0 ? t_near : t0
+    t1 = _mm_min_pd(t_far, t1);   // t_far < t1 ? t_far : t1
+  }
+  _mm_storeu_pd(entry, t0);
+  return static_cast<unsigned>(_mm_movemask_pd(_mm_cmple_pd(t0, t1)));
+#else
+  unsigned hits = 0;
+  for (int c = 0; c < 2; ++c) {
+    Bounds3 box;
+    for (int a = 0; a < 3; ++a) box.lo[a] = boxes.bound[a][0][c], box.hi[a] = boxes.bound[a][1][c];
+    hits |= (intersect_bounds(box, ray.origin, ray.inv_dir, t_max, entry[c]) ? 1u : 0u) << c;
+  }
+  return hits;
+#endif
+}
+
+}  // namespace tessera
