@@ -2,6 +2,8 @@
 
 #include <boost/asio/post.hpp>
 
+#include "common/protocol/messages.h"
+
 namespace tessera {
 
 namespace asio = boost::asio;
@@ -125,8 +127,7 @@ void FrameConnection::write_next() {
 void FrameConnection::tick() {
   const auto now = std::chrono::steady_clock::now();
   if (now - last_received_ > timing_.silence) return close("peer silent for too long");
-  if (now - last_sent_ >= timing_.heartbeat && !writing_)
-    send(Frame{MessageType::Heartbeat, nlohmann::json::object(), {}});
+  if (now - last_sent_ >= timing_.heartbeat && !writing_) send(encode(HeartbeatMessage{}));
   timer_.expires_after(timing_.heartbeat / 2);
   timer_.async_wait([self = shared_from_this()](boost::system::error_code ec) {
     if (!ec && self->open_) self->tick();

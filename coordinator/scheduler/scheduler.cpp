@@ -1,10 +1,10 @@
 #include "coordinator/scheduler/scheduler.h"
 
 #include <algorithm>
+#include <limits>
 
 #include <spdlog/spdlog.h>
 
-#include "common/protocol/unit_message.h"
 #include "coordinator/scheduler/result_check.h"
 
 namespace tessera {
@@ -14,9 +14,6 @@ namespace {
 double seconds_since(Clock::time_point t, Clock::time_point now) {
   return std::chrono::duration<double>(now - t).count();
 }
-
-// A worker's error message is kept and shown; a hostile one could be megabytes.
-constexpr std::size_t kMaxWorkerError = 1000;
 
 }  // namespace
 
@@ -187,26 +184,18 @@ void Scheduler::send_unit(WorkerSlot& w, JobRun& run, int unit) {
   Job& job = *run.job;
   const auto now = Clock::now();
   if (!w.open_jobs.count(job.id)) {
-    Frame open{MessageType::Job,
-               {{"job", job.id}, {"hash", job.hash}, {"settings", to_json(job.spec)}},
-               {}};
+    JobMessage open{.job = job.id, .hash = job.hash, .spec = job.spec, .bundle = std::nullopt};
     if (!w.bundles.count(job.hash)) {
-      nlohmann::json header;
-      encode_bundle(job.bundle, header, open.payload);
-      open.header["bundle"] = std::move(header);
+      open.bundle = job.bundle;
       w.bundles.insert(job.hash);
     }
-    w.connection->send(open);
+    w.connection->send(encode(open));
     w.open_jobs.insert(job.id);
     w.jobs_sent.insert(job.id);
   }
   const WorkUnit& wu = job.plan.units[unit];
-  w.connection->send(Frame{MessageType::Unit,
-                           {{"job", job.id},
-                            {"unit", unit},
-                            {"pass", job.plan.stages[wu.stage].pass},
-                            {"pixels", unit_pixels_to_json(wu.pixels)}},
-                           {}});
+  w.connection->send(encode(UnitMessage{
+      .job = job.id, .unit = unit, .pass = job.plan.stages[wu.stage].pass, .pixels = wu.pixels}));
   if (options_.metrics) options_.metrics->units_dispatched.add();
   UnitRun& r = run.units[unit];
   if (r.holders.empty()) r.dispatched = now;
@@ -223,18 +212,18 @@ void Scheduler::send_unit(WorkerSlot& w, JobRun& run, int unit) {
   if (observer_) observer_->state_changed(job);
 }
 
-void Scheduler::on_result(std::int64_t worker, const Frame& frame) {
+void Scheduler::on_result(std::int64_t worker, const ResultMessage& result) {
   WorkerSlot& w = workers_.at(worker);
   // Everything is checked before anything changes: a result that breaks a rule costs the worker
   // its connection, and remove_worker() then re-queues all of its units, this one included.
-  const auto job_id = frame.header.at("job").get<std::int64_t>();
-  const int unit = frame.header.at("unit").get<int>();
+  const std::int64_t job_id = result.job;
   if (!w.jobs_sent.count(job_id))
     throw ProtocolError("result for job " + std::to_string(job_id) +
                         ", which was never sent to this worker");
   auto it = runs_.find(job_id);
   if (it == runs_.end()) {  // finished or cancelled meanwhile
-    w.in_flight.erase({job_id, unit});
+    if (result.unit >= 0 && result.unit <= std::numeric_limits<int>::max())
+      w.in_flight.erase({job_id, static_cast<int>(result.unit)});
     return fill_slots();
   }
   JobRun& run = it->second;
@@ -243,20 +232,18 @@ void Scheduler::on_result(std::int64_t worker, const Frame& frame) {
     ++w.dropped_results;  // rendered before the job was taken from it after its failure report
     return;
   }
-  if (unit < 0 || unit >= static_cast<int>(run.units.size()))
-    throw ProtocolError("result for unknown unit " + std::to_string(unit));
+  if (result.unit < 0 || result.unit >= static_cast<std::int64_t>(run.units.size()))
+    throw ProtocolError("result for unknown unit " + std::to_string(result.unit));
+  const int unit = static_cast<int>(result.unit);
   const auto sent = w.in_flight.find({job_id, unit});
   if (sent == w.in_flight.end())
     throw ProtocolError("result for unit " + std::to_string(unit) + " of job " +
                         std::to_string(job_id) + ", which this worker does not hold");
   const WorkUnit& wu = job.plan.units[unit];
   const auto now = Clock::now();
-  if (frame.header.contains("count") && frame.header["count"] != wu.cost)
-    throw ProtocolError("result of " + frame.header["count"].dump() + " pixels for a unit of " +
-                        std::to_string(wu.cost));
-  const RenderStats stats =
-      checked_stats(frame.header.at("stats"), wu.cost, seconds_since(sent->second, now));
-  const std::vector<float> values = checked_pixels(frame.payload, wu.cost);
+  check_result(result, wu.cost, seconds_since(sent->second, now));
+  const RenderStats& stats = result.stats;
+  const std::vector<float>& values = result.values;
   const Clock::time_point sent_at = sent->second;
   w.pipeline.observe(seconds_since(sent_at, now), stats.seconds);
   w.in_flight.erase(sent);
@@ -294,16 +281,16 @@ void Scheduler::on_result(std::int64_t worker, const Frame& frame) {
   fill_slots();
 }
 
-void Scheduler::on_job_failed(std::int64_t worker, const Frame& frame) {
+void Scheduler::on_job_failed(std::int64_t worker, const JobFailedMessage& report) {
   WorkerSlot& w = workers_.at(worker);
-  const auto job_id = frame.header.at("job").get<std::int64_t>();
+  const std::int64_t job_id = report.job;
   if (!w.jobs_sent.count(job_id))
     throw ProtocolError("job_failed for job " + std::to_string(job_id) +
                         ", which was never sent to this worker");
   auto it = runs_.find(job_id);
   if (it == runs_.end()) return;
   JobRun& run = it->second;
-  if (frame.header.value("missing_bundle", false)) {
+  if (report.missing_bundle) {
     // The worker evicted the bundle since it last announced it: it dropped the job and the
     // units sent with it. Take them back and open the job again, this time with the bundle.
     w.bundles.erase(run.job->hash);
@@ -313,24 +300,22 @@ void Scheduler::on_job_failed(std::int64_t worker, const Frame& frame) {
                  job_id, requeued);
     return fill_slots();
   }
-  const std::string report = "worker " + w.hello.name + ": " +
-                             frame.header.value("error", std::string()).substr(0, kMaxWorkerError);
+  const std::string failure = "worker " + w.hello.name + ": " + report.error;
   if (!run.failed_on.insert(worker).second) return;  // it said so already
   if (run.failed_on.size() == 1) {
     // A scene that crashes one worker is not one worker's word: let another try.
-    run.first_failure = report;
-    run.job->warnings.push_back(report + " (the job goes on with the other workers)");
-    spdlog::warn("job {}: {}; its units go to other workers", job_id, report);
+    run.first_failure = failure;
+    run.job->warnings.push_back(failure + " (the job goes on with the other workers)");
+    spdlog::warn("job {}: {}; its units go to other workers", job_id, failure);
     withdraw(w, run);
     return fill_slots();
   }
-  finish(run, JobState::Failed, run.first_failure + "; also " + report);
+  finish(run, JobState::Failed, run.first_failure + "; also " + failure);
 }
 
 void Scheduler::withdraw(WorkerSlot& w, JobRun& run) {
   const std::int64_t job_id = run.job->id;
-  if (w.open_jobs.erase(job_id))
-    w.connection->send(Frame{MessageType::Cancel, {{"job", job_id}}, {}});
+  if (w.open_jobs.erase(job_id)) w.connection->send(encode(CancelMessage{.job = job_id}));
   take_back_units(w, [&](std::int64_t job) { return job == job_id; });
 }
 
@@ -343,7 +328,7 @@ void Scheduler::finish(JobRun& run, JobState state, const std::string& error) {
   // Free the workers at once: they drop the job's queued units and its prepared scene.
   for (auto& [id, w] : workers_) {
     if (!w.open_jobs.erase(job.id)) continue;
-    w.connection->send(Frame{MessageType::Cancel, {{"job", job.id}}, {}});
+    w.connection->send(encode(CancelMessage{.job = job.id}));
     std::erase_if(w.in_flight, [&](const auto& entry) { return entry.first.first == job.id; });
   }
   spdlog::info("job {} {}{}{}", job.id, to_string(state), error.empty() ? "" : ": ", error);

@@ -24,6 +24,7 @@
 #include <nlohmann/json.hpp>
 
 #include "common/protocol/connection.h"
+#include "common/protocol/messages.h"
 #include "common/render/time_prediction.h"
 #include "coordinator/jobs/job_store.h"
 #include "coordinator/metrics/service_metrics.h"
@@ -74,14 +75,14 @@ class Scheduler {
   std::int64_t add_worker(WorkerHello hello, std::shared_ptr<FrameConnection> connection);
   void fill_slots();
   void remove_worker(std::int64_t worker);
-  // Throw ProtocolError (or a JSON error) for a malformed or forged frame: a result for a unit
-  // or job never sent to this worker, or one that fails result_check.h; a job_failed for a job
-  // never sent to it. The caller drops the worker, which re-queues its units. Late duplicates
-  // and results for jobs finished meanwhile are dropped silently.
-  void on_result(std::int64_t worker, const Frame& frame);
+  // Throw ProtocolError for a forged message: a result for a unit or job never sent to this
+  // worker, or one that fails result_check.h; a job_failed for a job never sent to it. The
+  // caller drops the worker, which re-queues its units. Late duplicates and results for jobs
+  // finished meanwhile are dropped silently.
+  void on_result(std::int64_t worker, const ResultMessage& result);
   // The first worker to report a job failing loses the job (its units go to the others); the
   // job fails when a second worker reports it too, or at the time limit with the first report.
-  void on_job_failed(std::int64_t worker, const Frame& frame);
+  void on_job_failed(std::int64_t worker, const JobFailedMessage& report);
 
   void set_observer(JobObserver* observer) { observer_ = observer; }
   // `done` (per unit, may be empty) marks units whose results the job already holds: a job

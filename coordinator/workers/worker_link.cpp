@@ -3,6 +3,7 @@
 #include <spdlog/spdlog.h>
 
 #include "common/protocol/handshake.h"
+#include "common/protocol/messages.h"
 #include "common/protocol/sha256.h"
 
 namespace tessera {
@@ -15,7 +16,6 @@ namespace {
 // coordinator buffer megabytes; results of trusted workers may be larger.
 constexpr FrameLimits kHandshakeLimits{.max_body = 64u << 10, .max_header = 32u << 10};
 constexpr FrameLimits kWorkerLimits{.max_body = 16u << 20, .max_header = 64u << 10};
-constexpr std::size_t kMaxCachedHashes = 64;
 }  // namespace
 
 WorkerLink::WorkerLink(FrameStream stream, const WorkerAuth& auth, Scheduler& scheduler,
@@ -67,14 +67,16 @@ void WorkerLink::leave_unauthenticated() {
 
 void WorkerLink::on_frame(const Frame& frame) {
   try {
-    if (stage_ == Stage::Hello && frame.type == MessageType::Hello) return on_hello(frame);
-    if (stage_ == Stage::Auth && frame.type == MessageType::Auth) return on_auth(frame);
+    if (stage_ == Stage::Hello && frame.type == MessageType::Hello)
+      return on_hello(decode<HelloMessage>(frame));
+    if (stage_ == Stage::Auth && frame.type == MessageType::Auth)
+      return on_auth(decode<AuthMessage>(frame));
     if (stage_ == Stage::Ready && frame.type == MessageType::Result)
-      return scheduler_.on_result(id_, frame);
+      return scheduler_.on_result(id_, decode<ResultMessage>(frame));
     if (stage_ == Stage::Ready && frame.type == MessageType::JobFailed)
-      return scheduler_.on_job_failed(id_, frame);
+      return scheduler_.on_job_failed(id_, decode<JobFailedMessage>(frame));
     connection_->close(std::string("unexpected ") + to_string(frame.type) + " frame");
-  } catch (const std::exception& e) {  // ProtocolError or a mistyped JSON field
+  } catch (const std::exception& e) {  // a malformed or forged message (ProtocolError)
     if (stage_ == Stage::Ready)
       spdlog::warn("worker {} ({}): {}", id_, connection_->peer(), e.what());
     else if (auto suppressed = port_->reject_log.allow())  // a stranger may repeat it at will
@@ -84,33 +86,29 @@ void WorkerLink::on_frame(const Frame& frame) {
   }
 }
 
-void WorkerLink::on_hello(const Frame& frame) {
-  const int version = frame.header.at("version").get<int>();
-  if (version != kProtocolVersion)
-    return reject("protocol version " + std::to_string(version) + " is not " +
+void WorkerLink::on_hello(const HelloMessage& hello) {
+  if (hello.version != kProtocolVersion)
+    return reject("protocol version " + std::to_string(hello.version) + " is not " +
                   std::to_string(kProtocolVersion));
-  hello_.name = frame.header.at("name").get<std::string>().substr(0, 128);
-  hello_.threads = frame.header.at("threads").get<int>();
+  hello_.name = hello.name;
+  hello_.threads = hello.threads;
   hello_.address = connection_->peer();
   if (hello_.threads < 1 || hello_.threads > 1024) return reject("threads must be 1..1024");
-  worker_nonce_ = frame.header.at("nonce").get<std::string>();
+  worker_nonce_ = hello.nonce;
   if (worker_nonce_.size() < 16 || worker_nonce_.size() > 128) return reject("bad nonce");
-  for (const auto& h : frame.header.value("cached", nlohmann::json::array()))
-    if (hello_.cached.size() < kMaxCachedHashes) hello_.cached.insert(h.get<std::string>());
+  hello_.cached.insert(hello.cached.begin(), hello.cached.end());
   nonce_ = make_nonce();
   stage_ = Stage::Auth;
   challenge_sent_ = std::chrono::steady_clock::now();
-  connection_->send(Frame{MessageType::Challenge,
-                          {{"version", kProtocolVersion},
-                           {"nonce", nonce_},
-                           {"auth", auth_.insecure ? "none" : "hmac-sha256"}},
-                          {}});
+  connection_->send(encode(ChallengeMessage{.version = kProtocolVersion,
+                                            .nonce = nonce_,
+                                            .auth = auth_.insecure ? "none" : "hmac-sha256"}));
 }
 
-void WorkerLink::on_auth(const Frame& frame) {
+void WorkerLink::on_auth(const AuthMessage& auth) {
   if (!auth_.insecure) {
     const std::string expected = worker_proof(auth_.secret, nonce_, worker_nonce_);
-    if (!constant_time_equal(frame.header.value("proof", std::string()), expected))
+    if (!constant_time_equal(auth.proof, expected))
       return reject("authentication failed: wrong shared secret");
   }
   hello_.handshake_round_trip =
@@ -120,11 +118,9 @@ void WorkerLink::on_auth(const Frame& frame) {
   leave_unauthenticated();
   deadline_.cancel();
   id_ = scheduler_.add_worker(hello_, connection_);
-  connection_->send(Frame{
-      MessageType::Welcome,
-      {{"worker", id_},
-       {"proof", auth_.insecure ? "" : coordinator_proof(auth_.secret, nonce_, worker_nonce_)}},
-      {}});
+  connection_->send(encode(WelcomeMessage{
+      .worker = id_,
+      .proof = auth_.insecure ? "" : coordinator_proof(auth_.secret, nonce_, worker_nonce_)}));
   scheduler_.fill_slots();
 }
 
@@ -132,7 +128,7 @@ void WorkerLink::reject(const std::string& reason) {
   if (auto suppressed = port_->reject_log.allow())
     spdlog::warn("refused worker from {}: {}{}", connection_->peer(), reason,
                  suppressed_note(*suppressed));
-  connection_->send(Frame{MessageType::Reject, {{"reason", reason}}, {}});
+  connection_->send(encode(RejectMessage{.reason = reason}));
   connection_->close_after_flush(reason);
 }
 

@@ -14,6 +14,7 @@
 #include <boost/asio/steady_timer.hpp>
 
 #include "common/protocol/connection.h"
+#include "common/protocol/messages.h"
 #include "coordinator/net/backoff.h"
 #include "coordinator/net/log_limiter.h"
 #include "coordinator/scheduler/scheduler.h"
@@ -51,8 +52,8 @@ class WorkerLink : public std::enable_shared_from_this<WorkerLink> {
  private:
   enum class Stage { Hello, Auth, Ready };
   void on_frame(const Frame& frame);
-  void on_hello(const Frame& frame);
-  void on_auth(const Frame& frame);
+  void on_hello(const HelloMessage& hello);
+  void on_auth(const AuthMessage& auth);
   void reject(const std::string& reason);
   // Stops counting this link as a stranger (authenticated or closed); idempotent.
   void leave_unauthenticated();

@@ -20,6 +20,7 @@
 
 #include "common/protocol/bundle.h"
 #include "common/protocol/frame.h"
+#include "common/protocol/messages.h"
 #include "coordinator/jobs/api_error.h"
 #include "coordinator/jobs/intake_budget.h"
 #include "coordinator/jobs/job_request.h"
@@ -134,9 +135,10 @@ constexpr double kFuzzUnitWallSeconds = 2.0;
 inline FrameLimits fuzz_frame_limits() { return {.max_body = 4096, .max_header = 1024}; }
 
 inline void check_accepted_result(const Frame& frame) {
-  const RenderStats stats =
-      checked_stats(frame.header.at("stats"), kFuzzUnitPixels, kFuzzUnitWallSeconds);
-  const std::vector<float> pixels = checked_pixels(frame.payload, kFuzzUnitPixels);
+  const ResultMessage result = decode<ResultMessage>(frame);
+  check_result(result, kFuzzUnitPixels, kFuzzUnitWallSeconds);
+  const RenderStats& stats = result.stats;
+  const std::vector<float>& pixels = result.values;
   require(pixels.size() == static_cast<std::size_t>(kFuzzUnitPixels) * 3,
           "an accepted result does not have the unit's pixel count");
   for (const float value : pixels) require(std::isfinite(value), "an accepted pixel is not finite");
@@ -166,8 +168,8 @@ inline void check_decoded_frame(const Frame& frame, const FrameLimits& limits) {
 
 // The first byte sets the size of the chunks (1..256) the rest is fed in, as a socket would
 // deliver it. Returns true when the whole stream decoded and every result in it was accepted,
-// false when the connection would be closed (ProtocolError, or a mistyped header field, which
-// coordinator/workers/worker_link.cpp treats the same way).
+// false when the connection would be closed (a ProtocolError: a malformed frame, a message that
+// does not decode, or a result that fails result_check.h).
 inline bool check_worker_frames_input(std::string_view bytes) {
   if (bytes.empty()) return false;
   const std::size_t chunk = static_cast<unsigned char>(bytes[0]) + 1u;
@@ -179,12 +181,7 @@ inline bool check_worker_frames_input(std::string_view bytes) {
       decoder.feed(stream.substr(at, chunk));
       while (const std::optional<Frame> frame = decoder.next()) {
         check_decoded_frame(*frame, limits);
-        if (frame->type != MessageType::Result) continue;
-        try {
-          check_accepted_result(*frame);
-        } catch (const nlohmann::json::exception&) {
-          return false;
-        }
+        if (frame->type == MessageType::Result) check_accepted_result(*frame);
       }
     }
   } catch (const ProtocolError&) {

@@ -9,7 +9,7 @@
 #include <map>
 #include <thread>
 
-#include "common/protocol/unit_message.h"
+#include "common/protocol/messages.h"
 
 namespace tessera {
 namespace {
@@ -22,9 +22,9 @@ struct FakeWorker {
   std::int64_t id = 0;
   tcp::socket peer;
   FrameDecoder decoder;
-  std::vector<Frame> jobs;   // job frames received, in order
-  std::vector<Frame> units;  // unit frames received, in order
-  std::vector<Frame> cancels;
+  std::vector<JobMessage> jobs;    // received, in order
+  std::vector<UnitMessage> units;  // received, in order
+  std::vector<CancelMessage> cancels;
 };
 
 class SchedulerTest : public ::testing::Test {
@@ -75,33 +75,39 @@ class SchedulerTest : public ::testing::Test {
         w->decoder.feed(std::string_view(buf, n));
       while (auto f = w->decoder.next())
         if (f->type == MessageType::Unit)
-          w->units.push_back(std::move(*f));
+          w->units.push_back(decode<UnitMessage>(*f));
         else if (f->type == MessageType::Job)
-          w->jobs.push_back(std::move(*f));
+          w->jobs.push_back(decode<JobMessage>(*f));
         else if (f->type == MessageType::Cancel)
-          w->cancels.push_back(std::move(*f));
+          w->cancels.push_back(decode<CancelMessage>(*f));
     }
   }
 
   // What an honest worker sends for a unit of `pixels` pixels.
-  static Frame result(const Job& job, int unit, float value = 0.5f, double seconds = 0) {
-    const long long pixels = job.plan.units[unit].cost;
+  static Frame result(const Job& job, std::int64_t unit, float value = 0.5f, double seconds = 0) {
+    const long long pixels = job.plan.units[static_cast<std::size_t>(unit)].cost;
     RenderStats stats;
     stats.seconds = seconds;
     stats.pixels = stats.samples = stats.camera_rays = static_cast<std::uint64_t>(pixels);
-    return Frame{MessageType::Result,
-                 {{"job", job.id}, {"unit", unit}, {"count", pixels}, {"stats", to_json(stats)}},
-                 pack_floats(std::vector<float>(static_cast<std::size_t>(pixels) * 3, value))};
+    return encode(
+        ResultMessage{.job = job.id,
+                      .unit = unit,
+                      .stats = stats,
+                      .values = std::vector<float>(static_cast<std::size_t>(pixels) * 3, value)});
+  }
+
+  // As the worker link hands it over: decoded, then to the scheduler.
+  void deliver(FakeWorker& w, const Frame& frame) {
+    scheduler_.on_result(w.id, decode<ResultMessage>(frame));
   }
 
   // `seconds`: the render time the worker reports for the unit.
-  void send_result(FakeWorker& w, const Frame& unit_frame, const Job& job, double seconds = 0) {
-    scheduler_.on_result(w.id, result(job, unit_frame.header["unit"].get<int>(), 0.5f, seconds));
+  void send_result(FakeWorker& w, const UnitMessage& unit, const Job& job, double seconds = 0) {
+    deliver(w, result(job, unit.unit, 0.5f, seconds));
   }
 
   void report_failure(FakeWorker& w, const Job& job, const std::string& error) {
-    scheduler_.on_job_failed(
-        w.id, Frame{MessageType::JobFailed, {{"job", job.id}, {"error", error}}, {}});
+    scheduler_.on_job_failed(w.id, JobFailedMessage{.job = job.id, .error = error});
   }
 
   asio::io_context io_;
@@ -126,18 +132,19 @@ TEST_F(SchedulerTest, ALostWorkersUnitsGoToOthers) {
   FakeWorker& b = add_worker(1);
   drain();
   scheduler_.remove_worker(a.id);
-  std::set<int> got;
+  std::set<std::int64_t> got;
   for (std::size_t answered = 0; answered < b.units.size() && answered < 12; ++answered) {
-    if (answered > 0) got.insert(b.units[answered].header["unit"].get<int>());
+    if (answered > 0) got.insert(b.units[answered].unit);
     send_result(b, b.units[answered], job);  // makes room for the re-queued units
     drain();
   }
-  for (const auto& f : a.units) EXPECT_TRUE(got.count(f.header["unit"].get<int>()));
+  for (const auto& f : a.units) EXPECT_TRUE(got.count(f.unit));
 }
 
-std::set<int> unit_indices(const std::vector<Frame>& units, std::size_t from, std::size_t to) {
-  std::set<int> indices;
-  for (std::size_t i = from; i < to; ++i) indices.insert(units[i].header["unit"].get<int>());
+std::set<std::int64_t> unit_indices(const std::vector<UnitMessage>& units, std::size_t from,
+                                    std::size_t to) {
+  std::set<std::int64_t> indices;
+  for (std::size_t i = from; i < to; ++i) indices.insert(units[i].unit);
   return indices;
 }
 
@@ -146,17 +153,15 @@ TEST_F(SchedulerTest, AWorkerThatEvictedTheBundleGetsItAgainWithItsUnits) {
   FakeWorker& w = add_worker(2, {job.hash});  // announced in hello, evicted since
   drain();
   ASSERT_EQ(w.jobs.size(), 1u);
-  EXPECT_FALSE(w.jobs[0].header.contains("bundle"));
+  EXPECT_FALSE(w.jobs[0].bundle.has_value());
   ASSERT_EQ(w.units.size(), 3u);
   scheduler_.on_job_failed(
-      w.id,
-      Frame{MessageType::JobFailed,
-            {{"job", job.id}, {"missing_bundle", true}, {"error", "bundle is not cached here"}},
-            {}});
+      w.id, JobFailedMessage{
+                .job = job.id, .error = "bundle is not cached here", .missing_bundle = true});
   drain();
   EXPECT_EQ(job.state, JobState::Running);
   ASSERT_EQ(w.jobs.size(), 2u);
-  EXPECT_TRUE(w.jobs[1].header.contains("bundle"));
+  EXPECT_TRUE(w.jobs[1].bundle.has_value());
   ASSERT_EQ(w.units.size(), 6u);  // the same units again, after the bundle
   EXPECT_EQ(unit_indices(w.units, 0, 3), unit_indices(w.units, 3, 6));
 }
@@ -188,22 +193,22 @@ TEST_F(SchedulerTest, AFailureReportTakesTheJobFromThatWorkerOnly) {
   report_failure(a, job, "broken");
   drain();
   ASSERT_EQ(a.cancels.size(), 1u);
-  EXPECT_EQ(a.cancels[0].header["job"], job.id);
+  EXPECT_EQ(a.cancels[0].job, job.id);
   EXPECT_EQ(scheduler_.workers_json()[0]["in_flight"], 0);
   // A result the reporting worker had already rendered is dropped, not held against it.
   const long long done = job.done_cost;
   EXPECT_NO_THROW(send_result(a, a.units[0], job));
   EXPECT_EQ(job.done_cost, done);
   // The other worker renders the whole job, the taken-back units included; none go back to a.
-  std::set<int> got;
+  std::set<std::int64_t> got;
   for (std::size_t i = 0; i < b.units.size() && i < 400; ++i) {
-    got.insert(b.units[i].header["unit"].get<int>());
+    got.insert(b.units[i].unit);
     send_result(b, b.units[i], job);
     drain();
   }
   EXPECT_EQ(job.state, JobState::Done);
   EXPECT_EQ(a.units.size(), 2u);
-  for (const auto& f : a.units) EXPECT_TRUE(got.count(f.header["unit"].get<int>()));
+  for (const auto& f : a.units) EXPECT_TRUE(got.count(f.unit));
 }
 
 TEST_F(SchedulerTest, WithOneWorkerAFailureWaitsForASecondUntilTheTimeLimit) {
@@ -242,8 +247,8 @@ TEST_F(SchedulerTest, ResultsThatBreakARuleAreRefusedAndChangeNothing) {
   Job& other = add_job(64, 64, 1);  // never sent to w: its slots are full
   drain();
   ASSERT_EQ(w.units.size(), 2u);
-  const int unit = w.units[0].header["unit"].get<int>();
-  const std::set<int> held = unit_indices(w.units, 0, 2);
+  const std::int64_t unit = w.units[0].unit;
+  const std::set<std::int64_t> held = unit_indices(w.units, 0, 2);
   int unsent = 0;
   while (held.count(unsent)) ++unsent;
   const Frame good = result(job, unit);
@@ -251,10 +256,9 @@ TEST_F(SchedulerTest, ResultsThatBreakARuleAreRefusedAndChangeNothing) {
   const float inf = std::numeric_limits<float>::infinity();
   auto with_pixel = [&](float v) {
     Frame f = good;
-    std::vector<float> values = unpack_floats(f.payload, f.payload.size() / 4);
-    values[4] = v;
-    f.payload = pack_floats(values);
-    return f;
+    ResultMessage r = decode<ResultMessage>(f);
+    r.values[4] = v;
+    return encode(r);
   };
   auto with_stat = [&](const char* key, const nlohmann::json& value) {
     Frame f = good;
@@ -283,7 +287,7 @@ TEST_F(SchedulerTest, ResultsThatBreakARuleAreRefusedAndChangeNothing) {
   // Cancelled, the other job would drop late results silently, but not one it never sent.
   ASSERT_TRUE(scheduler_.cancel(other.id));
   for (const auto& [name, frame] : forged) {
-    EXPECT_THROW(scheduler_.on_result(w.id, frame), ProtocolError) << name;
+    EXPECT_THROW(deliver(w, frame), ProtocolError) << name;
     EXPECT_EQ(job.done_cost, 0) << name;
     EXPECT_EQ(other.done_cost, 0) << name;
   }
@@ -291,9 +295,9 @@ TEST_F(SchedulerTest, ResultsThatBreakARuleAreRefusedAndChangeNothing) {
   // The honest result passes every check, and only once. A negative value is honest: a VRML
   // world may have negative colours.
   const Frame honest = with_pixel(-0.25f);
-  EXPECT_NO_THROW(scheduler_.on_result(w.id, honest));
-  EXPECT_EQ(job.done_cost, job.plan.units[unit].cost);
-  EXPECT_THROW(scheduler_.on_result(w.id, honest), ProtocolError);
+  EXPECT_NO_THROW(deliver(w, honest));
+  EXPECT_EQ(job.done_cost, job.plan.units[static_cast<std::size_t>(unit)].cost);
+  EXPECT_THROW(deliver(w, honest), ProtocolError);
 }
 
 TEST_F(SchedulerTest, StragglersAreDuplicatedAndTheLateResultDropped) {
@@ -305,13 +309,13 @@ TEST_F(SchedulerTest, StragglersAreDuplicatedAndTheLateResultDropped) {
   scheduler_.tick();
   drain();
   ASSERT_EQ(idle.units.size(), 1u);
-  EXPECT_EQ(idle.units[0].header["unit"], slow.units[0].header["unit"]);
+  EXPECT_EQ(idle.units[0].unit, slow.units[0].unit);
   send_result(idle, idle.units[0], job);
   EXPECT_EQ(job.state, JobState::Done);
   drain();
   // The loser is told to stop rendering the job it still holds.
   ASSERT_EQ(slow.cancels.size(), 1u);
-  EXPECT_EQ(slow.cancels[0].header["job"], job.id);
+  EXPECT_EQ(slow.cancels[0].job, job.id);
   send_result(slow, slow.units[0], job);  // the loser: the job is gone from the scheduler
   EXPECT_EQ(job.done_cost, job.plan.total_cost);
 }
@@ -324,13 +328,13 @@ TEST_F(SchedulerTest, OnlyAWorkerWithIdleThreadsTakesADuplicate) {
   FakeWorker& a = add_worker(1);  // 1 thread + 1 prefetch slot: the unit of each job
   drain();
   ASSERT_EQ(a.units.size(), 2u);
-  ASSERT_EQ(a.units[0].header["job"], first.id);
+  ASSERT_EQ(a.units[0].job, first.id);
   const Job& second = add_job(2, 2, 1);  // pending while `a` is full
   FakeWorker& b = add_worker(1);
   scheduler_.tick();
   drain();
   ASSERT_EQ(b.units.size(), 1u);
-  EXPECT_EQ(b.units[0].header["job"], second.id);
+  EXPECT_EQ(b.units[0].job, second.id);
   // b's thread is busy; its free prefetch slot must not take a straggler (deadline zero here).
   scheduler_.tick();
   drain();
@@ -338,8 +342,8 @@ TEST_F(SchedulerTest, OnlyAWorkerWithIdleThreadsTakesADuplicate) {
   send_result(b, b.units[0], second);  // now b's thread is idle: it takes the oldest straggler
   drain();
   ASSERT_EQ(b.units.size(), 2u);
-  EXPECT_EQ(b.units[1].header["job"], first.id);
-  EXPECT_EQ(b.units[1].header["unit"], a.units[0].header["unit"]);
+  EXPECT_EQ(b.units[1].job, first.id);
+  EXPECT_EQ(b.units[1].unit, a.units[0].unit);
 }
 
 double seconds_since(Clock::time_point t) {
@@ -377,7 +381,7 @@ TEST_F(SpeculationDeadlineTest, NoDuplicateBeforeTheMinimum) {
   scheduler_.tick();
   drain();
   ASSERT_EQ(idle.units.size(), 1u);
-  EXPECT_EQ(idle.units[0].header["unit"], slow.units[0].header["unit"]);
+  EXPECT_EQ(idle.units[0].unit, slow.units[0].unit);
 }
 
 TEST_F(SpeculationDeadlineTest, NoDuplicateBeforeFactorTimesTheMeanUnitTime) {
@@ -401,24 +405,24 @@ TEST_F(SpeculationDeadlineTest, NoDuplicateBeforeFactorTimesTheMeanUnitTime) {
   scheduler_.tick();
   drain();
   ASSERT_EQ(idle.units.size(), 1u);
-  EXPECT_EQ(idle.units[0].header["unit"], slow.units[1].header["unit"]);
+  EXPECT_EQ(idle.units[0].unit, slow.units[1].unit);
 }
 
 TEST_F(SchedulerTest, ALateDuplicateOfARunningJobIsDropped) {
   const Job& job = add_job(16, 16, 1);  // several units
   FakeWorker& slow = add_worker(1);
   drain();
-  const Frame first = slow.units[0];
+  const UnitMessage first = slow.units[0];
   FakeWorker& idle = add_worker(1);
   drain();
   // The idle worker took new units first; answer them until it is given the straggler.
   for (std::size_t i = 0; i < idle.units.size() && i < 64; ++i) {
-    if (idle.units[i].header["unit"] == first.header["unit"]) break;
+    if (idle.units[i].unit == first.unit) break;
     send_result(idle, idle.units[i], job);
     scheduler_.tick();
     drain();
   }
-  ASSERT_EQ(idle.units.back().header["unit"], first.header["unit"]);
+  ASSERT_EQ(idle.units.back().unit, first.unit);
   send_result(idle, idle.units.back(), job);
   const long long done = job.done_cost;
   send_result(slow, first, job);
@@ -430,7 +434,7 @@ TEST_F(SchedulerTest, ALaterPassWaitsForTheEarlierOne) {
   const Job& job = add_job(8, 8, 2);
   FakeWorker& w = add_worker(64);
   drain();
-  for (const auto& f : w.units) EXPECT_EQ(f.header["pass"], 0);
+  for (const auto& f : w.units) EXPECT_EQ(f.pass, 0);
   const std::size_t pass0 = w.units.size();
   for (std::size_t i = 0; i + 1 < pass0; ++i) send_result(w, w.units[i], job);
   drain();
@@ -438,7 +442,7 @@ TEST_F(SchedulerTest, ALaterPassWaitsForTheEarlierOne) {
   send_result(w, w.units[pass0 - 1], job);
   drain();
   ASSERT_GT(w.units.size(), pass0);
-  EXPECT_EQ(w.units[pass0].header["pass"], 1);
+  EXPECT_EQ(w.units[pass0].pass, 1);
 }
 
 TEST_F(SchedulerTest, WorkersAreSharedByPriority) {
@@ -448,9 +452,9 @@ TEST_F(SchedulerTest, WorkersAreSharedByPriority) {
   std::map<std::int64_t, long long> cost;
   for (int round = 0; round < 60; ++round) {
     drain();
-    const Frame f = w.units.back();
-    const Job& job = f.header["job"] == low.id ? low : high;
-    cost[job.id] += job.plan.units[f.header["unit"].get<int>()].cost;
+    const UnitMessage f = w.units.back();
+    const Job& job = f.job == low.id ? low : high;
+    cost[job.id] += job.plan.units[static_cast<std::size_t>(f.unit)].cost;
     w.units.clear();
     send_result(w, f, job);
   }
@@ -473,11 +477,11 @@ TEST_F(SchedulerTest, CancelFreesTheWorkersAtOnce) {
   for (FakeWorker* w : {&a, &b}) {
     const auto held = [&](const Job& j) {
       return std::count_if(w->units.begin(), w->units.end(),
-                           [&](const Frame& f) { return f.header["job"] == j.id; });
+                           [&](const UnitMessage& f) { return f.job == j.id; });
     };
     ASSERT_GT(held(job), 0);
     ASSERT_EQ(w->cancels.size(), 1u);
-    EXPECT_EQ(w->cancels[0].header["job"], job.id);
+    EXPECT_EQ(w->cancels[0].job, job.id);
     EXPECT_EQ(workers[w == &a ? 0 : 1]["in_flight"], held(other));
   }
   EXPECT_FALSE(scheduler_.cancel(job.id));
@@ -514,8 +518,7 @@ TEST_F(SchedulerTest, AJobThatRanBesideAnotherDoesNotCalibrate) {
   FakeWorker& w = add_worker(1);  // 1 thread + 1 prefetch: one unit of each
   drain();
   ASSERT_EQ(w.units.size(), 2u);
-  for (const Frame& f : w.units)
-    send_result(w, f, f.header["job"] == first.id ? first : second, 0.2);
+  for (const UnitMessage& f : w.units) send_result(w, f, f.job == first.id ? first : second, 0.2);
   ASSERT_EQ(first.state, JobState::Done);
   ASSERT_EQ(second.state, JobState::Done);
   const Prediction p = scheduler_.predict(1e-3, 1000);

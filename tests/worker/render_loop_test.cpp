@@ -11,6 +11,7 @@
 #include <mutex>
 #include <string>
 #include <thread>
+#include <variant>
 #include <vector>
 
 namespace tessera {
@@ -32,31 +33,37 @@ JobSpec spec(int size, int aa_samples = 1) {
 
 UnitPixels whole_image(int size) { return {.rect = {0, 0, size, size}}; }
 
-// Collects what the loop sends; render threads call it.
+using Report = RenderLoop::Report;
+
+std::int64_t job_of(const Report& report) {
+  return std::visit([](const auto& message) { return message.job; }, report);
+}
+
+// Collects what the loop reports; render threads call it.
 class Sink {
  public:
-  RenderLoop::ResultSink callback() {
-    return [this](Frame f) {
+  RenderLoop::ReportSink callback() {
+    return [this](Report r) {
       std::lock_guard lock(mutex_);
-      frames_.push_back(std::move(f));
+      reports_.push_back(std::move(r));
       arrived_.notify_all();
     };
   }
-  // Waits until `count` frames arrived (or 10 s passed); returns all of them.
-  std::vector<Frame> wait_for(std::size_t count) {
+  // Waits until `count` reports arrived (or 10 s passed); returns all of them.
+  std::vector<Report> wait_for(std::size_t count) {
     std::unique_lock lock(mutex_);
-    arrived_.wait_for(lock, 10s, [&] { return frames_.size() >= count; });
-    return frames_;
+    arrived_.wait_for(lock, 10s, [&] { return reports_.size() >= count; });
+    return reports_;
   }
-  std::vector<Frame> now() {
+  std::vector<Report> now() {
     std::lock_guard lock(mutex_);
-    return frames_;
+    return reports_;
   }
 
  private:
   std::mutex mutex_;
   std::condition_variable arrived_;
-  std::vector<Frame> frames_;
+  std::vector<Report> reports_;
 };
 
 TEST(RenderLoopBundles, ASecondJobOfTheSameHashOpensWithoutItsBundle) {
@@ -67,11 +74,13 @@ TEST(RenderLoopBundles, ASecondJobOfTheSameHashOpensWithoutItsBundle) {
   EXPECT_EQ(loop.cached_hashes(), std::vector<std::string>{hash});
   ASSERT_TRUE(loop.open_job(2, spec(4), hash, std::nullopt));
   loop.add_unit(2, 0, 0, whole_image(4));
-  const std::vector<Frame> frames = sink.wait_for(1);
-  ASSERT_EQ(frames.size(), 1u);
-  EXPECT_EQ(frames[0].type, MessageType::Result);
-  EXPECT_EQ(frames[0].header["job"], 2);
-  EXPECT_EQ(frames[0].header["count"], 16);
+  const std::vector<Report> reports = sink.wait_for(1);
+  ASSERT_EQ(reports.size(), 1u);
+  const auto* result = std::get_if<ResultMessage>(&reports[0]);
+  ASSERT_TRUE(result);
+  EXPECT_EQ(result->job, 2);
+  EXPECT_EQ(result->values.size(), 16u * 3);
+  EXPECT_EQ(result->stats.pixels, 16u);
 }
 
 TEST(RenderLoopBundles, AnUnknownHashWithoutItsBundleDoesNotOpen) {
@@ -100,6 +109,27 @@ TEST(RenderLoopBundles, TheNinthBundleEvictsTheOldest) {
   EXPECT_TRUE(loop.open_job(201, spec(4), hashes[2], std::nullopt));
 }
 
+TEST(RenderLoopFailure, AJobWhoseSceneDoesNotLoadIsReportedFailedOnce) {
+  Sink sink;
+  RenderLoop loop(1, sink.callback());
+  const Bundle broken{"scene.sdl", "sdl", {{"scene.sdl", "sphere {\n"}}};
+  ASSERT_TRUE(loop.open_job(1, spec(4), content_hash(broken), broken));
+  ASSERT_TRUE(loop.open_job(2, spec(4), content_hash(bundle(0)), bundle(0)));
+  // One thread takes the units in order: the failure, a unit that reports nothing more, then
+  // the other job's result.
+  loop.add_unit(1, 0, 0, whole_image(4));
+  loop.add_unit(1, 1, 0, whole_image(4));
+  loop.add_unit(2, 0, 0, whole_image(4));
+  const std::vector<Report> reports = sink.wait_for(2);
+  ASSERT_EQ(reports.size(), 2u);
+  const auto* failed = std::get_if<JobFailedMessage>(&reports[0]);
+  ASSERT_TRUE(failed);
+  EXPECT_EQ(failed->job, 1);
+  EXPECT_NE(failed->error.find("scene.sdl"), std::string::npos) << failed->error;
+  EXPECT_FALSE(failed->missing_bundle);
+  EXPECT_TRUE(std::holds_alternative<ResultMessage>(reports[1]));
+}
+
 TEST(RenderLoopCancel, ACancelledJobsQueuedUnitsAreDroppedAndSendNothing) {
   Sink sink;
   RenderLoop loop(1, sink.callback());
@@ -115,12 +145,12 @@ TEST(RenderLoopCancel, ACancelledJobsQueuedUnitsAreDroppedAndSendNothing) {
   const std::size_t after = sink.now().size();
   EXPECT_LE(after, at_cancel + 1) << "results kept coming after the cancel";
   EXPECT_LT(after, static_cast<std::size_t>(kUnits));
-  // The thread is free at once: the next job's unit is the next frame.
+  // The thread is free at once: the next job's unit is the next report.
   loop.add_unit(2, 0, 0, whole_image(4));
-  const std::vector<Frame> frames = sink.wait_for(after + 1);
-  ASSERT_EQ(frames.size(), after + 1);
-  EXPECT_EQ(frames.back().header["job"], 2);
-  for (std::size_t i = 0; i < after; ++i) EXPECT_EQ(frames[i].header["job"], 1);
+  const std::vector<Report> reports = sink.wait_for(after + 1);
+  ASSERT_EQ(reports.size(), after + 1);
+  EXPECT_EQ(job_of(reports.back()), 2);
+  for (std::size_t i = 0; i < after; ++i) EXPECT_EQ(job_of(reports[i]), 1);
 }
 
 }  // namespace

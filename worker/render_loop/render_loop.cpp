@@ -8,7 +8,6 @@
 #include <spdlog/spdlog.h>
 
 #include "common/loaders/scene_loader.h"
-#include "common/protocol/unit_message.h"
 #include "common/render/prepared_scene.h"
 #include "common/render/render.h"
 
@@ -52,7 +51,7 @@ struct PreparedJob {
   }
 };
 
-RenderLoop::RenderLoop(int threads, ResultSink sink) : sink_(std::move(sink)) {
+RenderLoop::RenderLoop(int threads, ReportSink sink) : sink_(std::move(sink)) {
   for (int i = 0; i < threads; ++i) threads_.emplace_back([this] { run(); });
 }
 
@@ -147,7 +146,7 @@ void RenderLoop::render(const Task& task) {
   if (!job.prepared) {
     if (!job.failure_reported.exchange(true)) {
       spdlog::warn("job {}: {}", job.id, job.error);
-      sink_(Frame{MessageType::JobFailed, {{"job", job.id}, {"error", job.error}}, {}});
+      sink_(JobFailedMessage{.job = job.id, .error = job.error});
     }
     return;
   }
@@ -164,7 +163,7 @@ void RenderLoop::render(const Task& task) {
     return;  // cancelled: the coordinator expects nothing more of this job
   } catch (const std::exception& e) {
     if (!job.failure_reported.exchange(true))
-      sink_(Frame{MessageType::JobFailed, {{"job", job.id}, {"error", e.what()}}, {}});
+      sink_(JobFailedMessage{.job = job.id, .error = e.what()});
     return;
   }
   stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -177,10 +176,8 @@ void RenderLoop::render(const Task& task) {
     values.push_back(static_cast<float>(c.b));
   }
   if (job.cancelled) return;
-  sink_(Frame{
-      MessageType::Result,
-      {{"job", job.id}, {"unit", task.unit}, {"count", pixels.size()}, {"stats", to_json(stats)}},
-      pack_floats(values)});
+  sink_(
+      ResultMessage{.job = job.id, .unit = task.unit, .stats = stats, .values = std::move(values)});
 }
 
 }  // namespace tessera

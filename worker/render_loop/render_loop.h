@@ -1,6 +1,7 @@
 // The worker's render loop: bundles cached by content hash, one prepared scene per job (built
 // by the first unit that needs it), and a pool of render threads tracing units. Public members
-// are called from the session's thread; results leave through `ResultSink` on render threads.
+// are called from the session's thread; what the units come to (a result, or the job's failure)
+// leaves through `ReportSink` on render threads, and the session sends it.
 #pragma once
 
 #include <condition_variable>
@@ -14,12 +15,13 @@
 #include <optional>
 #include <string>
 #include <thread>
+#include <variant>
 #include <vector>
 
 #include "common/progressive/unit_pixels.h"
 #include "common/protocol/bundle.h"
-#include "common/protocol/frame.h"
 #include "common/protocol/job_spec.h"
+#include "common/protocol/messages.h"
 
 namespace tessera {
 
@@ -27,8 +29,9 @@ struct PreparedJob;
 
 class RenderLoop {
  public:
-  using ResultSink = std::function<void(Frame)>;
-  RenderLoop(int threads, ResultSink sink);
+  using Report = std::variant<ResultMessage, JobFailedMessage>;
+  using ReportSink = std::function<void(Report)>;
+  RenderLoop(int threads, ReportSink sink);
   ~RenderLoop();
   RenderLoop(const RenderLoop&) = delete;
   RenderLoop& operator=(const RenderLoop&) = delete;
@@ -53,7 +56,7 @@ class RenderLoop {
   void run();
   void render(const Task& task);
 
-  ResultSink sink_;
+  ReportSink sink_;
   mutable std::mutex mutex_;
   std::condition_variable wake_;
   bool stopping_ = false;

@@ -5,8 +5,8 @@
 #include <boost/asio/post.hpp>
 
 #include "common/protocol/handshake.h"
+#include "common/protocol/messages.h"
 #include "common/protocol/sha256.h"
-#include "common/protocol/unit_message.h"
 
 namespace tessera {
 
@@ -18,10 +18,11 @@ WorkerSession::WorkerSession(asio::io_context& io, WorkerConfig config)
       config_(std::move(config)),
       resolver_(io),
       retry_timer_(io),
-      loop_(config_.threads, [this](Frame frame) {
-        // From a render thread: hand the result to the connection's thread.
-        asio::post(io_, [this, f = std::move(frame)] {
-          if (connection_ && stage_ == Stage::Ready) connection_->send(f);
+      loop_(config_.threads, [this](RenderLoop::Report report) {
+        // From a render thread: hand the report to the connection's thread.
+        asio::post(io_, [this, r = std::move(report)] {
+          if (connection_ && stage_ == Stage::Ready)
+            connection_->send(std::visit([](const auto& message) { return encode(message); }, r));
         });
       }) {}
 
@@ -60,54 +61,50 @@ void WorkerSession::on_connected(tcp::socket socket) {
                      [this](const std::string& reason) { on_closed(reason); });
   nonce_ = make_nonce();
   stage_ = Stage::Hello;
-  connection_->send(Frame{MessageType::Hello,
-                          {{"version", kProtocolVersion},
-                           {"name", config_.name},
-                           {"threads", config_.threads},
-                           {"nonce", nonce_},
-                           {"cached", loop_.cached_hashes()}},
-                          {}});
+  connection_->send(encode(HelloMessage{.version = kProtocolVersion,
+                                        .name = config_.name,
+                                        .threads = config_.threads,
+                                        .nonce = nonce_,
+                                        .cached = loop_.cached_hashes()}));
 }
 
 void WorkerSession::on_frame(const Frame& frame) {
   try {
     switch (frame.type) {
       case MessageType::Challenge:
-        if (stage_ == Stage::Hello) return on_challenge(frame);
+        if (stage_ == Stage::Hello) return on_challenge(decode<ChallengeMessage>(frame));
         break;
       case MessageType::Welcome:
-        if (stage_ == Stage::Authenticating) return on_welcome(frame);
+        if (stage_ == Stage::Authenticating) return on_welcome(decode<WelcomeMessage>(frame));
         break;
       case MessageType::Reject:
-        return fail("refused by the coordinator: " + frame.header.value("reason", std::string()));
+        return fail("refused by the coordinator: " + decode<RejectMessage>(frame).reason);
       case MessageType::Job:
-        if (stage_ == Stage::Ready) return on_job(frame);
+        if (stage_ == Stage::Ready) return on_job(decode<JobMessage>(frame));
         break;
       case MessageType::Unit:
-        if (stage_ == Stage::Ready)
-          return loop_.add_unit(frame.header.at("job").get<std::int64_t>(),
-                                frame.header.at("unit").get<std::int64_t>(),
-                                frame.header.at("pass").get<int>(),
-                                unit_pixels_from_json(frame.header.at("pixels")));
+        if (stage_ == Stage::Ready) {
+          const UnitMessage unit = decode<UnitMessage>(frame);
+          return loop_.add_unit(unit.job, unit.unit, unit.pass, unit.pixels);
+        }
         break;
       case MessageType::Cancel:
-        if (stage_ == Stage::Ready)
-          return loop_.cancel_job(frame.header.at("job").get<std::int64_t>());
+        if (stage_ == Stage::Ready) return loop_.cancel_job(decode<CancelMessage>(frame).job);
         break;
       default:
         break;
     }
     connection_->close(std::string("unexpected ") + to_string(frame.type) + " frame");
-  } catch (const std::exception& e) {  // malformed header fields
+  } catch (const std::exception& e) {  // a malformed message (ProtocolError)
     connection_->close(std::string("bad ") + to_string(frame.type) + " frame: " + e.what());
   }
 }
 
-void WorkerSession::on_challenge(const Frame& frame) {
-  if (frame.header.at("version").get<int>() != kProtocolVersion)
-    return fail("the coordinator speaks protocol version " + frame.header["version"].dump());
-  coordinator_nonce_ = frame.header.at("nonce").get<std::string>();
-  const std::string auth = frame.header.at("auth").get<std::string>();
+void WorkerSession::on_challenge(const ChallengeMessage& challenge) {
+  if (challenge.version != kProtocolVersion)
+    return fail("the coordinator speaks protocol version " + std::to_string(challenge.version));
+  coordinator_nonce_ = challenge.nonce;
+  const std::string& auth = challenge.auth;
   // Whether proofs are exchanged is the worker's own decision, never the coordinator's word:
   // a worker given a secret accepts only a coordinator that proves it knows the secret, so a
   // peer impersonating the coordinator cannot downgrade it with auth "none".
@@ -117,39 +114,27 @@ void WorkerSession::on_challenge(const Frame& frame) {
   if (config_.secret.empty() && auth != "none")
     return fail("the coordinator requires a shared secret (--secret or TESSERA_SECRET)");
   stage_ = Stage::Authenticating;
-  connection_->send(Frame{
-      MessageType::Auth,
-      {{"proof", authenticated() ? worker_proof(config_.secret, coordinator_nonce_, nonce_) : ""}},
-      {}});
+  connection_->send(encode(AuthMessage{
+      .proof = authenticated() ? worker_proof(config_.secret, coordinator_nonce_, nonce_) : ""}));
 }
 
-void WorkerSession::on_welcome(const Frame& frame) {
+void WorkerSession::on_welcome(const WelcomeMessage& welcome) {
   if (authenticated()) {
     const std::string expected = coordinator_proof(config_.secret, coordinator_nonce_, nonce_);
-    if (!constant_time_equal(frame.header.value("proof", std::string()), expected))
+    if (!constant_time_equal(welcome.proof, expected))
       return fail("the coordinator does not know our secret (its welcome proof is wrong)");
   }
   stage_ = Stage::Ready;
   backoff_ = kFirstBackoff;
   spdlog::info("connected to {}:{} as worker {} with {} threads", config_.host, config_.port,
-               frame.header.value("worker", 0), config_.threads);
+               welcome.worker, config_.threads);
 }
 
-void WorkerSession::on_job(const Frame& frame) {
-  const auto job = frame.header.at("job").get<std::int64_t>();
-  const auto hash = frame.header.at("hash").get<std::string>();
-  const JobSpec spec = job_spec_from_json(frame.header.at("settings"));
-  std::optional<Bundle> bundle;
-  if (frame.header.contains("bundle")) {
-    bundle = decode_bundle(frame.header["bundle"], frame.payload);
-    if (content_hash(*bundle) != hash) throw ProtocolError("bundle does not match its hash");
-  }
-  if (!loop_.open_job(job, spec, hash, std::move(bundle)))
-    connection_->send(Frame{MessageType::JobFailed,
-                            {{"job", job},
-                             {"missing_bundle", true},
-                             {"error", "bundle " + hash + " is not cached here"}},
-                            {}});
+void WorkerSession::on_job(JobMessage job) {
+  if (!loop_.open_job(job.job, job.spec, job.hash, std::move(job.bundle)))
+    connection_->send(encode(JobFailedMessage{.job = job.job,
+                                              .error = "bundle " + job.hash + " is not cached here",
+                                              .missing_bundle = true}));
 }
 
 void WorkerSession::on_closed(const std::string& reason) {

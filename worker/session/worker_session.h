@@ -1,8 +1,8 @@
 // The worker's side of the wire protocol: connect, hello, prove the secret, check the
-// coordinator's proof, then turn job/unit/cancel frames into render-loop calls and results into
-// frames. Reconnects with a growing delay when the connection drops; stops for good when the
-// coordinator refuses it (wrong secret or version) or cannot prove it knows the secret, since
-// retrying cannot help.
+// coordinator's proof, then turn job/unit/cancel messages into render-loop calls and send what
+// the render loop reports. Reconnects with a growing delay when the connection drops; stops for
+// good when the coordinator refuses it (wrong secret or version) or cannot prove it knows the
+// secret, since retrying cannot help.
 #pragma once
 
 #include <cstdint>
@@ -10,6 +10,7 @@
 #include <string>
 
 #include "common/protocol/connection.h"
+#include "common/protocol/messages.h"
 #include "worker/render_loop/render_loop.h"
 
 namespace tessera {
@@ -36,9 +37,9 @@ class WorkerSession {
   void connect();
   void on_connected(boost::asio::ip::tcp::socket socket);
   void on_frame(const Frame& frame);
-  void on_challenge(const Frame& frame);
-  void on_welcome(const Frame& frame);
-  void on_job(const Frame& frame);
+  void on_challenge(const ChallengeMessage& challenge);
+  void on_welcome(const WelcomeMessage& welcome);
+  void on_job(JobMessage job);
   void on_closed(const std::string& reason);
   void retry_later();
   void fail(const std::string& reason);
