@@ -89,6 +89,13 @@ int main(int argc, char** argv) {
     });
     JobPersistence persistence(options.data_dir, options.keep_finished, options.max_disk_bytes);
     scheduler.set_observer(&persistence);
+    registry.add_collector([&] {
+      try {
+        metrics.store_bytes.set(static_cast<double>(persistence.size_bytes()));
+      } catch (const StoreError& e) {
+        spdlog::error("job store size: {}", e.cause());  // the gauge keeps its last value
+      }
+    });
     const auto address = asio::ip::make_address(options.bind);
     const auto tls = options.tls_cert ? make_server_tls(*options.tls_cert, *options.tls_key)
                                       : nullptr;  // both ports plain
@@ -99,6 +106,10 @@ int main(int argc, char** argv) {
           options.bind);
     WorkerListener workers(io, {address, options.worker_port}, {options.secret, options.insecure},
                            scheduler, options.timing, {}, tls);
+    workers.observe_traffic(
+        [&metrics](bool sent, std::optional<MessageType> type, std::size_t bytes) {
+          metrics.count_worker_frame(sent, type, bytes);
+        });
     // A few submissions may wait for a thread; beyond that they get 503 at once.
     IntakePool intake(io, options.intake_threads, options.intake_threads + 8);
     Api api(io, jobs, scheduler, intake, metrics,

@@ -46,6 +46,7 @@ void FrameConnection::send(const Frame& frame) {
     return;
   }
   queued_bytes_ += bytes.size();
+  if (traffic_) traffic_(true, frame.type, bytes.size());
   queue_.push_back(std::move(bytes));
   if (!writing_) write_next();
 }
@@ -94,11 +95,14 @@ void FrameConnection::read_body(std::size_t size) {
                      if (ec) return self->close(ec.message());
                      self->last_received_ = std::chrono::steady_clock::now();
                      Frame frame;
+                     const std::size_t bytes = kFramePrefix + self->body_.size();
                      try {
                        frame = decode_body(self->body_, self->limits_);
                      } catch (const ProtocolError& e) {
+                       if (self->traffic_) self->traffic_(false, std::nullopt, bytes);
                        return self->close(e.what());
                      }
+                     if (self->traffic_) self->traffic_(false, frame.type, bytes);
                      self->body_ = std::string();
                      if (frame.type != MessageType::Heartbeat && self->on_frame_)
                        self->on_frame_(std::move(frame));

@@ -28,6 +28,11 @@ struct ConnectionTiming {
   std::chrono::milliseconds silence{10000};   // close after this long without receiving
 };
 
+// Told of every frame read (its type, or none when it does not decode) and of every frame
+// queued to send, heartbeats included, with its bytes on the wire before TLS: for metrics.
+using FrameTraffic =
+    std::function<void(bool sent, std::optional<MessageType> type, std::size_t bytes)>;
+
 class FrameConnection : public std::enable_shared_from_this<FrameConnection> {
  public:
   using FrameHandler = std::function<void(Frame)>;
@@ -43,6 +48,7 @@ class FrameConnection : public std::enable_shared_from_this<FrameConnection> {
   void close_after_flush(const std::string& reason);
   // Raises the frame limits once the peer is trusted (after authentication).
   void set_limits(FrameLimits limits) { limits_ = limits; }
+  void set_traffic(FrameTraffic traffic) { traffic_ = std::move(traffic); }
   bool open() const { return open_; }
   const std::string& peer() const { return peer_; }
 
@@ -59,6 +65,7 @@ class FrameConnection : public std::enable_shared_from_this<FrameConnection> {
   std::string peer_;
   FrameHandler on_frame_;
   CloseHandler on_close_;
+  FrameTraffic traffic_;
   bool open_ = false;
   std::uint8_t prefix_[kFramePrefix] = {};
   std::string body_;

@@ -40,6 +40,8 @@ class JobPersistence : public JobObserver {
   // At start: every stored job into `jobs` (`prepare` is called on each, e.g. to set its
   // on_released), unfinished ones handed to the scheduler to resume.
   void restore(JobStore& jobs, Scheduler& scheduler, const std::function<void(Job&)>& prepare);
+  // The store's size as --max-disk counts it; throws StoreError.
+  std::int64_t size_bytes() { return db_.size_bytes(); }
 
  private:
   // Notes the jobs a failed write concerned: tick() fails them (not at once: a write may fail

@@ -28,10 +28,29 @@ ServiceMetrics::ServiceMetrics(MetricsRegistry& r)
                       .with()),
       pixels(r.counter("tessera_pixels_total", "Pixel passes merged into jobs.").with()),
       rays(r.counter("tessera_rays_total", "Rays of every kind traced for merged units.").with()),
+      worker_frames(r.counter("tessera_worker_port_frames_total",
+                              "Frames on the worker port, by direction and message type.",
+                              {"direction", "type"})),
+      worker_received_bytes(r.counter("tessera_worker_port_received_bytes_total",
+                                      "Bytes of frames read on the worker port, before TLS.")
+                                .with()),
+      worker_sent_bytes(r.counter("tessera_worker_port_sent_bytes_total",
+                                  "Bytes of frames sent on the worker port, before TLS.")
+                            .with()),
       jobs(r.gauge("tessera_jobs", "Jobs held, by state.", {"state"})),
       workers(r.gauge("tessera_workers", "Connected workers.").with()),
       worker_threads(
-          r.gauge("tessera_worker_threads", "Render threads of the connected workers.").with()) {}
+          r.gauge("tessera_worker_threads", "Render threads of the connected workers.").with()),
+      store_bytes(r.gauge("tessera_store_bytes",
+                          "The data directory's size as --max-disk counts it: the database's "
+                          "used pages, bundles and images.")
+                      .with()) {}
+
+void ServiceMetrics::count_worker_frame(bool sent, std::optional<MessageType> type,
+                                        std::size_t bytes) {
+  worker_frames.with({sent ? "sent" : "received", type ? to_string(*type) : "invalid"}).add();
+  (sent ? worker_sent_bytes : worker_received_bytes).add(static_cast<double>(bytes));
+}
 
 std::string route_label(const std::string& path) {
   if (path == "/metrics" || path == "/api/workers" || path == "/api/predict" || path == "/api/jobs")

@@ -4,8 +4,11 @@
 // read by collectors when /metrics is asked for.
 #pragma once
 
+#include <cstddef>
+#include <optional>
 #include <string>
 
+#include "common/protocol/frame.h"
 #include "coordinator/metrics/metrics.h"
 
 namespace tessera {
@@ -26,10 +29,19 @@ struct ServiceMetrics {
   Histogram& unit_render;     // the worker's own render time of a unit, seconds
   Counter& pixels;            // pixel passes merged
   Counter& rays;              // rays of every kind traced for merged units
+  // The worker port: frames by direction and type ("invalid" for those that do not decode),
+  // and their bytes.
+  Family<Counter>& worker_frames;
+  Counter& worker_received_bytes;
+  Counter& worker_sent_bytes;
   // Read at scrape time (collectors set them).
   Family<Gauge>& jobs;  // by state
   Gauge& workers;
   Gauge& worker_threads;
+  Gauge& store_bytes;  // the data directory as counted against --max-disk
+
+  // Counts one frame of a worker connection (FrameTraffic).
+  void count_worker_frame(bool sent, std::optional<MessageType> type, std::size_t bytes);
 };
 
 // The label for a request path: the route it matched, with ids replaced ("/api/jobs/{id}"),

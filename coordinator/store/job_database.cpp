@@ -119,10 +119,23 @@ StoreError::StoreError(std::vector<std::int64_t> jobs, const std::string& cause)
 
 JobDatabase::JobDatabase(const std::filesystem::path& dir, std::int64_t max_disk_bytes)
     : dir_(dir), max_disk_bytes_(max_disk_bytes) {
+  try {
+    open();
+  } catch (const StoreError& e) {
+    // Named by the directory, the one thing the operator can act on; nothing was changed.
+    throw StoreError({}, "cannot open the data directory " + dir_.string() + ": " + e.cause());
+  }
+}
+
+void JobDatabase::open() {
   guarded({}, [&] {
     std::filesystem::create_directories(dir_ / "bundles");
     std::filesystem::create_directories(dir_ / "images");
     db_ = std::make_unique<sqlite::Connection>((dir_ / "tessera.db").string());
+    // A write-protected file is opened read-only without a word; the first write would fail
+    // later, inside a job.
+    if (db_->read_only())
+      throw StoreError({}, (dir_ / "tessera.db").string() + " is read-only to this process");
     // auto_vacuum only takes effect before the first table exists: set it before the schema,
     // so that pruned jobs give their pages back to the file system (incremental_vacuum).
     db_->exec("PRAGMA auto_vacuum = INCREMENTAL");

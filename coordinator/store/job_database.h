@@ -91,6 +91,7 @@ class JobDatabase {
     std::string payload, stats, worker;
   };
 
+  void open();  // the constructor's work, before its errors are given the directory's name
   std::int64_t size_locked();
   void check_budget(const std::vector<std::int64_t>& jobs);
   void flush_locked();

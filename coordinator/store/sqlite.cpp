@@ -37,6 +37,8 @@ std::int64_t Connection::last_insert_rowid() const { return sqlite3_last_insert_
 
 std::int64_t Connection::changes() const { return sqlite3_changes64(db_); }
 
+bool Connection::read_only() const { return sqlite3_db_readonly(db_, "main") == 1; }
+
 Statement::Statement(Connection& connection, std::string_view sql) : db_(connection.handle()) {
   check(sqlite3_prepare_v2(db_, sql.data(), static_cast<int>(sql.size()), &stmt_, nullptr));
 }

@@ -20,18 +20,18 @@ constexpr FrameLimits kWorkerLimits{.max_body = 16u << 20, .max_header = 64u << 
 
 WorkerLink::WorkerLink(FrameStream stream, const WorkerAuth& auth, Scheduler& scheduler,
                        ConnectionTiming timing, std::shared_ptr<WorkerPortState> port,
-                       std::chrono::milliseconds handshake_deadline)
+                       StrangerSlots::Place stranger, std::chrono::milliseconds handshake_deadline)
     : deadline_(stream.get_executor()),
       connection_(std::make_shared<FrameConnection>(std::move(stream), kHandshakeLimits, timing)),
       auth_(auth),
       scheduler_(scheduler),
       port_(std::move(port)),
-      handshake_deadline_(handshake_deadline) {}
+      handshake_deadline_(handshake_deadline),
+      stranger_(std::move(stranger)) {}
 
 void WorkerLink::start() {
   auto self = shared_from_this();
-  ++port_->unauthenticated;
-  counted_ = true;
+  connection_->set_traffic(port_->traffic);
   connection_->start([self](Frame f) { self->on_frame(f); },
                      [self](const std::string& reason) {
                        if (self->stage_ == Stage::Ready) {
@@ -60,10 +60,7 @@ void WorkerLink::start() {
   });
 }
 
-void WorkerLink::leave_unauthenticated() {
-  if (counted_) --port_->unauthenticated;
-  counted_ = false;
-}
+void WorkerLink::leave_unauthenticated() { stranger_.reset(); }
 
 void WorkerLink::on_frame(const Frame& frame) {
   try {
@@ -160,16 +157,21 @@ void WorkerListener::accept() {
       return;
     }
     backoff_.reset();
-    if (state_->unauthenticated >= limits_.max_unauthenticated) {
+    boost::system::error_code peer_ec;
+    const tcp::endpoint peer = socket.remote_endpoint(peer_ec);
+    std::string refusal = "the peer is gone";
+    std::optional<StrangerSlots::Place> place;
+    if (!peer_ec) place = state_->strangers.enter(peer.address(), refusal);
+    if (!place) {
       if (auto suppressed = state_->refused_log.allow())
-        spdlog::warn("worker port: refused a connection: {} unauthenticated connections open{}",
-                     state_->unauthenticated, suppressed_note(*suppressed));
+        spdlog::warn("worker port: refused a connection: {}{}", refusal,
+                     suppressed_note(*suppressed));
       boost::system::error_code ignored;
       socket.close(ignored);
     } else {
       std::make_shared<WorkerLink>(
           tls_ ? FrameStream(std::move(socket), tls_) : FrameStream(std::move(socket)), auth_,
-          scheduler_, timing_, state_, limits_.handshake_deadline)
+          scheduler_, timing_, state_, std::move(*place), limits_.handshake_deadline)
           ->start();
     }
     accept();

@@ -9,6 +9,7 @@
 #include <cstddef>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <string>
 
 #include <boost/asio/steady_timer.hpp>
@@ -17,6 +18,7 @@
 #include "common/protocol/messages.h"
 #include "coordinator/net/backoff.h"
 #include "coordinator/net/log_limiter.h"
+#include "coordinator/net/stranger_slots.h"
 #include "coordinator/scheduler/scheduler.h"
 
 namespace tessera {
@@ -30,23 +32,28 @@ struct WorkerAuth {
 struct WorkerPortLimits {
   // Sockets between accept and welcome; beyond it new connections are closed at once.
   std::size_t max_unauthenticated = 64;
+  // Of those, from one address (an IPv6 /64): one host cannot take every place.
+  std::size_t max_unauthenticated_per_address = 8;
   // From accept to authenticated; heartbeats do not extend it.
   std::chrono::milliseconds handshake_deadline{5000};
 };
 
 // Shared by the listener and its links (a link may outlive the listener at shutdown).
 struct WorkerPortState {
-  std::size_t unauthenticated = 0;
+  explicit WorkerPortState(const WorkerPortLimits& limits)
+      : strangers(limits.max_unauthenticated, limits.max_unauthenticated_per_address) {}
+  StrangerSlots strangers;
   // One line a second per kind of event a stranger can repeat at will: connections refused
   // at the cap, handshakes past the deadline, handshakes rejected (wrong secret, version...).
   LogLimiter refused_log, timeout_log, reject_log;
+  FrameTraffic traffic;  // every link's frames, for metrics
 };
 
 class WorkerLink : public std::enable_shared_from_this<WorkerLink> {
  public:
   WorkerLink(FrameStream stream, const WorkerAuth& auth, Scheduler& scheduler,
              ConnectionTiming timing, std::shared_ptr<WorkerPortState> port,
-             std::chrono::milliseconds handshake_deadline);
+             StrangerSlots::Place stranger, std::chrono::milliseconds handshake_deadline);
   void start();
 
  private:
@@ -64,7 +71,7 @@ class WorkerLink : public std::enable_shared_from_this<WorkerLink> {
   Scheduler& scheduler_;
   std::shared_ptr<WorkerPortState> port_;
   std::chrono::milliseconds handshake_deadline_;
-  bool counted_ = false;
+  std::optional<StrangerSlots::Place> stranger_;  // until authenticated or closed
   Stage stage_ = Stage::Hello;
   std::string nonce_, worker_nonce_;
   std::chrono::steady_clock::time_point challenge_sent_;  // times the handshake's round trip
@@ -81,6 +88,8 @@ class WorkerListener {
                  WorkerPortLimits limits = {},
                  std::shared_ptr<boost::asio::ssl::context> tls = nullptr);
   unsigned short port() const { return acceptor_.local_endpoint().port(); }
+  // Told of every frame of every link accepted from now on.
+  void observe_traffic(FrameTraffic traffic) { state_->traffic = std::move(traffic); }
 
  private:
   void accept();
@@ -93,7 +102,7 @@ class WorkerListener {
   ConnectionTiming timing_;
   WorkerPortLimits limits_;
   std::shared_ptr<boost::asio::ssl::context> tls_;
-  std::shared_ptr<WorkerPortState> state_ = std::make_shared<WorkerPortState>();
+  std::shared_ptr<WorkerPortState> state_ = std::make_shared<WorkerPortState>(limits_);
 };
 
 }  // namespace tessera

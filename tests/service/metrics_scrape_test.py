@@ -1,11 +1,13 @@
 #!/usr/bin/env python3
 """GET /metrics while a job runs and after it (issue 17 §4): the Prometheus text parses, the
 gauges show the running job and the connected worker, and once the job is done the counters
-agree with the job's own status: units, pixel passes, rays, requests by route and status.
+agree with the job's own status: units, pixel passes, rays, requests by route and status, the
+worker port's frames and bytes; the store's size agrees with the data directory's files.
 
 usage: metrics_scrape_test.py --build BUILD_DIR --source SOURCE_DIR
 """
 import argparse
+import os
 import re
 import sys
 import time
@@ -46,6 +48,24 @@ def value(samples, name, **labels):
     return samples[(name, frozenset(labels.items()))]
 
 
+def files_bytes(top):
+    return sum(os.path.getsize(os.path.join(folder, name))
+               for folder, _, names in os.walk(top) for name in names)
+
+
+def check_store(service, samples):
+    """tessera_store_bytes counts the bundles and images and the database's used pages: at
+    least the files, at most the files and the whole database with its WAL."""
+    data = os.path.join(service.tmp.name, "data")
+    store = value(samples, "tessera_store_bytes")
+    files = files_bytes(os.path.join(data, "bundles")) + files_bytes(os.path.join(data, "images"))
+    database = sum(os.path.getsize(os.path.join(data, name))
+                   for name in ("tessera.db", "tessera.db-wal") if os.path.exists(
+                       os.path.join(data, name)))
+    assert files < store <= files + database, (files, store, database)
+    return store
+
+
 def main():
     parser = argparse.ArgumentParser()
     parser.add_argument("--build", required=True)
@@ -56,6 +76,14 @@ def main():
         before = scrape(service)
         assert value(before, "tessera_workers") == 1 and value(before, "tessera_worker_threads") == 1
         assert value(before, "tessera_units_finished_total") == 0
+        # The local worker's handshake, and nothing it did not send.
+        assert value(before, "tessera_worker_port_frames_total", direction="received",
+                     type="hello") == 1
+        assert value(before, "tessera_worker_port_frames_total", direction="sent",
+                     type="welcome") == 1
+        assert ("tessera_worker_port_frames_total",
+                frozenset({("direction", "received"), ("type", "result")})) not in before
+        store_before = check_store(service, before)
         with open(service_test.demo_scene()) as f:
             scene = f.read()
         job = service.submit(scene, {"width": 160, "height": 120, "aa": 5, "passes": 2})
@@ -93,6 +121,25 @@ def main():
                      status="200") >= 2
         assert value(after, "tessera_http_requests_total", route="/metrics", status="200") >= 2
         assert value(after, "tessera_http_received_bytes_total") > 0
+        # The worker port: a unit frame for every unit sent, a result frame for every unit
+        # merged, each with its pixels' 12 bytes, and the scene's bundle sent once.
+        frames = lambda direction, kind: value(  # noqa: E731
+            after, "tessera_worker_port_frames_total", direction=direction, type=kind)
+        assert frames("sent", "unit") == value(after, "tessera_units_dispatched_total")
+        assert frames("received", "result") >= units
+        assert frames("sent", "job") == 1
+        received = value(after, "tessera_worker_port_received_bytes_total")
+        sent = value(after, "tessera_worker_port_sent_bytes_total")
+        assert received > 12 * traced, (received, traced)
+        assert sent > len(scene) + 50 * frames("sent", "unit"), sent
+        print("worker port: %d bytes received, %d sent" % (received, sent))
+        # The finished job's images are in the store now, on top of what it held before.
+        images = sum(len(service.request("GET", "/api/jobs/%d/image?format=%s" %
+                                         (job["id"], fmt))[2]) for fmt in ("png", "exr"))
+        store_after = check_store(service, scrape(service))
+        assert store_after >= store_before + images, (store_before, images, store_after)
+        print("store: %d bytes before the job, %d after (images %d)" %
+              (store_before, store_after, images))
         status_code, _, _ = service.request("GET", "/api/jobs/999")
         assert status_code == 404
         assert value(scrape(service), "tessera_http_requests_total", route="/api/jobs/{id}",

@@ -28,6 +28,7 @@ PROTOCOL_VERSION = 2  # kProtocolVersion, common/protocol/handshake.h
 HELLO, CHALLENGE, AUTH, WELCOME, REJECT, HEARTBEAT, JOB, UNIT, RESULT, JOB_FAILED, CANCEL = \
     range(1, 12)
 MAX_UNAUTHENTICATED = 64  # WorkerPortLimits, coordinator/workers/worker_link.h
+MAX_PER_ADDRESS = 8
 HANDSHAKE_DEADLINE = 5.0
 
 
@@ -177,13 +178,32 @@ def timed_get(service, path):
     return body, time.time() - start
 
 
+def stranger(port, source):
+    """A connection to the worker port from the loopback address `source` (all of 127/8 is
+    this machine), which never says a word."""
+    return socket.create_connection(("127.0.0.1", port), source_address=(source, 0))
+
+
 def case_caps():
-    """100 strangers on the worker port: 64 are held, the others closed at once; HTTP still
-    answers; once they leave a real worker joins."""
+    """Strangers on the worker port: one address holds at most 8 places, so a real worker from
+    another still joins; 100 from many addresses: 64 are held, the others closed at once; HTTP
+    still answers; once they leave a real worker joins."""
     with Service() as service:
-        strangers = [socket.create_connection(("127.0.0.1", service.worker_port))
-                     for _ in range(100)]
+        one_host = [stranger(service.worker_port, "127.0.0.2") for _ in range(20)]
         time.sleep(0.5)  # well inside the handshake deadline
+        closed = sum(peer_closed(s) for s in one_host)
+        assert closed == 20 - MAX_PER_ADDRESS, closed
+        service.worker("while-one-host-floods")  # from 127.0.0.1
+        service.wait_workers(1)
+        log = coordinator_log(service)
+        assert "8 unauthenticated connections open from 127.0.0.2" in log, log[-2000:]
+        for s in one_host:
+            s.close()
+        refusals_before = coordinator_log(service).count("refused a connection")
+
+        strangers = [stranger(service.worker_port, "127.0.0.%d" % (2 + i % 13))
+                     for i in range(100)]
+        time.sleep(0.5)
         closed = sum(peer_closed(s) for s in strangers)
         assert closed == 100 - MAX_UNAUTHENTICATED, closed
         _, seconds = timed_get(service, "/api/workers")
@@ -192,9 +212,9 @@ def case_caps():
         for s in strangers:
             s.close()
         service.worker("real")
-        service.wait_workers(1)
+        service.wait_workers(2)
         # 36 refusals in a burst make one log line, not 36.
-        refusals = coordinator_log(service).count("refused a connection")
+        refusals = coordinator_log(service).count("refused a connection") - refusals_before
         assert 1 <= refusals <= 2, refusals  # 2 if the burst spans a second
         print("%d of 100 closed at once; GET /api/workers in %.1f ms" % (closed, seconds * 1e3))
 
