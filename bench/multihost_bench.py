@@ -104,7 +104,9 @@ def main():
         loopback.worker("w2")
         for rtt in RTTS_MS:
             # Each Service is its own coordinator in the namespace, reached at its own port.
-            service = service_test.Service(prefix=network.coordinator_prefix(),
+            # The API is reached from the root namespace, not loopback: open it as the
+            # multihost tests do.
+            service = service_test.Service("--open-submit", prefix=network.coordinator_prefix(),
                                            host=network.api_host)
             services["%d ms" % rtt] = service
             network.add_worker(service, "w1", rtt_ms=rtt)
@@ -135,7 +137,7 @@ def main():
                     service.__exit__(None, None, None)
 
         bundle, mesh_bytes = mesh_bundle(int(args.mesh_mb * 1e6))
-        with service_test.Service(prefix=network.coordinator_prefix(),
+        with service_test.Service("--open-submit", prefix=network.coordinator_prefix(),
                                   host=network.api_host) as service:
             network.add_worker(service, "w", rtt_ms=20, rate_mbit=args.rate_mbit)
             service.wait_workers(1)

@@ -19,7 +19,8 @@ import service_test
 from service_test import SECRET, assert_identical, demo_scene, render_cli, start_coordinator
 
 # Several levels and three passes, long enough on two threads for ten kills spread over it.
-SETTINGS = {"width": 320, "height": 240, "aa": 9, "stochastic": True, "passes": 4, "seed": 11}
+# Long enough (about 5 s of one core) that 0.3 s after a kill point the job is still running.
+SETTINGS = {"width": 480, "height": 360, "aa": 9, "stochastic": True, "passes": 4, "seed": 11}
 SMALL = {"width": 24, "height": 18, "aa": 1, "passes": 1, "seed": 3}
 KILLS = 10
 

@@ -196,7 +196,9 @@ def case_bit_identical():
                     service.worker("w%d" % i)
                 service.wait_workers(workers)
                 final = render_and_compare(service, SETTINGS, tmp, "w%d" % workers)
-                assert len(final["workers"]) == workers or workers == 1, final["workers"]
+                # Every worker usually takes units; on a loaded machine a late one may find
+                # none left, so two of three must have (the image is the same either way).
+                assert len(final["workers"]) >= min(workers, 2), final["workers"]
                 table = final["levels_table"]
                 assert [row["level"] for row in table[:final["levels"]]] == \
                     list(range(1, final["levels"] + 1))
