@@ -5,8 +5,10 @@ again while a job of several levels and passes renders, restarted each time with
 before the crashes keep their ids and images. And a store over --max-disk fails only the job
 it could not store. Cases: crash_resume, max_disk."""
 import argparse
+import hashlib
 import json
 import os
+import shutil
 import signal
 import subprocess
 import sys
@@ -177,6 +179,60 @@ def case_max_disk():
             c.kill()
             c.start()
             assert c.get("/api/jobs/%d" % big)["state"] == "failed"
+            assert c.image(small, "png") == small_png
+        except BaseException:
+            show_logs(tmp)
+            raise
+        finally:
+            if c.proc and c.proc.poll() is None:
+                c.kill()
+
+
+def tree_digest(folder):
+    """Every file's path and bytes under `folder`, hashed: what "untouched" means for a store."""
+    digest = hashlib.sha256()
+    for root, _, files in sorted(os.walk(folder)):
+        for name in sorted(files):
+            path = os.path.join(root, name)
+            digest.update(path.encode())
+            digest.update(open(path, "rb").read())
+    return digest.hexdigest()
+
+
+def case_read_only():
+    """A data directory the coordinator may not write: it refuses to start, exit status 1 and a
+    message naming the directory, and leaves the store as it was; writable again, the store
+    serves its jobs as before (issue 17 §2). Root ignores permissions, so the refused start runs
+    as nobody."""
+    if os.geteuid() != 0 or not shutil.which("setpriv"):
+        print("skipped: needs root and setpriv to start the coordinator as another user")
+        sys.exit(77)
+    with tempfile.TemporaryDirectory() as tmp:
+        os.chmod(tmp, 0o755)  # nobody reaches the data directory inside
+        c = Coordinator(tmp)
+        try:
+            c.start()
+            small = c.submit(SMALL)
+            assert c.finished(small)["state"] == "done"
+            small_png = c.image(small, "png")
+            c.proc.terminate()
+            c.proc.wait()
+            before = tree_digest(c.data)
+            subprocess.run(["chmod", "-R", "a-w", c.data], check=True)
+            coordinator = os.path.join(ARGS.build, "coordinator", "tessera-coordinator")
+            refused = subprocess.run(
+                ["setpriv", "--reuid", "nobody", "--regid", "nogroup", "--clear-groups",
+                 coordinator, "--http-port", "0", "--worker-port", "0", "--insecure",
+                 "--local-workers", "0", "--data-dir", c.data],
+                capture_output=True, text=True, timeout=30)
+            message = refused.stdout + refused.stderr
+            assert refused.returncode == 1, (refused.returncode, message)
+            assert "cannot open the data directory " + c.data in message, message
+            assert tree_digest(c.data) == before, "the refused start changed the store"
+            subprocess.run(["chmod", "-R", "u+w", c.data], check=True)
+            c.start()
+            back = c.get("/api/jobs/%d" % small)
+            assert back["state"] == "done", back
             assert c.image(small, "png") == small_png
         except BaseException:
             show_logs(tmp)
