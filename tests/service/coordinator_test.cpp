@@ -5,6 +5,7 @@
 
 #include <algorithm>
 
+#include "common/image/decoded_texture.h"
 #include "common/render/settings_schema.h"
 #include "coordinator/http/api.h"
 #include "coordinator/http/submit_policy.h"
@@ -125,6 +126,31 @@ TEST(ParseJobRequest, TheBundleHoldsWhatTheSceneRead) {
                ApiError);
 }
 
+// A field outside VRML97 is a warning by default and the job goes on; "strict": true makes
+// it the scene error it was (issue 20 §3).
+TEST(ParseJobRequest, StrictTurnsLoadWarningsIntoSceneErrors) {
+  const std::string world =
+      R"("#VRML V2.0 utf8\nShape { geometry Sphere { radius 2 shadows TRUE } }\n")";
+  const JobRequest lenient =
+      parse_job_request({R"({"format": "vrml", "scene": )" + world + "}", "application/json", {}},
+                        ServiceLimits{}, std::nullopt);
+  ASSERT_FALSE(lenient.warnings.empty());
+  EXPECT_NE(lenient.warnings.front().find("shadows"), std::string::npos)
+      << lenient.warnings.front();
+  try {
+    parse_job_request(
+        {R"({"format": "vrml", "settings": {"strict": true}, "scene": )" + world + "}",
+         "application/json",
+         {}},
+        ServiceLimits{}, std::nullopt);
+    FAIL() << "expected a scene error";
+  } catch (const ApiError& e) {
+    EXPECT_EQ(e.status(), 400);
+    EXPECT_EQ(e.body()["error"], "scene_error");
+    EXPECT_EQ(e.body()["line"], 2);
+  }
+}
+
 // An image texture's file travels with the job like a mesh file, so a worker with no files of
 // its own renders it; the coordinator decodes it once to check it (ASCII PPM keeps the JSON
 // body text).
@@ -135,6 +161,8 @@ TEST(ParseJobRequest, TheBundleHoldsTheImageTexture) {
       parse_job_request({body, "application/json", {}}, ServiceLimits{}, std::nullopt);
   EXPECT_EQ(r.bundle.files.size(), 2u);
   EXPECT_EQ(r.bundle.files.count("tex/c.ppm"), 1u);
+  // Workers have no image library: the texture travels decoded (decoded_texture.h).
+  EXPECT_TRUE(is_decoded_texture(r.bundle.files.at("tex/c.ppm")));
   EXPECT_NE(std::find(r.effects.begin(), r.effects.end(), "image_texture"), r.effects.end());
   const std::string broken =
       R"({"scene": "imageTexture c.ppm 1 1 1\nsphere\n", "files": {"c.ppm": "P3 junk"}})";
