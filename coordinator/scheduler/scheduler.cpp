@@ -25,6 +25,7 @@ std::int64_t Scheduler::add_worker(WorkerHello hello, std::shared_ptr<FrameConne
   w.hello = std::move(hello);
   w.pipeline = WorkerPipeline(w.hello.threads, w.hello.handshake_round_trip);
   w.connection = std::move(connection);
+  w.joined = options_.clock();
   spdlog::info("worker {} \"{}\" joined from {} with {} threads", id, w.hello.name, w.hello.address,
                w.hello.threads);
   return id;
@@ -102,7 +103,7 @@ bool Scheduler::fail(std::int64_t job, const std::string& error) {
 }
 
 void Scheduler::tick() {
-  const auto now = Clock::now();
+  const auto now = options_.clock();
   std::vector<std::int64_t> expired;
   for (const auto& [id, run] : runs_)
     if (run.job->started && seconds_since(*run.job->started, now) > options_.max_job_seconds)
@@ -156,7 +157,7 @@ bool Scheduler::dispatch_one(WorkerSlot& w) {
 bool Scheduler::speculate(WorkerSlot& w) {
   // Only a worker with idle threads takes a duplicate; prefetch slots are for new work.
   if (static_cast<int>(w.in_flight.size()) >= w.hello.threads) return false;
-  const auto now = Clock::now();
+  const auto now = options_.clock();
   JobRun* pick_run = nullptr;
   int pick = -1;
   for (auto& [id, run] : runs_) {
@@ -182,7 +183,7 @@ bool Scheduler::speculate(WorkerSlot& w) {
 
 void Scheduler::send_unit(WorkerSlot& w, JobRun& run, int unit) {
   Job& job = *run.job;
-  const auto now = Clock::now();
+  const auto now = options_.clock();
   if (!w.open_jobs.count(job.id)) {
     JobMessage open{.job = job.id, .hash = job.hash, .spec = job.spec, .bundle = std::nullopt};
     if (!w.bundles.count(job.hash)) {
@@ -240,7 +241,7 @@ void Scheduler::on_result(std::int64_t worker, const ResultMessage& result) {
     throw ProtocolError("result for unit " + std::to_string(unit) + " of job " +
                         std::to_string(job_id) + ", which this worker does not hold");
   const WorkUnit& wu = job.plan.units[unit];
-  const auto now = Clock::now();
+  const auto now = options_.clock();
   check_result(result, wu.cost, seconds_since(sent->second, now));
   const RenderStats& stats = result.stats;
   const std::vector<float>& values = result.values;
@@ -323,7 +324,7 @@ void Scheduler::finish(JobRun& run, JobState state, const std::string& error) {
   Job& job = *run.job;
   job.state = state;
   job.error = error;
-  job.finished = Clock::now();
+  job.finished = options_.clock();
   ++job.version;
   // Free the workers at once: they drop the job's queued units and its prepared scene.
   for (auto& [id, w] : workers_) {
@@ -362,7 +363,7 @@ Prediction Scheduler::predict(double seconds_per_pixel_pass, long long pixel_pas
 }
 
 nlohmann::json Scheduler::workers_json() const {
-  const auto now = Clock::now();
+  const auto now = options_.clock();
   nlohmann::json out = nlohmann::json::array();
   for (const auto& [id, w] : workers_) {
     const double connected = seconds_since(w.joined, now);

@@ -39,6 +39,9 @@ struct SchedulerOptions {
   double speculation_factor = 3;
   std::chrono::milliseconds min_speculation{500};
   ServiceMetrics* metrics = nullptr;  // units, pixels and rays counted here when given
+  // Where the scheduler reads the time: tests step a clock of their own so deadlines do not
+  // depend on how busy the machine is.
+  std::function<Clock::time_point()> clock = [] { return Clock::now(); };
 };
 
 struct WorkerHello {
@@ -134,7 +137,7 @@ class Scheduler {
     long long units_done = 0, pixels_done = 0;
     long long dropped_results = 0;  // late duplicates and results of earlier connections
     double busy_seconds = 0;
-    Clock::time_point joined = Clock::now();
+    Clock::time_point joined;
   };
 
   bool dispatch_one(WorkerSlot& worker);

@@ -1,5 +1,6 @@
 // The scheduler against fake workers: real FrameConnections on loopback whose far ends the
-// test reads, and results handed to the scheduler directly.
+// test reads, and results handed to the scheduler directly. The scheduler reads a clock the
+// test steps, so its deadlines are tested exactly however busy the machine is.
 #include "coordinator/scheduler/scheduler.h"
 
 #include <gtest/gtest.h>
@@ -7,7 +8,6 @@
 #include <algorithm>
 #include <limits>
 #include <map>
-#include <thread>
 
 #include "common/protocol/messages.h"
 
@@ -33,7 +33,17 @@ class SchedulerTest : public ::testing::Test {
   explicit SchedulerTest(
       SchedulerOptions options = {.speculation_factor = 0,
                                   .min_speculation = std::chrono::milliseconds(0)})
-      : acceptor_(io_, tcp::endpoint(asio::ip::address_v4::loopback(), 0)), scheduler_(options) {}
+      : acceptor_(io_, tcp::endpoint(asio::ip::address_v4::loopback(), 0)),
+        scheduler_(with_test_clock(options)) {}
+
+  SchedulerOptions with_test_clock(SchedulerOptions options) {
+    options.clock = [this] { return now_; };
+    return options;
+  }
+
+  void advance(double seconds) {
+    now_ += std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(seconds));
+  }
 
   JobRequest request(int width, int height, int passes, int priority = 1) {
     JobRequest r;
@@ -110,6 +120,7 @@ class SchedulerTest : public ::testing::Test {
     scheduler_.on_job_failed(w.id, JobFailedMessage{.job = job.id, .error = error});
   }
 
+  Clock::time_point now_ = Clock::now();  // the scheduler's clock
   asio::io_context io_;
   tcp::acceptor acceptor_;
   JobStore store_{16};
@@ -222,7 +233,7 @@ TEST_F(SchedulerTest, WithOneWorkerAFailureWaitsForASecondUntilTheTimeLimit) {
   EXPECT_EQ(w.units.size(), 2u);  // nothing more of it goes back to the reporting worker
   ASSERT_EQ(job.warnings.size(), 1u);
   EXPECT_NE(job.warnings[0].find("broken"), std::string::npos);
-  job.started = Clock::now() - std::chrono::hours(1);  // past the time limit
+  job.started = now_ - std::chrono::hours(1);  // past the time limit
   scheduler_.tick();
   EXPECT_EQ(job.state, JobState::Failed);
   EXPECT_EQ(job.error,
@@ -346,15 +357,6 @@ TEST_F(SchedulerTest, OnlyAWorkerWithIdleThreadsTakesADuplicate) {
   EXPECT_EQ(b.units[1].unit, a.units[0].unit);
 }
 
-double seconds_since(Clock::time_point t) {
-  return std::chrono::duration<double>(Clock::now() - t).count();
-}
-
-void sleep_until_seconds(Clock::time_point t0, double seconds) {
-  std::this_thread::sleep_until(
-      t0 + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(seconds)));
-}
-
 // The scheduler's defaults: a straggler is duplicated after 3 x the job's mean unit time and
 // not before 0.3 s.
 class SpeculationDeadlineTest : public SchedulerTest {
@@ -366,18 +368,16 @@ class SpeculationDeadlineTest : public SchedulerTest {
 
 TEST_F(SpeculationDeadlineTest, NoDuplicateBeforeTheMinimum) {
   add_job(2, 2, 1);  // one unit: no mean yet, the minimum decides
-  const auto t0 = Clock::now();
   FakeWorker& slow = add_worker(1);
   FakeWorker& idle = add_worker(1);
   drain();
   ASSERT_EQ(slow.units.size(), 1u);
   EXPECT_TRUE(idle.units.empty());
-  sleep_until_seconds(t0, 0.2);
+  advance(0.599);
   scheduler_.tick();
   drain();
-  ASSERT_LT(seconds_since(t0), 0.6) << "the machine is too slow for this test's margins";
   EXPECT_TRUE(idle.units.empty());
-  sleep_until_seconds(t0, 0.8);
+  advance(0.002);
   scheduler_.tick();
   drain();
   ASSERT_EQ(idle.units.size(), 1u);
@@ -388,20 +388,21 @@ TEST_F(SpeculationDeadlineTest, NoDuplicateBeforeFactorTimesTheMeanUnitTime) {
   // Four units: the slow worker takes two, and the other two once its first result shows a
   // short round trip (its slots grow), so the other worker finds only stragglers.
   const Job& job = add_job(8, 4, 1);
-  const auto t0 = Clock::now();
   FakeWorker& slow = add_worker(1);
   drain();
   ASSERT_EQ(slow.units.size(), 2u);
-  // The first unit reports 0.6 s of rendering: the mean is 0.6 s, the deadline 1.8 s.
-  sleep_until_seconds(t0, 0.6);
+  // The first unit reports 0.6 s of rendering, back 0.61 s after it was sent (a 10 ms round
+  // trip): the mean is 0.6 s, the second unit's deadline 1.8 s after its dispatch at 0.
+  advance(0.61);
   send_result(slow, slow.units[0], job, 0.6);
   FakeWorker& idle = add_worker(1);
-  sleep_until_seconds(t0, 0.9);  // past the minimum and past the mean, not past 3 x the mean
+  drain();
+  ASSERT_EQ(slow.units.size(), 4u) << "the other units go to the slow worker's grown slots";
+  advance(1.189);  // past the minimum and past the mean, not past 3 x the mean
   scheduler_.tick();
   drain();
-  ASSERT_LT(seconds_since(t0), 1.7) << "the machine is too slow for this test's margins";
   EXPECT_TRUE(idle.units.empty());
-  sleep_until_seconds(t0, 2.0);
+  advance(0.002);
   scheduler_.tick();
   drain();
   ASSERT_EQ(idle.units.size(), 1u);
@@ -494,18 +495,15 @@ TEST_F(SchedulerTest, CalibrationLearnsSpeedAndOverheadFromItsInputs) {
   Job& job = add_job(2, 2, 1);
   job.uncalibrated_prediction = 0.5;
   job.prediction_threads = 4;
-  const auto t0 = Clock::now();
   FakeWorker& w = add_worker(1);
   drain();
   ASSERT_EQ(w.units.size(), 1u);
-  sleep_until_seconds(t0, 0.15);
+  advance(0.15);
   send_result(w, w.units[0], job, 0.2);  // 0.2 render seconds: 0.05 per predicted thread
-  const double wall = seconds_since(t0);
   ASSERT_EQ(job.state, JobState::Done);
   const Prediction p = scheduler_.predict(1e-3, 1000);  // 1 s on the one thread, uncalibrated
   EXPECT_DOUBLE_EQ(p.factor, 0.2 / 4 / 0.5);
-  EXPECT_GE(p.overhead_seconds, 0.15 - 0.05);
-  EXPECT_LE(p.overhead_seconds, wall - 0.05);
+  EXPECT_NEAR(p.overhead_seconds, 0.15 - 0.05, 1e-9);
   ASSERT_TRUE(p.seconds);
   EXPECT_DOUBLE_EQ(*p.seconds, p.overhead_seconds + p.factor * 1.0);
 }
