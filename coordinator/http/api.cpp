@@ -12,6 +12,7 @@
 #include "coordinator/http/gzip.h"
 #include "coordinator/http/image_codec.h"
 #include "coordinator/http/job_json.h"
+#include "coordinator/http/submission.h"
 #include "coordinator/http/tile_deltas.h"
 #include "coordinator/jobs/api_error.h"
 

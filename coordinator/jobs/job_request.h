@@ -1,14 +1,16 @@
-// POST /api/jobs: turns a request body into a validated job request, or an ApiError with the
-// right status (422/413 over its IntakeBudget). The scene is parsed and prepared here, so a bad
-// scene is a 400 that never reaches a worker; the bundle keeps exactly the files the scene read.
+// Admission of a job: turns a submission (its files and settings, decoded from the request by
+// coordinator/http/submission.h) into a validated job request, or an ApiError with the right
+// status (422/413 over its IntakeBudget). The scene is parsed and prepared here, so a bad scene
+// is a 400 that never reaches a worker; the bundle keeps exactly the files the scene read.
 #pragma once
 
 #include <filesystem>
 #include <map>
 #include <optional>
 #include <string>
-#include <string_view>
 #include <vector>
+
+#include <nlohmann/json.hpp>
 
 #include "common/progressive/plan.h"
 #include "common/protocol/bundle.h"
@@ -29,16 +31,18 @@ struct JobRequest {
   bool strict = false;  // settings.strict: what loading warns about is a 400 (LoadBudget::strict)
 };
 
-struct JobUpload {
-  std::string_view body;
-  std::string_view content_type;
-  std::map<std::string, std::string> query;  // settings for tar uploads
+// What a request submits, whatever its content type.
+struct Submission {
+  std::map<std::string, std::string> files;  // bundle path -> bytes
+  std::string main;                          // the scene file's bundle path
+  std::string format = "sdl";                // "sdl" or "vrml"
+  nlohmann::json settings = nlohmann::json::object();
 };
 
 // Runs off the io thread (IntakePool); the budget is checked between its stages.
-JobRequest parse_job_request(const JobUpload& upload, const ServiceLimits& limits,
-                             const std::optional<std::filesystem::path>& scenes_dir,
-                             const IntakeBudget& budget = {});
+JobRequest admit_job(const Submission& submission, const ServiceLimits& limits,
+                     const std::optional<std::filesystem::path>& scenes_dir,
+                     const IntakeBudget& budget = {});
 
 // The settings object of a request ({"width", "height", "aa", ...}); throws ApiError.
 void parse_settings(const nlohmann::json& settings, const ServiceLimits& limits, JobRequest& out);

@@ -8,11 +8,11 @@
 #include "common/image/decoded_texture.h"
 #include "common/render/settings_schema.h"
 #include "coordinator/http/api.h"
+#include "coordinator/http/multipart.h"
+#include "coordinator/http/submission.h"
 #include "coordinator/http/submit_policy.h"
 #include "coordinator/jobs/api_error.h"
 #include "coordinator/jobs/job.h"
-#include "coordinator/jobs/job_request.h"
-#include "coordinator/jobs/multipart.h"
 #include "coordinator/options.h"
 #include "coordinator/scheduler/scheduler.h"
 

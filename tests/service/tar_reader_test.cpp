@@ -10,7 +10,7 @@
 #include <archive.h>
 #include <archive_entry.h>
 
-#include "coordinator/jobs/tar_reader.h"
+#include "coordinator/http/tar_reader.h"
 
 namespace tessera {
 namespace {

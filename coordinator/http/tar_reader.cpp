@@ -1,4 +1,4 @@
-#include "coordinator/jobs/tar_reader.h"
+#include "coordinator/http/tar_reader.h"
 
 #include <memory>
 #include <stdexcept>

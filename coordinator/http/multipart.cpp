@@ -1,4 +1,4 @@
-#include "coordinator/jobs/multipart.h"
+#include "coordinator/http/multipart.h"
 
 #include <algorithm>
 #include <cctype>
