@@ -26,6 +26,7 @@
 #include "common/protocol/connection.h"
 #include "common/protocol/messages.h"
 #include "common/render/time_prediction.h"
+#include "coordinator/scheduler/prediction_calibration.h"
 #include "coordinator/jobs/job_store.h"
 #include "coordinator/metrics/service_metrics.h"
 #include "coordinator/scheduler/worker_pipeline.h"
