@@ -143,6 +143,14 @@ class LoadMeter {
   void add_light(const SourceLocation& at);
   void add_mesh(const Mesh& mesh, const SourceLocation& at);
 
+  // Throws as add does when time is up or the load was cancelled: for work that counts
+  // nothing against the budget but grows with what was counted (the camera framing a world
+  // measures every object, its mesh's vertices each time).
+  void check_time(const SourceLocation& at) const {
+    if (out_of_time()) [[unlikely]]
+      stopped(at);
+  }
+
   // A depth or size (FileBytes ... PushDepth) beyond its limit: `what` says what went too far,
   // " (limit name)" is appended.
   [[noreturn]] void fail(LoadLimit limit, const SourceLocation& at, const std::string& what) const;

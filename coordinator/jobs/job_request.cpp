@@ -199,14 +199,18 @@ ApiError over_load_budget(const LoadBudgetExceeded& e) {
 }
 
 // Workers have no image library (they start without OpenImageIO): every texture the scene
-// reads travels in the bundle decoded, bit for bit what decoding it here gives.
-std::map<std::string, std::string> decoded_textures(const Scene& scene) {
+// reads travels in the bundle decoded, bit for bit what decoding it here gives. Each image
+// may take a second to decode (up to kMaxTexturePixels), so each is started within the budget.
+std::map<std::string, std::string> decoded_textures(const Scene& scene,
+                                                    const IntakeBudget& budget) {
   std::map<std::string, std::string> files;
   for (const ImageFile& image : scene.images)
-    if (!is_decoded_texture(image.bytes))
+    if (!is_decoded_texture(image.bytes)) {
+      budget.check("decoding the textures");
       files[image.path] =
           encode_decoded_texture(decode_image(image.bytes, image.path, kMaxTexturePixels),
                                  image_channels(image.bytes, image.path));
+    }
   return files;
 }
 
@@ -241,7 +245,7 @@ void check_scene(const Submission& sub, const std::optional<std::filesystem::pat
     out.probe_cut_short = probe.cut_short;
     budget.check("the cost probe");
     out.plan.unit_pixels = unit_pixels_for_cost(out.seconds_per_pixel_pass);
-    textures = decoded_textures(scene);
+    textures = decoded_textures(scene, budget);
     out.warnings = scene.warnings;
     for (const auto& u : prepared.unsupported()) out.warnings.push_back(u);
   } catch (const LoadBudgetExceeded& e) {
