@@ -424,7 +424,7 @@ class Converter : public ProtoFiles {
           why = quoted(*path) + " is not an image this loader can decode";
           continue;
         }
-        meter_.add(LoadLimit::BytesProduced, bytes->size(), t.where);  // kept in the scene
+        meter_.add_texture(bytes->size(), texture_pixels(*bytes, *path), t.where);
         images_[*path] = *intensity;
         scene_.images.push_back({*path, std::move(*bytes), t.where});
       }
