@@ -20,6 +20,8 @@ packages=(
   openimageio-tools python3 curl chromium
   # network namespaces for the multi-host test (ip, tc)
   iproute2
+  python3-yaml      # tests/deploy/compose_tls_test.py reads docker/compose*.yaml
+  openssl           # the openssl command: test certificates, docker/make-tls-cert.sh
 )
 # Node from another source (NodeSource's nodejs bundles npm) conflicts with Debian's npm, so
 # these two are asked for only when their commands are missing.

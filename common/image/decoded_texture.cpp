@@ -138,4 +138,10 @@ int texture_channels(std::string_view bytes, const std::string& name) {
                                    : image_channels(bytes, name);
 }
 
+std::size_t texture_pixels(std::string_view bytes, const std::string& name) {
+  if (!is_decoded_texture(bytes)) return image_pixels(bytes, name);
+  const Header h = read_header(bytes, name);
+  return static_cast<std::size_t>(h.width) * h.height;
+}
+
 }  // namespace tessera

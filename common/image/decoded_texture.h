@@ -36,5 +36,7 @@ int decoded_texture_channels(std::string_view bytes, const std::string& name);
 // image library (decode_image, image_channels in image.h; the worker has none and refuses).
 Image decode_texture(std::string_view bytes, const std::string& name, std::size_t max_pixels);
 int texture_channels(std::string_view bytes, const std::string& name);
+// Width times height from the header alone (the loaders count what decoding will make).
+std::size_t texture_pixels(std::string_view bytes, const std::string& name);
 
 }  // namespace tessera

@@ -47,5 +47,7 @@ Image read_image(const std::string& path);
 Image decode_image(std::string_view bytes, const std::string& name, std::size_t max_pixels);
 // The number of channels of a file held in memory, from its header alone.
 int image_channels(std::string_view bytes, const std::string& name);
+// Its width times height, from its header alone: what decoding it would make.
+std::size_t image_pixels(std::string_view bytes, const std::string& name);
 
 }  // namespace tessera

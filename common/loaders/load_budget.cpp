@@ -95,6 +95,11 @@ void LoadMeter::add_light(const SourceLocation& at) {
   add(LoadLimit::BytesProduced, kLightBytes, at);
 }
 
+void LoadMeter::add_texture(std::uint64_t file_bytes, std::uint64_t pixels,
+                            const SourceLocation& at) {
+  add(LoadLimit::BytesProduced, file_bytes + pixels * kTexturePixelBytes, at);
+}
+
 void LoadMeter::add_mesh(const Mesh& mesh, const SourceLocation& at) {
   add(LoadLimit::Triangles, mesh.triangles.size(), at);
   add(LoadLimit::BytesProduced, estimated_bytes(mesh), at);

@@ -106,6 +106,8 @@ class LoadBudgetExceeded : public SceneError {
 std::uint64_t estimated_bytes(const Mesh& mesh);     // with its BVH
 inline constexpr std::uint64_t kObjectBytes = 1024;  // SceneObject, its instance, BVH leaf
 inline constexpr std::uint64_t kLightBytes = 256;
+// A texture decoded for tracing: 3 floats a pixel (Image), kept with the prepared scene.
+inline constexpr std::uint64_t kTexturePixelBytes = 3 * sizeof(float);
 
 // What one load has counted so far, shared by all of its files. Counting is cheap: a `where`
 // callable makes the location only when a limit is passed.
@@ -142,6 +144,17 @@ class LoadMeter {
   void add_object(const SourceLocation& at);
   void add_light(const SourceLocation& at);
   void add_mesh(const Mesh& mesh, const SourceLocation& at);
+  // An image file kept in the scene, `file_bytes` as read, and what decoding its `pixels`
+  // makes: a PNG of a few kilobytes can decode to 200 MB of floats.
+  void add_texture(std::uint64_t file_bytes, std::uint64_t pixels, const SourceLocation& at);
+
+  // Throws as add does when time is up or the load was cancelled: for work that counts
+  // nothing against the budget but grows with what was counted (the camera framing a world
+  // measures every object, its mesh's vertices each time).
+  void check_time(const SourceLocation& at) const {
+    if (out_of_time()) [[unlikely]]
+      stopped(at);
+  }
 
   // A depth or size (FileBytes ... PushDepth) beyond its limit: `what` says what went too far,
   // " (limit name)" is appended.

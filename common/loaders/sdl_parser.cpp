@@ -4,10 +4,12 @@
 #include <climits>
 #include <cmath>
 #include <memory>
+#include <stdexcept>
 #include <unordered_map>
 #include <unordered_set>
 #include <utility>
 
+#include "common/image/decoded_texture.h"
 #include "common/loaders/hill_mesh_loader.h"
 #include "common/loaders/lexical.h"
 #include "common/loaders/obj_loader.h"
@@ -151,7 +153,13 @@ class LoadContext {
   void image(const std::string& path, const Token& name) {
     if (!image_paths_.insert(path).second) return;
     std::string bytes = read(path, location(name), "image file");
-    meter_.add(LoadLimit::BytesProduced, bytes.size(), location(name));  // kept in the scene
+    std::size_t pixels = 0;
+    try {
+      pixels = texture_pixels(bytes, path);
+    } catch (const std::runtime_error&) {
+      // Undecodable: the scene's preparation refuses it, placed here, with the reason.
+    }
+    meter_.add_texture(bytes.size(), pixels, location(name));  // kept in the scene
     scene_.images.push_back({path, std::move(bytes), location(name)});
   }
 

@@ -424,7 +424,7 @@ class Converter : public ProtoFiles {
           why = quoted(*path) + " is not an image this loader can decode";
           continue;
         }
-        meter_.add(LoadLimit::BytesProduced, bytes->size(), t.where);  // kept in the scene
+        meter_.add_texture(bytes->size(), texture_pixels(*bytes, *path), t.where);
         images_[*path] = *intensity;
         scene_.images.push_back({*path, std::move(*bytes), t.where});
       }
@@ -665,7 +665,10 @@ class Converter : public ProtoFiles {
 
   static constexpr double kHuge = 1e300;
 
+  // Takes time in the object's vertices, whatever the budget counted for its mesh (one USEd
+  // mesh of many vertices is measured once per object): so it watches the load's deadline.
   BoundingSphere bounding_sphere(const SceneObject& object) const {
+    meter_.check_time(object.where);
     const Affine& m = object.transform;
     std::vector<Vec3> points;  // in object space
     if (const auto* shape = std::get_if<MeshShape>(&object.geometry)) {

@@ -71,14 +71,18 @@ ApiError over_load_budget(const LoadBudgetExceeded& e) {
 }
 
 // Workers have no image library (they start without OpenImageIO): every texture the scene
-// reads travels in the bundle decoded, bit for bit what decoding it here gives.
-std::map<std::string, std::string> decoded_textures(const Scene& scene) {
+// reads travels in the bundle decoded, bit for bit what decoding it here gives. Each image
+// may take a second to decode (up to kMaxTexturePixels), so each is started within the budget.
+std::map<std::string, std::string> decoded_textures(const Scene& scene,
+                                                    const IntakeBudget& budget) {
   std::map<std::string, std::string> files;
   for (const ImageFile& image : scene.images)
-    if (!is_decoded_texture(image.bytes))
+    if (!is_decoded_texture(image.bytes)) {
+      budget.check("decoding the textures");
       files[image.path] =
           encode_decoded_texture(decode_image(image.bytes, image.path, kMaxTexturePixels),
                                  image_channels(image.bytes, image.path));
+    }
   return files;
 }
 
@@ -105,17 +109,19 @@ void check_scene(const Submission& sub, const std::optional<std::filesystem::pat
     if (scene.globals.max_recursion_depth > limits.max_depth)
       throw bad_request("maxRecursionDepth " + std::to_string(scene.globals.max_recursion_depth) +
                         " is over this service's limit of " + std::to_string(limits.max_depth));
-    const PreparedScene prepared(scene, out.spec.settings.bvh);
-    budget.check("preparing the scene");
-    out.effects = render_effects(prepared, out.spec.settings).names();
-    const CostProbe probe = probe_render_cost(prepared, out.spec.settings);
-    out.seconds_per_pixel_pass = probe.seconds_per_pixel_pass();
-    out.probe_cut_short = probe.cut_short;
-    budget.check("the cost probe");
-    out.plan.unit_pixels = unit_pixels_for_cost(out.seconds_per_pixel_pass);
-    textures = decoded_textures(scene);
     out.warnings = scene.warnings;
-    for (const auto& u : prepared.unsupported()) out.warnings.push_back(u);
+    {
+      const PreparedScene prepared(scene, out.spec.settings.bvh);
+      budget.check("preparing the scene");
+      out.effects = render_effects(prepared, out.spec.settings).names();
+      const CostProbe probe = probe_render_cost(prepared, out.spec.settings);
+      out.seconds_per_pixel_pass = probe.seconds_per_pixel_pass();
+      out.probe_cut_short = probe.cut_short;
+      budget.check("the cost probe");
+      out.plan.unit_pixels = unit_pixels_for_cost(out.seconds_per_pixel_pass);
+      for (const auto& u : prepared.unsupported()) out.warnings.push_back(u);
+    }  // its BVHs and decoded textures are freed before the textures are decoded again here
+    textures = decoded_textures(scene, budget);
   } catch (const LoadBudgetExceeded& e) {
     if (e.limit() == LoadLimit::Deadline) throw budget.over_time("loading the scene");
     throw over_load_budget(e);

@@ -8,6 +8,7 @@
 #include <map>
 #include <string>
 
+#include "common/image/decoded_texture.h"
 #include "common/loaders/load_budget.h"
 #include "common/loaders/scene_loader.h"
 #include "common/loaders/vrml_parser.h"
@@ -259,6 +260,26 @@ TEST(LoadBudget, NodesNestingAndMemory) {
   const std::uint64_t tokens = meter.total(LoadLimit::BytesProduced);
   vrml::parse_vrml(lexed, meter);
   EXPECT_GE(meter.total(LoadLimit::BytesProduced) - tokens, 99'999 * sizeof(double));
+}
+
+TEST(LoadBudget, TexturesCountWhatTheyDecodeTo) {
+  // 200x100 black pixels compress to a few hundred bytes and decode to 240,000 (12 a pixel).
+  const Files texture = {{"t.tex", encode_decoded_texture(Image(200, 100), 3)}};
+  ASSERT_LT(texture.at("t.tex").size(), 2000u);
+  const std::string sdl = "imageTexture t.tex 1 1 1\nsphere\n";
+  const std::string world =
+      "Shape { appearance Appearance { texture ImageTexture { url \"t.tex\" } }"
+      " geometry Sphere {} }";
+  for (const std::uint64_t budget : {200'000u, 1'000'000u}) {
+    const std::string expected = budget < 240'000 ? "bytes_produced" : "loaded";
+    EXPECT_EQ(sdl_limit(sdl, with(&LoadBudget::max_bytes_produced, budget), texture), expected);
+    Files files = texture;
+    files["w.wrl"] = kHeader + world;
+    EXPECT_EQ(limit_passed(files, "w.wrl", with(&LoadBudget::max_bytes_produced, budget)),
+              expected);
+  }
+  // A file that is no image costs its bytes; preparing the scene refuses it later.
+  EXPECT_EQ(sdl_limit(sdl, {}, {{"t.tex", "no image"}}), "loaded");
 }
 
 TEST(LoadBudget, ADeadlineStopsABombPromptly) {

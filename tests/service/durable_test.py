@@ -4,7 +4,6 @@ again while a job of several levels and passes renders, restarted each time with
 --data-dir, and the job's final image is still bit-identical to tessera-render's; jobs finished
 before the crashes keep their ids and images. And a store over --max-disk fails only the job
 it could not store. Cases: crash_resume, max_disk."""
-import argparse
 import hashlib
 import json
 import os
@@ -43,8 +42,9 @@ class Coordinator:
         port_file = os.path.join(self.tmp, "ports-%d.json" % self.starts)
         log = open(os.path.join(self.tmp, "coordinator-%d.log" % self.starts), "w")
         self.proc, self.http_port, worker_port = start_coordinator(
-            ARGS.build, ["--secret", SECRET, "--local-workers", "1", "--local-threads", "2",
-                         "--data-dir", self.data, *self.ports, *self.extra], log, port_file)
+            service_test.ARGS.build,
+            ["--secret", SECRET, "--local-workers", "1", "--local-threads", "2", "--data-dir",
+             self.data, *self.ports, *self.extra], log, port_file)
         self.ports = ["--http-port", str(self.http_port), "--worker-port", str(worker_port)]
 
     def kill(self):
@@ -219,7 +219,7 @@ def case_read_only():
             c.proc.wait()
             before = tree_digest(c.data)
             subprocess.run(["chmod", "-R", "a-w", c.data], check=True)
-            coordinator = os.path.join(ARGS.build, "coordinator", "tessera-coordinator")
+            coordinator = service_test.binary("coordinator", "tessera-coordinator")
             refused = subprocess.run(
                 ["setpriv", "--reuid", "nobody", "--regid", "nogroup", "--clear-groups",
                  coordinator, "--http-port", "0", "--worker-port", "0", "--insecure",
@@ -242,18 +242,5 @@ def case_read_only():
                 c.kill()
 
 
-def main():
-    global ARGS
-    parser = argparse.ArgumentParser()
-    parser.add_argument("--build", required=True)
-    parser.add_argument("--source", required=True)
-    parser.add_argument("case")
-    ARGS = parser.parse_args()
-    service_test.ARGS = ARGS  # its helpers find the binaries through it
-    start = time.time()
-    globals()["case_" + ARGS.case]()
-    print("%s passed in %.1f s" % (ARGS.case, time.time() - start))
-
-
 if __name__ == "__main__":
-    sys.exit(main())
+    service_test.run_case(globals())

@@ -7,7 +7,6 @@ runs at once.
 usage: interrupt_test.py --build BUILD_DIR --source SOURCE_DIR CASE
 CASE: cancel | time_limit
 """
-import argparse
 import os
 import sys
 import time
@@ -86,16 +85,5 @@ def case_time_limit():
         assert_next_job_is_prompt(service)
 
 
-def main():
-    parser = argparse.ArgumentParser()
-    parser.add_argument("--build", required=True)
-    parser.add_argument("--source", required=True)
-    parser.add_argument("case")
-    service_test.ARGS = parser.parse_args()
-    start = time.time()
-    globals()["case_" + service_test.ARGS.case]()
-    print("%s passed in %.1f s" % (service_test.ARGS.case, time.time() - start))
-
-
 if __name__ == "__main__":
-    sys.exit(main())
+    service_test.run_case(globals())

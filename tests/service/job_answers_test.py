@@ -6,7 +6,6 @@ asked of a job that exists (so the 404 of a missing job cannot answer first).
 usage: job_answers_test.py --build BUILD_DIR --source SOURCE_DIR CASE
 CASE: full_store | tiles_since | image_format
 """
-import argparse
 import json
 import os
 import signal
@@ -98,16 +97,5 @@ def case_image_format():
             assert status == 200, (fmt, status)
 
 
-def main():
-    parser = argparse.ArgumentParser()
-    parser.add_argument("--build", required=True)
-    parser.add_argument("--source", required=True)
-    parser.add_argument("case")
-    service_test.ARGS = parser.parse_args()
-    start = time.time()
-    globals()["case_" + service_test.ARGS.case]()
-    print("%s passed in %.1f s" % (service_test.ARGS.case, time.time() - start))
-
-
 if __name__ == "__main__":
-    sys.exit(main())
+    service_test.run_case(globals())

@@ -13,7 +13,6 @@ import os
 import signal
 import socket
 import subprocess
-import sys
 import tarfile
 import tempfile
 import time
@@ -491,7 +490,10 @@ def case_prediction():
         assert status == 405
 
 
-def main():
+def run_case(cases):
+    """The command line every service test script takes, `--build DIR --source DIR CASE`: runs
+    the function `case_CASE` of `cases` (the script's globals()) and says how long it took.
+    Sets ARGS first: the helpers here, and the cases, find the binaries through it."""
     global ARGS
     parser = argparse.ArgumentParser()
     parser.add_argument("--build", required=True)
@@ -499,9 +501,9 @@ def main():
     parser.add_argument("case")
     ARGS = parser.parse_args()
     start = time.time()
-    globals()["case_" + ARGS.case]()
+    cases["case_" + ARGS.case]()
     print("%s passed in %.1f s" % (ARGS.case, time.time() - start))
 
 
 if __name__ == "__main__":
-    sys.exit(main())
+    run_case(globals())

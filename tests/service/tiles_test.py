@@ -10,7 +10,6 @@ coordinator/http/tile_deltas.h and docs/SERVICE.md), each by its own case:
 
 usage: tiles_test.py --build BUILD_DIR --source SOURCE_DIR CASE
 """
-import argparse
 import gzip
 import os
 import signal
@@ -182,16 +181,5 @@ def case_long_poll():
         service.request("DELETE", "/api/jobs/%d" % job["id"])
 
 
-def main():
-    parser = argparse.ArgumentParser()
-    parser.add_argument("--build", required=True)
-    parser.add_argument("--source", required=True)
-    parser.add_argument("case")
-    service_test.ARGS = parser.parse_args()
-    start = time.time()
-    globals()["case_" + service_test.ARGS.case]()
-    print("%s passed in %.1f s" % (service_test.ARGS.case, time.time() - start))
-
-
 if __name__ == "__main__":
-    sys.exit(main())
+    service_test.run_case(globals())

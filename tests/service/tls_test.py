@@ -6,12 +6,10 @@ certificate with the openssl command line.
 usage: tls_test.py --build BUILD_DIR --source SOURCE_DIR CASE
 CASE: render | refused | relay
 """
-import argparse
 import os
 import socket
 import ssl
 import subprocess
-import sys
 import tempfile
 import threading
 import time
@@ -208,16 +206,5 @@ def case_relay():
             assert "worker 1: " in log, log
 
 
-def main():
-    parser = argparse.ArgumentParser()
-    parser.add_argument("--build", required=True)
-    parser.add_argument("--source", required=True)
-    parser.add_argument("case")
-    service_test.ARGS = parser.parse_args()
-    start = time.time()
-    globals()["case_" + service_test.ARGS.case]()
-    print("%s passed in %.1f s" % (service_test.ARGS.case, time.time() - start))
-
-
 if __name__ == "__main__":
-    sys.exit(main())
+    service_test.run_case(globals())

@@ -7,7 +7,6 @@ run as processes on loopback, as in service_test.py, whose helpers this uses.
 usage: worker_port_test.py --build BUILD_DIR --source SOURCE_DIR CASE
 CASE: caps | deadline | results | negative_colours | emfile
 """
-import argparse
 import hashlib
 import hmac
 import json
@@ -379,16 +378,5 @@ def case_emfile():
               "answered in %.1f ms" % (lines, cpu, seconds * 1e3))
 
 
-def main():
-    parser = argparse.ArgumentParser()
-    parser.add_argument("--build", required=True)
-    parser.add_argument("--source", required=True)
-    parser.add_argument("case")
-    svc.ARGS = parser.parse_args()
-    start = time.time()
-    globals()["case_" + svc.ARGS.case]()
-    print("%s passed in %.1f s" % (svc.ARGS.case, time.time() - start))
-
-
 if __name__ == "__main__":
-    sys.exit(main())
+    svc.run_case(globals())

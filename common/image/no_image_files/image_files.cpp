@@ -19,5 +19,6 @@ namespace {
 Image decode_image(std::string_view, const std::string& name, std::size_t) { refuse(name); }
 
 int image_channels(std::string_view, const std::string& name) { refuse(name); }
+std::size_t image_pixels(std::string_view, const std::string& name) { refuse(name); }
 
 }  // namespace tessera

@@ -46,14 +46,15 @@ Image read_opened(OIIO::ImageInput& in, const std::string& name, std::size_t max
     throw std::runtime_error("cannot read " + name + ": " + std::to_string(spec.width) + "x" +
                              std::to_string(spec.height) + " pixels is more than " +
                              std::to_string(max_pixels));
-  const int channels = spec.nchannels;
-  std::vector<float> pixels(count * channels);
-  if (!in.read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, pixels.data()))
-    throw std::runtime_error("cannot read " + name + ": " + in.geterror());
+  // Read straight into the image's floats, with no buffer of all the file's channels (a
+  // 4096x4096 RGBA texture would take 256 MB more): RGB as it is, gray into every third float.
+  const int read = spec.nchannels < 3 ? 1 : 3;
   Image image(spec.width, spec.height);
-  for (std::size_t p = 0; p < count; ++p)
-    for (int c = 0; c < 3; ++c)
-      image.rgb[3 * p + c] = pixels[p * channels + static_cast<std::size_t>(channels < 3 ? 0 : c)];
+  if (!in.read_image(0, 0, 0, read, OIIO::TypeDesc::FLOAT, image.rgb.data(), 3 * sizeof(float)))
+    throw std::runtime_error("cannot read " + name + ": " + in.geterror());
+  if (read == 1)
+    for (std::size_t p = 0; p < count; ++p)
+      image.rgb[3 * p + 1] = image.rgb[3 * p + 2] = image.rgb[3 * p];
   return image;
 }
 
@@ -82,6 +83,14 @@ Image decode_image(std::string_view bytes, const std::string& name, std::size_t 
 
 int image_channels(std::string_view bytes, const std::string& name) {
   return read_memory(bytes, name, [](OIIO::ImageInput& in) { return in.spec().nchannels; });
+}
+
+std::size_t image_pixels(std::string_view bytes, const std::string& name) {
+  return read_memory(bytes, name, [](OIIO::ImageInput& in) {
+    const OIIO::ImageSpec& spec = in.spec();
+    return spec.width > 0 && spec.height > 0 ? static_cast<std::size_t>(spec.width) * spec.height
+                                             : std::size_t{0};
+  });
 }
 
 }  // namespace tessera
