@@ -5,6 +5,7 @@
 #include <limits>
 #include <numbers>
 
+#include "common/accel/bvh_traverse.h"
 #include "common/math/float_error.h"
 #include "common/render/cone.h"
 #include "common/render/optics.h"
