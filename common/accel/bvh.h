@@ -40,19 +40,6 @@ struct Bvh {
 Bvh build_bvh(std::span<const Bounds3> primitive_bounds, BvhMode mode);
 // Fills bvh.pairs from bvh.nodes (build_bvh does; for hand-made trees).
 void make_bvh_pairs(Bvh& bvh);
-
-// Visits the leaves whose boxes the ray [0, t_max] enters, the nearer child's first.
-// `visit(primitive_index, t_max)` returns the possibly shrunk t_max (closest hit) or a negative
-// value to stop the traversal (any-hit queries). Counts visited nodes in `nodes_visited`.
-// The same walk a leaf at a time: `visit_leaf(first, count, t_max)` gets the leaf's range
-// [first, first + count) of Bvh::primitive_order and returns t_max as `visit` does.
-template <typename VisitLeaf>
-void traverse_bvh_leaves(const Bvh& bvh, const Ray& ray, double t_max, std::uint64_t& nodes_visited,
-                         VisitLeaf&& visit_leaf);
-template <typename Visit>
-void traverse_bvh(const Bvh& bvh, const Ray& ray, double t_max, std::uint64_t& nodes_visited,
-                  Visit&& visit);
+// Traversal: common/accel/bvh_traverse.h.
 
 }  // namespace tessera
-
-#include "common/accel/bvh_traverse.h"

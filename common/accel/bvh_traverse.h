@@ -13,6 +13,10 @@ namespace tessera {
 // The build keeps trees shallower than this (bvh.cpp), so the fixed stack cannot overflow.
 inline constexpr int kBvhMaxDepth = 128;
 
+// Visits the leaves whose boxes the ray [0, t_max] enters, the nearer child's first:
+// `visit_leaf(first, count, t_max)` gets the leaf's range [first, first + count) of
+// Bvh::primitive_order and returns the possibly shrunk t_max (closest hit) or a negative value to
+// stop the traversal (any-hit queries). Counts visited nodes in `nodes_visited`.
 template <typename VisitLeaf>
 void traverse_bvh_leaves(const Bvh& bvh, const Ray& ray, double t_max, std::uint64_t& nodes_visited,
                          VisitLeaf&& visit_leaf) {
@@ -63,6 +67,8 @@ void traverse_bvh_leaves(const Bvh& bvh, const Ray& ray, double t_max, std::uint
   }
 }
 
+// The same walk a primitive at a time: `visit(primitive_index, t_max)` returns t_max as
+// `visit_leaf` does.
 template <typename Visit>
 void traverse_bvh(const Bvh& bvh, const Ray& ray, double t_max, std::uint64_t& nodes_visited,
                   Visit&& visit) {

@@ -164,4 +164,28 @@ bool intersect_instance(const Instance& instance, const Ray& world_ray, double t
   return true;
 }
 
+bool occluded_instance(const Instance& instance, const Ray& world_ray, double t_max,
+                       std::uint32_t& object, IntersectionCounters& counters) {
+  if (std::holds_alternative<CsgShape>(instance.geometry)) {
+    // Which child's surface blocks the ray depends on the crossings' order: the nearest hit.
+    WorldHit hit;
+    if (!intersect_csg(instance, world_ray, t_max, hit, counters)) return false;
+    object = hit.object;
+    return true;
+  }
+  if (instance.motion && world_ray.time != 0) {
+    const std::optional<Instance> posed = instance_at(instance, world_ray.time);
+    return posed && occluded_instance(*posed, world_ray, t_max, object, counters);
+  }
+  ++counters.shape_tests;
+  object = instance.object;
+  const Ray ray = object_ray_inline(instance, world_ray);
+  if (std::holds_alternative<MeshShape>(instance.geometry))
+    return instance.mesh != nullptr && occluded_mesh(*instance.mesh, ray, t_max, counters);
+  // The other shapes stop at their nearest root anyway; what is saved is the world hit.
+  LocalHit local;
+  return std::visit(LocalIntersect{instance, world_ray, ray, t_max, local, counters},
+                    instance.geometry);
+}
+
 }  // namespace tessera

@@ -49,6 +49,14 @@ struct WorldHit {
 bool intersect_instance(const Instance& instance, const Ray& world_ray, double t_max, WorldHit& hit,
                         IntersectionCounters& counters);
 
+// Whether the ray meets the instance with t in (0, t_max): the answer of intersect_instance,
+// for shadow feelers, without the world-space hit (point, error bound, normals) and through a
+// mesh's any-hit traversal. `object` becomes the scene object whose surface blocks the ray: the
+// instance's own, or for a boolean object the child of its nearest hit, whose material decides
+// how much light passes (eq. 4.24).
+bool occluded_instance(const Instance& instance, const Ray& world_ray, double t_max,
+                       std::uint32_t& object, IntersectionCounters& counters);
+
 // The world ray in the instance's object space (same t) and a local hit back in world space,
 // for routines that find several hits at once (csg.cpp).
 Ray object_ray(const Instance& instance, const Ray& world_ray);

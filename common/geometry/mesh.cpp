@@ -2,6 +2,7 @@
 #include <algorithm>
 #include <utility>
 
+#include "common/accel/bvh_traverse.h"
 #include "common/geometry/shapes.h"
 #include "common/geometry/triangle.h"
 

@@ -5,6 +5,7 @@
 #include <limits>
 #include <numbers>
 
+#include "common/accel/bvh_traverse.h"
 #include "common/math/float_error.h"
 #include "common/render/cone.h"
 #include "common/render/optics.h"
@@ -139,14 +140,15 @@ double Tracer::shadow_factor(const Feeler& feeler) {
   const std::vector<SceneObject>& objects = scene_.scene().objects;
   double factor = 1;
   // Each object counts once, however often the feeler crosses its surface (eq. 4.24).
-  traverse_bvh(scene_.bvh(), ray, feeler.t_max, stats_.intersections.bvh_nodes,
-               [&](std::uint32_t index, double t_limit) {
-                 WorldHit h;
-                 if (!intersect_instance(instances[index], ray, t_limit, h, stats_.intersections))
-                   return t_limit;
-                 factor *= objects[h.object].material.transparency;
-                 return factor > 0 ? t_limit : -1.0;
-               });
+  traverse_bvh(
+      scene_.bvh(), ray, feeler.t_max, stats_.intersections.bvh_nodes,
+      [&](std::uint32_t index, double t_limit) {
+        std::uint32_t object = 0;
+        if (!occluded_instance(instances[index], ray, t_limit, object, stats_.intersections))
+          return t_limit;
+        factor *= objects[object].material.transparency;
+        return factor > 0 ? t_limit : -1.0;
+      });
   return factor;
 }
 

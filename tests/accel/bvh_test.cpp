@@ -7,6 +7,8 @@
 #include <random>
 #include <vector>
 
+#include "common/accel/bvh_traverse.h"
+
 namespace tessera {
 namespace {
 
