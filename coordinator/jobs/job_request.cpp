@@ -227,7 +227,8 @@ void check_scene(const Submission& sub, const std::optional<std::filesystem::pat
   load_budget.deadline = budget.deadline;
   load_budget.strict = out.strict;
   try {
-    Scene scene = load_scene(source, sub.main, *scene_format_named(sub.format), load_budget);
+    Scene scene = load_scene(source, sub.main, *scene_format_named(sub.format), load_budget,
+                             out.spec.overrides.camera);
     budget.check("loading the scene");
     apply_overrides(scene, out.spec.overrides);
     if (scene.globals.max_recursion_depth > limits.max_depth)
@@ -243,6 +244,8 @@ void check_scene(const Submission& sub, const std::optional<std::filesystem::pat
     out.plan.unit_pixels = unit_pixels_for_cost(out.seconds_per_pixel_pass);
     textures = decoded_textures(scene);
     out.warnings = scene.warnings;
+    out.camera = scene.camera;
+    out.viewpoints = scene.viewpoints;
     for (const auto& u : prepared.unsupported()) out.warnings.push_back(u);
   } catch (const LoadBudgetExceeded& e) {
     if (e.limit() == LoadLimit::Deadline) throw budget.over_time("loading the scene");
