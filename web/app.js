@@ -125,9 +125,13 @@ async function mainScene(files) {
 // the same request and only answers how long it would take). SDL and VRML alike: a text scene
 // as JSON, a compressed world or a scene with its files as a form (binary files stay binary),
 // a tar as it is.
-async function postScene(path, ask = true) {
-  const settings = collectSettings();
-  const files = [...$("scene-file").files];
+// `request` is the form as it was (navigation.js resends a job's request with a new camera);
+// `extra` settings go over the form's.
+const formRequest = () => ({ settings: collectSettings(), files: [...$("scene-file").files],
+                             text: $("scene-text").value });
+async function postScene(path, ask = true, request = formRequest(), extra = {}) {
+  const settings = { ...request.settings, ...extra };
+  const files = request.files;
   const file = files[0];
   if (file && file.name.toLowerCase().endsWith(".tar")) {
     const query = new URLSearchParams(Object.entries(settings).map(([k, v]) => [k, String(v)]));
@@ -145,7 +149,7 @@ async function postScene(path, ask = true) {
     for (const f of files) form.append("file", f, bundlePath(f));
     return fetchWithToken(path, { method: "POST", body: form }, ask);
   }
-  const scene = file ? await file.text() : $("scene-text").value;
+  const scene = file ? await file.text() : request.text;
   const format = file ? formatOf(file.name) || "sdl" : /^\s*#VRML/.test(scene) ? "vrml" : "sdl";
   return fetchWithToken(path, {
     method: "POST", headers: { "Content-Type": "application/json" },
@@ -175,22 +179,25 @@ function schedulePrediction() {
 async function submit(event) {
   event.preventDefault();
   $("submit-error").textContent = "";
-  const response = await postScene("/api/jobs");
+  const request = formRequest();
+  const response = await postScene("/api/jobs", true, request);
   const body = await response.json().catch(() => null);
   if (response.status !== 201) {
     $("submit-error").textContent = describeError(response.status, body);
     return;
   }
+  navigationSubmitted(body.id, (extra) => postScene("/api/jobs", true, request, extra));
   show(body.id);
   refreshJobs();
 }
 
-function show(id) {
+// `keepImage`: the old job's pixels stay until the new job's first paint (a camera move).
+function show(id, { keepImage = false } = {}) {
   if (id === view.job) return;
   Object.assign(view, { job: id, width: 0, height: 0, tilesNext: 0, levelsPainted: new Set(),
                         pending: [], usedWhole: false, wholeIsFinal: false, wholeLoadedAt: 0, tiles: [],
-                        latencies: [], longestPaintMs: 0, lastState: null });
-  clearImage();
+                        latencies: [], longestPaintMs: 0, lastState: null, clearOnPaint: keepImage });
+  if (!keepImage) clearImage();
   $("levels-seen").textContent = "";
   $("shown-level").textContent = "-";
   $("job-title").textContent = `Job ${id}`;
@@ -221,6 +228,7 @@ async function poll() {
 function update(job) {
   view.lastState = job.state;
   renderStatus(job);
+  navigationUpdate(job);
   if (view.width !== job.width || view.height !== job.height) sizeImage(job.width, job.height);
   if (["failed", "cancelled"].includes(job.state)) $("base-canvas").dataset.state = job.state;
 }
@@ -295,6 +303,8 @@ function parseTiles(buffer) {
 // Paints one record into its layer: each pixel fills its cell, the cells of coarser levels'
 // anchors (flag 1) stay as they are.
 function paintRecord(r) {
+  if (view.clearOnPaint) clearImage();
+  view.clearOnPaint = false;
   const { ctx } = layerFor(r.step);
   const cols = Math.ceil((r.x1 - r.x0) / r.step), rows = Math.ceil((r.y1 - r.y0) / r.step);
   const x0 = r.x0 / r.step, y0 = r.y0 / r.step;
@@ -408,6 +418,7 @@ async function loadWhole(id, finished) {
     for (const { canvas } of view.layers.values()) canvas.remove();
     view.layers = new Map();
     view.pending = [];
+    view.clearOnPaint = false;
     const base = $("base-canvas");
     Object.assign(base, { width: bitmap.width, height: bitmap.height });  // cleared, too
     base.getContext("2d").drawImage(bitmap, 0, 0);

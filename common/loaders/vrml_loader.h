@@ -3,6 +3,7 @@
 // lists the nodes and how each maps to the tracer.
 #pragma once
 
+#include <optional>
 #include <string>
 
 #include "common/loaders/load_budget.h"
@@ -13,7 +14,10 @@ namespace tessera {
 
 // Parses the world at root-relative `path` of `source`, with its Inlines (each file parsed once
 // and shared). Throws SceneError naming file, line, column and what was expected;
-// LoadBudgetExceeded when the world goes over `budget`.
-Scene load_vrml(const SceneSource& source, const std::string& path, const LoadBudget& budget = {});
+// LoadBudgetExceeded when the world goes over `budget`. A `camera` (view_angle: fieldOfView in
+// degrees) is bound in place of the world's Viewpoint: Billboards turn to it and the headlight
+// follows it, as for a Viewpoint of that camera.
+Scene load_vrml(const SceneSource& source, const std::string& path, const LoadBudget& budget = {},
+                const std::optional<Camera>& camera = std::nullopt);
 
 }  // namespace tessera

@@ -46,8 +46,9 @@ struct BoundingSphere {
 
 class Converter : public ProtoFiles {
  public:
-  Converter(const SceneSource& source, const std::string& path, LoadMeter& meter)
-      : source_(source), path_(path), meter_(meter) {}
+  Converter(const SceneSource& source, const std::string& path, LoadMeter& meter,
+            const std::optional<Camera>& camera)
+      : source_(source), path_(path), meter_(meter), camera_(camera) {}
 
   Scene run() {
     const SourceLocation start{path_, 1, 1};
@@ -204,7 +205,12 @@ class Converter : public ProtoFiles {
                (t == "Viewpoint" || t == "NavigationInfo" || t == "Background" || t == "Fog")) {
       // Bindable nodes of Inlined files are not bound at load (§4.6.10, §6.53).
     } else if (t == "Viewpoint") {
-      if (!viewpoint_) viewpoint_ = viewpoint(n, ct);
+      // The first is bound and must give a view; a later one that gives none is not listed.
+      const std::optional<Camera> camera = viewpoint(n, ct);
+      if (!viewpoint_ && !camera)
+        throw SceneError(n.where, "Viewpoint: the transform leaves the view no direction");
+      if (!viewpoint_) viewpoint_ = camera;
+      if (camera) scene_.viewpoints.push_back({viewpoint_name(n), *camera});
     } else if (t == "NavigationInfo") {
       if (!headlight_) headlight_ = sf_bool(n, "headlight", true);
     } else if (t == "Background") {
@@ -484,7 +490,8 @@ class Converter : public ProtoFiles {
   }
 
   // ---- Bindable nodes: the first of each kind counts (§4.6.10)
-  static Camera viewpoint(const Node& n, const Affine& ct) {
+  // Nullopt when the transform leaves the view no direction.
+  static std::optional<Camera> viewpoint(const Node& n, const Affine& ct) {
     const Affine orientation = sf_rotation(n, "orientation");
     Camera camera;
     camera.eye = ct.apply_point(sf_vec3(n, "position", {0, 0, 10}));
@@ -494,8 +501,16 @@ class Converter : public ProtoFiles {
     camera.view_angle = degrees(std::clamp(sf_float(n, "fieldOfView", 0.785398), 1e-6, 3.14159));
     camera.view_angle_on_smaller_side = true;
     if (camera.look_at == camera.eye || camera_right(camera, view_direction(camera)) == Vec3{})
-      throw SceneError(n.where, "Viewpoint: the transform leaves the view no direction");
+      return std::nullopt;
     return camera;
+  }
+
+  // What a page lists it as: its description, else where it is.
+  static std::string viewpoint_name(const Node& n) {
+    const FieldValue* description = n.field("description");
+    if (description && !description->strings.empty() && !description->strings[0].empty())
+      return description->strings[0];
+    return n.where.to_string();
   }
 
   // Background (§6.5): skyColor[0] everywhere, or, given sky or ground angles, the gradient
@@ -558,7 +573,12 @@ class Converter : public ProtoFiles {
   void finish() {
     SceneGlobals& g = scene_.globals;
     g.global_ambient = clamp_unit(ambient_);
-    scene_.camera = viewpoint_ ? *viewpoint_ : framing_camera(billboard_spheres());
+    if (camera_) {
+      scene_.camera = *camera_;
+      scene_.camera.view_angle_on_smaller_side = true;
+    } else {
+      scene_.camera = viewpoint_ ? *viewpoint_ : framing_camera(billboard_spheres());
+    }
     // Billboards nested in billboards are turned as they come: this loop sees them appended.
     // Each is walked inside a group holding the DirectionalLights it inherited from the groups
     // around it, so that they light its objects too.
@@ -700,6 +720,7 @@ class Converter : public ProtoFiles {
   const SceneSource& source_;
   const std::string path_;
   LoadMeter& meter_;
+  const std::optional<Camera> camera_;  // the camera setting, bound in place of a Viewpoint
   // Every file's parsed world by path, alive for the whole conversion: Billboards and the mesh
   // cache hold nodes by address until the end.
   std::map<std::string, std::unique_ptr<const ParsedWorld>> worlds_;
@@ -736,9 +757,10 @@ class Converter : public ProtoFiles {
 }  // namespace
 }  // namespace vrml
 
-Scene load_vrml(const SceneSource& source, const std::string& path, const LoadBudget& budget) {
+Scene load_vrml(const SceneSource& source, const std::string& path, const LoadBudget& budget,
+                const std::optional<Camera>& camera) {
   LoadMeter meter(budget);
-  return vrml::Converter(source, path, meter).run();
+  return vrml::Converter(source, path, meter, camera).run();
 }
 
 }  // namespace tessera

@@ -15,11 +15,50 @@ void apply_overrides(Scene& scene, const SceneOverrides& o) {
   }
 }
 
+namespace {
+
+nlohmann::json to_json(const Vec3& v) { return {v.x, v.y, v.z}; }
+
+std::optional<Vec3> vec3_from_json(const nlohmann::json& j) {
+  if (!j.is_array() || j.size() != 3) return std::nullopt;
+  for (const nlohmann::json& c : j)
+    if (!c.is_number()) return std::nullopt;
+  return Vec3{j[0].get<double>(), j[1].get<double>(), j[2].get<double>()};
+}
+
+// {"eye": [x, y, z], "look_at": [x, y, z], "up": [x, y, z], "fov": degrees}, every key given
+// and no other.
+std::optional<Camera> camera_from_json(const nlohmann::json& j) {
+  if (!j.is_object() || j.size() != 4 || !j.contains("fov") || !j["fov"].is_number())
+    return std::nullopt;
+  Camera camera;
+  for (auto [key, field] : {std::pair{"eye", &camera.eye}, std::pair{"look_at", &camera.look_at},
+                            std::pair{"up", &camera.up}}) {
+    const std::optional<Vec3> v = j.contains(key) ? vec3_from_json(j[key]) : std::nullopt;
+    if (!v) return std::nullopt;
+    *field = *v;
+  }
+  camera.view_angle = j["fov"].get<double>();
+  return camera;
+}
+
+}  // namespace
+
+nlohmann::json camera_to_json(const Camera& camera) {
+  return {{"eye", to_json(camera.eye)},
+          {"look_at", to_json(camera.look_at)},
+          {"up", to_json(camera.up)},
+          {"fov", camera.view_angle}};
+}
+
 nlohmann::json setting_to_json(const SettingValue& value) {
   return std::visit(
       [](const auto& v) -> nlohmann::json {
-        if constexpr (std::is_same_v<std::decay_t<decltype(v)>, std::monostate>)
+        using T = std::decay_t<decltype(v)>;
+        if constexpr (std::is_same_v<T, std::monostate>)
           return nullptr;
+        else if constexpr (std::is_same_v<T, Camera>)
+          return camera_to_json(v);
         else
           return v;
       },
@@ -45,6 +84,9 @@ std::optional<SettingValue> setting_from_json(const SettingSpec& spec, const nlo
       break;
     case SettingType::Seed:
       if (j.is_number_unsigned()) return j.get<std::uint64_t>();
+      break;
+    case SettingType::Camera:
+      if (const std::optional<Camera> camera = camera_from_json(j)) return *camera;
       break;
   }
   return std::nullopt;

@@ -7,6 +7,7 @@
 #include <string_view>
 
 #include "common/accel/bvh.h"
+#include "common/scene/camera.h"
 #include "common/scene/motion.h"  // kMaxTimeSamples
 
 namespace tessera {
@@ -47,6 +48,10 @@ struct RenderSettings {
 struct SceneOverrides {
   std::optional<int> max_depth;      // maxRecursionDepth
   std::optional<double> min_weight;  // minReflectivity and minTransparency
+  // The camera setting: eye, look_at, up and view_angle (the format's own angle: SDL's
+  // vertical viewAngle, VRML's fieldOfView on the smaller side). The loader puts it in place
+  // of the scene's, so that a VRML headlight and Billboards follow it (load_scene).
+  std::optional<Camera> camera;
   friend bool operator==(const SceneOverrides&, const SceneOverrides&) = default;
 };
 

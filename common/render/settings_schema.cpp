@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <charconv>
+#include <cmath>
 #include <cstdio>
 
 #include "common/scene/motion.h"  // kMaxTimeSamples
@@ -18,6 +19,7 @@ SettingValue widen(std::uint64_t v) { return v; }
 SettingValue widen(const std::string& v) { return v; }
 SettingValue widen(BvhMode v) { return v == BvhMode::Sah; }
 SettingValue widen(ShadowMode v) { return std::string(to_string(v)); }
+SettingValue widen(const Camera& v) { return v; }
 template <typename T>
 SettingValue widen(const std::optional<T>& v) {
   return v ? widen(*v) : SettingValue();
@@ -33,6 +35,7 @@ void assign(std::string& field, const SettingValue& v) { field = std::get<std::s
 void assign(BvhMode& field, const SettingValue& v) {
   field = std::get<bool>(v) ? BvhMode::Sah : BvhMode::None;
 }
+void assign(Camera& field, const SettingValue& v) { field = std::get<Camera>(v); }
 void assign(ShadowMode& field, const SettingValue& v) {
   field = parse_shadow_mode(std::get<std::string>(v)).value_or(ShadowMode::Hard);
 }
@@ -183,6 +186,15 @@ const SettingSpec kSchema[] = {
      .layers = kJobs,
      .help = "overrides minReflectivity and minTransparency",
      .access = field<kOverrides, &SceneOverrides::min_weight>},
+    {.name = "camera",
+     .type = SettingType::Camera,
+     .min = 0,
+     .max = 180,
+     .layers = kEverywhere,
+     .help = "replaces the scene's camera: eye, look-at point, up direction and field of view in "
+             "degrees, the format's own angle (SDL's vertical viewAngle, VRML's fieldOfView "
+             "across the image's smaller side)",
+     .access = field<kOverrides, &SceneOverrides::camera>},
     {.name = "progressive",
      .type = SettingType::Boolean,
      .layers = kJobRequest,
@@ -242,6 +254,41 @@ bool parse_all(std::string_view text, T& value) {
   return ec == std::errc() && ptr == end;
 }
 
+// "EX EY EZ LX LY LZ UX UY UZ FOV", separated by spaces or commas.
+std::optional<Camera> camera_from_text(std::string_view text) {
+  double numbers[10];
+  std::size_t count = 0;
+  while (true) {
+    const std::size_t start = text.find_first_not_of(" ,");
+    if (start == std::string_view::npos) break;
+    text.remove_prefix(start);
+    const std::string_view number = text.substr(0, text.find_first_of(" ,"));
+    if (count == 10 || !parse_all(number, numbers[count++])) return std::nullopt;
+    text.remove_prefix(number.size());
+  }
+  if (count != 10) return std::nullopt;
+  Camera camera;
+  camera.eye = {numbers[0], numbers[1], numbers[2]};
+  camera.look_at = {numbers[3], numbers[4], numbers[5]};
+  camera.up = {numbers[6], numbers[7], numbers[8]};
+  camera.view_angle = numbers[9];
+  return camera;
+}
+
+// What makes a camera setting unusable, in the words of "must ...".
+std::optional<std::string> camera_error(const Camera& camera, const SettingSpec& spec) {
+  if (!is_finite(camera.eye) || !is_finite(camera.look_at) || !is_finite(camera.up) ||
+      !std::isfinite(camera.view_angle))
+    return "must hold finite numbers";
+  const Vec3 view = view_direction(camera);
+  if (view == Vec3{}) return "must have its eye apart from look_at";
+  if (camera_right(camera, view) == Vec3{}) return "must have an up direction not along the view";
+  if (!(camera.view_angle > spec.min && camera.view_angle < spec.max))
+    return "must have a fov in (" + format_number(spec.min) + ", " + format_number(spec.max) +
+           ") degrees";
+  return std::nullopt;
+}
+
 }  // namespace
 
 std::span<const SettingSpec> settings_schema() { return kSchema; }
@@ -275,6 +322,10 @@ std::string describe_values(const SettingSpec& spec, double max) {
       return one_of(spec.choices, [](std::string_view v) { return "\"" + std::string(v) + "\""; });
     case SettingType::Seed:
       return "an integer >= 0";
+    case SettingType::Camera:
+      return "{\"eye\": [x, y, z], \"look_at\": [x, y, z], \"up\": [x, y, z], \"fov\": "
+             "degrees}: the eye apart from look_at, up not along the view, fov in (" +
+             format_number(spec.min) + ", " + format_number(max) + ")";
   }
   return {};
 }
@@ -305,6 +356,9 @@ std::optional<std::string> setting_error(const SettingSpec& spec, const SettingV
       break;
     case SettingType::Seed:
       ok = std::holds_alternative<std::uint64_t>(value);
+      break;
+    case SettingType::Camera:
+      if (const auto* v = std::get_if<Camera>(&value)) return camera_error(*v, spec);
       break;
   }
   if (ok) return std::nullopt;
@@ -338,6 +392,9 @@ std::optional<SettingValue> setting_from_text(const SettingSpec& spec, std::stri
       if (parse_all(text, v)) return v;
       break;
     }
+    case SettingType::Camera:
+      if (const std::optional<Camera> v = camera_from_text(text)) return *v;
+      break;
   }
   return std::nullopt;
 }
@@ -350,6 +407,14 @@ std::string to_text(const SettingValue& value) {
     std::string operator()(bool v) const { return v ? "true" : "false"; }
     std::string operator()(const std::string& v) const { return v; }
     std::string operator()(std::uint64_t v) const { return std::to_string(v); }
+    std::string operator()(const Camera& v) const {
+      const auto triple = [](const Vec3& p) {
+        return "(" + format_number(p.x) + ", " + format_number(p.y) + ", " + format_number(p.z) +
+               ")";
+      };
+      return "eye " + triple(v.eye) + ", look_at " + triple(v.look_at) + ", up " + triple(v.up) +
+             ", fov " + format_number(v.view_angle);
+    }
   };
   return std::visit(Format{}, value);
 }

@@ -39,12 +39,14 @@ struct JobSettings {
   LoadSettings load;
 };
 
-enum class SettingType { Integer, Number, Boolean, Choice, Seed };
+// Camera: {"eye": [x, y, z], "look_at": [x, y, z], "up": [x, y, z], "fov": degrees} in a job,
+// ten numbers on the command line.
+enum class SettingType { Integer, Number, Boolean, Choice, Seed, Camera };
 
 // A setting's value, in the alternative of its type (Integer: int64_t, Seed: uint64_t, Choice:
 // the choice's name); monostate for an override left unset, which keeps the scene's value.
 using SettingValue =
-    std::variant<std::monostate, std::int64_t, double, bool, std::string, std::uint64_t>;
+    std::variant<std::monostate, std::int64_t, double, bool, std::string, std::uint64_t, Camera>;
 
 // The layers that take a setting.
 enum SettingLayer : unsigned {
@@ -94,8 +96,9 @@ std::optional<std::string> setting_error(const SettingSpec& spec, const SettingV
                                          double max);
 std::optional<std::string> setting_error(const SettingSpec& spec, const SettingValue& value);
 
-// A command-line value in the setting's type ("1e-1", "12", "soft"); nullopt when it does not
-// read as one. The range is setting_error's to check.
+// A command-line value in the setting's type ("1e-1", "12", "soft"; a camera's ten numbers,
+// separated by spaces or commas); nullopt when it does not read as one. The range is
+// setting_error's to check.
 std::optional<SettingValue> setting_from_text(const SettingSpec& spec, std::string_view text);
 // A value as the docs and the help show it: "640", "0.2", "true", "hard", "the scene's".
 std::string to_text(const SettingValue& value);

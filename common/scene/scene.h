@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "common/math/affine.h"
+#include "common/scene/camera.h"
 #include "common/scene/light.h"
 #include "common/scene/material.h"
 #include "common/scene/mesh.h"
@@ -16,32 +17,6 @@
 #include "common/scene/source_location.h"
 
 namespace tessera {
-
-struct Camera {
-  Vec3 eye{0, 0, 5};       // eyePoint
-  Vec3 look_at{0, 0, 0};   // viewPoint
-  Vec3 up{0, 1, 0};        // upDirection
-  double view_angle = 45;  // vertical field of view in degrees (viewAngle)
-  // VRML's fieldOfView spans the smaller side of the image (ISO/IEC 14772-1 §6.53): then
-  // view_angle is the horizontal angle of a portrait image.
-  bool view_angle_on_smaller_side = false;
-  friend bool operator==(const Camera&, const Camera&) = default;
-};
-
-// The unit view direction, also for an eye and viewPoint 1e308 apart (their difference would
-// overflow); zero when they coincide. The loader and the renderer share these two rules.
-inline Vec3 view_direction(const Camera& camera) {
-  Vec3 difference = camera.look_at - camera.eye;
-  if (!is_finite(difference)) difference = camera.look_at * 0.5 - camera.eye * 0.5;
-  return unit_or_zero(difference);
-}
-
-// The unit vector to the right of the view, also for a tiny upDirection (1e-200); zero when
-// upDirection is zero or too nearly parallel to the view direction to give a frame.
-inline Vec3 camera_right(const Camera& camera, const Vec3& view) {
-  const Vec3 right = cross(view, unit_or_zero(camera.up));
-  return length(right) > 1e-9 ? unit_or_zero(right) : Vec3{};
-}
 
 // atmosphericAttenuation <front-plane> <front-scale> <back-plane> <back-scale> <r> <g> <b>.
 struct AtmosphericAttenuation {
@@ -106,6 +81,9 @@ struct ImageFile {
 
 struct Scene {
   Camera camera;
+  // VRML's Viewpoints in file order, Inlined files' not included; camera is the first's
+  // unless a camera setting replaced it. Empty for SDL.
+  std::vector<NamedCamera> viewpoints;
   SceneGlobals globals;
   std::vector<Light> lights;
   std::vector<SceneObject> objects;

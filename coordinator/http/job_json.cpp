@@ -83,6 +83,13 @@ nlohmann::json job_status_json(const Job& job, Clock::time_point now) {
   j["stats"] = to_json(job.stats);
   j["tiles"] = job.tiles_next();
   j["scene"] = job.bundle.main;
+  // The camera the page navigates from; its fov is the format's angle (docs/SERVICE.md).
+  j["format"] = job.bundle.format;
+  j["camera"] = job.camera ? camera_to_json(*job.camera) : nlohmann::json(nullptr);
+  nlohmann::json viewpoints = nlohmann::json::array();
+  for (const NamedCamera& v : job.viewpoints)
+    viewpoints.push_back({{"name", v.name}, {"camera", camera_to_json(v.camera)}});
+  j["viewpoints"] = viewpoints;
   nlohmann::json workers = nlohmann::json::array();
   for (const auto& [id, share] : job.shares)
     workers.push_back({{"id", id},

@@ -82,6 +82,8 @@ struct Job {
   std::string client;  // the submitter's address, for the per-client cap on unfinished jobs
   Plan plan;
   std::vector<std::string> effects, warnings;
+  std::optional<Camera> camera;  // JobRequest::camera
+  std::vector<NamedCamera> viewpoints;
   // The prediction made at submission from the probe and the worker threads then connected
   // (issue 5); empty when no worker was connected.
   double seconds_per_pixel_pass = 0;

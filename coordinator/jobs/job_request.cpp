@@ -103,13 +103,16 @@ void check_scene(const Submission& sub, const std::optional<std::filesystem::pat
   load_budget.deadline = budget.deadline;
   load_budget.strict = out.strict;
   try {
-    Scene scene = load_scene(source, sub.main, *scene_format_named(sub.format), load_budget);
+    Scene scene = load_scene(source, sub.main, *scene_format_named(sub.format), load_budget,
+                             out.spec.overrides.camera);
     budget.check("loading the scene");
     apply_overrides(scene, out.spec.overrides);
     if (scene.globals.max_recursion_depth > limits.max_depth)
       throw bad_request("maxRecursionDepth " + std::to_string(scene.globals.max_recursion_depth) +
                         " is over this service's limit of " + std::to_string(limits.max_depth));
     out.warnings = scene.warnings;
+    out.camera = scene.camera;
+    out.viewpoints = scene.viewpoints;
     {
       const PreparedScene prepared(scene, out.spec.settings.bvh);
       budget.check("preparing the scene");

@@ -29,6 +29,10 @@ struct JobRequest {
   double seconds_per_pixel_pass = 0;  // measured by a probe on the coordinator (issue 5)
   bool probe_cut_short = false;       // the probe hit its deadline: the cost is a lower bound
   bool strict = false;  // settings.strict: what loading warns about is a 400 (LoadBudget::strict)
+  // The loaded scene's camera (the camera setting's when given) and VRML's Viewpoints, for the
+  // page's navigation; a job restored from the store knows only its camera setting.
+  std::optional<Camera> camera;
+  std::vector<NamedCamera> viewpoints;
 };
 
 // What a request submits, whatever its content type.

@@ -15,6 +15,8 @@ Job* JobStore::create(JobRequest request, std::string client,
                                    request.priority);
   job->effects = std::move(request.effects);
   job->warnings = std::move(request.warnings);
+  job->camera = request.camera ? request.camera : request.spec.overrides.camera;
+  job->viewpoints = std::move(request.viewpoints);
   job->seconds_per_pixel_pass = request.seconds_per_pixel_pass;
   job->client = std::move(client);
   Job* raw = job.get();

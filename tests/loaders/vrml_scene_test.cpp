@@ -367,6 +367,41 @@ TEST(VrmlScene, FirstViewpointSetsTheCamera) {
   EXPECT_TRUE(scene.camera.view_angle_on_smaller_side);
 }
 
+// Every Viewpoint of the world is offered by name (the page lists them); Inlined ones are not
+// bound, so not offered either.
+TEST(VrmlScene, ViewpointsAreListedInFileOrderByDescription) {
+  const Scene scene = load_world(
+      "Viewpoint { position 0 0 4 description \"Front\" }\n"
+      "Transform { translation 1 0 0 children Viewpoint { position 0 0 9 fieldOfView 0.5 } }\n"
+      "Transform { scale 1 1 0 children Viewpoint { orientation 1 0 0 1.5707963267948966 "
+      "description \"no view\" } }\n");
+  ASSERT_EQ(scene.viewpoints.size(), 2u);
+  EXPECT_EQ(scene.viewpoints[0].name, "Front");
+  EXPECT_EQ(scene.viewpoints[0].camera, scene.camera);
+  EXPECT_EQ(scene.viewpoints[1].name, "world.wrl:3:40");
+  EXPECT_EQ(scene.viewpoints[1].camera.eye, (Vec3{1, 0, 9}));
+  EXPECT_EQ(scene.viewpoints[1].camera.view_angle, 0.5 * 180 / std::numbers::pi);
+}
+
+// A camera setting is bound in the Viewpoint's place: the headlight shines along it and
+// Billboards turn to it, as they would for a Viewpoint there.
+TEST(VrmlScene, ACameraSettingReplacesTheViewpointForHeadlightAndBillboards) {
+  MemorySource source;
+  source.add("world.wrl", std::string(kVrmlHeader) +
+                              "Viewpoint { position 0 0 10 }\n"
+                              "Billboard { children Shape { geometry Box {} } }\n");
+  const Camera camera{{10, 0, 0}, {0, 0, 0}, {0, 1, 0}, 30};
+  const Scene scene = load_vrml(source, "world.wrl", {}, camera);
+  EXPECT_EQ(scene.camera.eye, camera.eye);
+  EXPECT_EQ(scene.camera.view_angle, 30);
+  EXPECT_TRUE(scene.camera.view_angle_on_smaller_side);
+  ASSERT_EQ(scene.lights.size(), 1u);
+  EXPECT_EQ(scene.lights[0].direction, (Vec3{-1, 0, 0}));
+  ASSERT_EQ(scene.objects.size(), 1u);
+  EXPECT_TRUE(near(scene.objects[0].transform.apply_vector({0, 0, 1}), {1, 0, 0}, 1e-12));
+  EXPECT_EQ(scene.viewpoints.size(), 1u);  // still offered
+}
+
 TEST(VrmlScene, BillboardTurnsItsChildrenTowardsTheViewer) {
   // The eye at +x: about the y axis, the children's +z turns to +x.
   const Scene scene = load_world(

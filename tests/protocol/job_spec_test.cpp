@@ -31,6 +31,30 @@ TEST(JobSpec, RoundTrips) {
   EXPECT_EQ(back.overrides, spec.overrides);
 }
 
+// The camera travels to workers exactly (JSON numbers round-trip), in the request's form.
+TEST(JobSpec, TheCameraRoundTripsBitForBit) {
+  JobSpec spec;
+  spec.overrides.camera =
+      Camera{{0.1, -1e-300, 7}, {1.0 / 3, 2, 3}, {0, 1, 1e-17}, 28.64788975654116};
+  const nlohmann::json j = to_json(spec);
+  EXPECT_EQ(j["camera"]["look_at"][0], 1.0 / 3);
+  EXPECT_EQ(j["camera"]["fov"], 28.64788975654116);
+  EXPECT_EQ(job_spec_from_json(j).overrides, spec.overrides);
+  EXPECT_FALSE(job_spec_from_json(to_json(JobSpec{})).overrides.camera);
+  const SettingSpec& setting = *find_setting("camera");
+  for (const char* bad :
+       {R"({"eye": [0, 0, 1], "look_at": [0, 0, 0], "up": [0, 1, 0]})",
+        R"({"eye": [0, 0], "look_at": [0, 0, 0], "up": [0, 1, 0], "fov": 4})",
+        R"({"eye": [0, 0, "1"], "look_at": [0, 0, 0], "up": [0, 1, 0], "fov": 4})",
+        R"({"eye": [0, 0, 1], "look_at": [0, 0, 0], "up": [0, 1, 0], "fov": 4,
+                              "roll": 0})",
+        R"([0, 0, 1, 0, 0, 0, 0, 1, 0, 45])"})
+    EXPECT_EQ(setting_from_json(setting, nlohmann::json::parse(bad)), std::nullopt) << bad;
+  nlohmann::json degenerate = j;
+  degenerate["camera"]["eye"] = degenerate["camera"]["look_at"];
+  EXPECT_THROW(job_spec_from_json(degenerate), ProtocolError);
+}
+
 TEST(JobSpec, ShadingSettingsRoundTrip) {
   JobSpec spec;
   spec.settings.shadows = ShadowMode::Soft;
@@ -83,7 +107,7 @@ TEST(JobSpec, OutOfRangeSettingsAreProtocolErrors) {
 
 TEST(JobSpec, OverridesChangeTheSceneGlobals) {
   Scene scene;
-  apply_overrides(scene, {.max_depth = 1, .min_weight = 0.05});
+  apply_overrides(scene, {.max_depth = 1, .min_weight = 0.05, .camera = std::nullopt});
   EXPECT_EQ(scene.globals.max_recursion_depth, 1);
   EXPECT_EQ(scene.globals.min_reflectivity, 0.05);
   EXPECT_EQ(scene.globals.min_transparency, 0.05);

@@ -5,6 +5,7 @@
 #include <gtest/gtest.h>
 
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 namespace tessera {
@@ -34,6 +35,8 @@ TEST(SettingsSchema, EverySettingSetsItsOwnField) {
           return std::string(spec.choices.back());
         case SettingType::Seed:
           return std::uint64_t{12345};
+        case SettingType::Camera:
+          return Camera{{1, 2, 3}, {0, 0, 0}, {0, 0, 1}, 30};
       }
       return {};
     }();
@@ -76,6 +79,36 @@ TEST(SettingsSchema, ValuesOfTheWrongTypeOrOutOfRangeAreRefused) {
   EXPECT_EQ(setting_error(*find_setting("seed"), std::int64_t{2}), "must be an integer >= 0");
   EXPECT_EQ(setting_from_text(width, "12px"), std::nullopt);
   EXPECT_EQ(setting_from_text(*find_setting("seed"), "-1"), std::nullopt);
+}
+
+// The camera setting: ten numbers on the command line, checked as the loaders check a scene's
+// camera (a view direction, an up across it) and for a field of view a pinhole can have.
+TEST(SettingsSchema, TheCameraReadsTenNumbersAndMustGiveAView) {
+  const SettingSpec& spec = *find_setting("camera");
+  const Camera camera{{-2, 0.5, 6}, {0, -0.25, 0}, {0.1, 1, 0}, 33.5};
+  EXPECT_EQ(setting_from_text(spec, "-2 0.5 6 0 -0.25 0 0.1 1 0 33.5"), SettingValue(camera));
+  EXPECT_EQ(setting_from_text(spec, "-2,0.5,6, 0,-0.25,0, 0.1,1,0, 33.5"), SettingValue(camera));
+  EXPECT_EQ(setting_from_text(spec, to_text(camera)), std::nullopt);  // words are not numbers
+  EXPECT_EQ(setting_from_text(spec, "1 2 3 4 5 6 7 8 9"), std::nullopt);
+  EXPECT_EQ(setting_from_text(spec, "1 2 3 4 5 6 7 8 9 10 11"), std::nullopt);
+  EXPECT_EQ(setting_error(spec, camera), std::nullopt);
+  const auto error = [&](auto change) {
+    Camera c = camera;
+    change(c);
+    return setting_error(spec, c).value_or("(accepted)");
+  };
+  EXPECT_EQ(error([](Camera& c) { c.look_at = c.eye; }), "must have its eye apart from look_at");
+  EXPECT_EQ(error([](Camera& c) { c.up = c.look_at - c.eye; }),
+            "must have an up direction not along the view");
+  EXPECT_EQ(error([](Camera& c) { c.up = {}; }), "must have an up direction not along the view");
+  EXPECT_EQ(error([](Camera& c) { c.eye.y = std::numeric_limits<double>::infinity(); }),
+            "must hold finite numbers");
+  EXPECT_EQ(error([](Camera& c) { c.view_angle = std::numeric_limits<double>::quiet_NaN(); }),
+            "must hold finite numbers");
+  EXPECT_EQ(error([](Camera& c) { c.view_angle = 0; }), "must have a fov in (0, 180) degrees");
+  EXPECT_EQ(error([](Camera& c) { c.view_angle = 180; }), "must have a fov in (0, 180) degrees");
+  EXPECT_EQ(error([](Camera& c) { c.view_angle = 179.9; }), "(accepted)");
+  EXPECT_NE(setting_error(spec, 45.0), std::nullopt);
 }
 
 // The table between the markers in docs/SERVICE.md is settings_table_markdown(); on a change

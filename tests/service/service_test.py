@@ -9,6 +9,7 @@ CASE: bit_identical | bundle | worker_faults | auth | http_errors | cancel | pre
 import argparse
 import io
 import json
+import math
 import os
 import signal
 import socket
@@ -160,6 +161,10 @@ def render_cli(scene_path, settings, out):
         argv.append("--stochastic")
     if settings.get("normalize"):
         argv.append("--normalize")
+    if "camera" in settings:
+        c = settings["camera"]
+        argv += ["--camera", *(repr(float(v)) for v in c["eye"] + c["look_at"] + c["up"]),
+                 repr(float(c["fov"]))]
     subprocess.run(argv, check=True)
 
 
@@ -332,6 +337,102 @@ def case_vrml():
             service.exr(job["id"], os.path.join(tmp, "svc.exr"))
             render_cli(os.path.join(folder, main), settings, os.path.join(tmp, "cli.exr"))
             assert_identical(os.path.join(tmp, "svc.exr"), os.path.join(tmp, "cli.exr"))
+
+
+CAMERA_SDL = """eyePoint 0 1 8
+viewPoint 0 1 0
+upDirection 0 1 0
+viewAngle 40
+light 3 4 5 1 1 1
+diffuse 1 0.2 0.2 specular 0.5 0.5 0.5 specularExponent 20
+sphere
+push translate 1.5 0 -1 diffuse 0.2 0.2 1 cube pop
+"""
+
+CAMERA_VRML = """#VRML V2.0 utf8
+Viewpoint { position 0 0 10 description "Start" }
+Viewpoint { position 0 4 4 orientation 1 0 0 -0.7853981633974483 description "Above" }
+Shape { appearance Appearance { material Material { diffuseColor 1 0.3 0.3 } }
+        geometry Sphere {} }
+Billboard { children Transform { translation 0 0 -2 children Shape {
+  appearance Appearance { material Material { diffuseColor 0.3 0.3 1 } }
+  geometry Box { size 3 0.5 0.1 } } } }
+"""
+
+
+def submit_format(service, scene, fmt, settings, expect=201):
+    body = json.dumps({"scene": scene, "format": fmt, "settings": settings}).encode()
+    status, _, reply = service.request("POST", "/api/jobs", body,
+                                       {"Content-Type": "application/json"})
+    assert status == expect, (status, reply)
+    return json.loads(reply)
+
+
+def case_camera():
+    """A job's camera setting renders bit-identical to the scene file edited to that camera,
+    and so does tessera-render --camera, for SDL (vertical viewAngle) and for VRML
+    (fieldOfView; the headlight and a Billboard follow the camera). The job's status shows the
+    camera in effect and the world's Viewpoints; a degenerate camera is a 400 naming it."""
+    sdl_camera = {"eye": [-2, 0.5, 6], "look_at": [0, -0.25, 0], "up": [0.1, 1, 0], "fov": 33.5}
+    sdl_edited = (CAMERA_SDL.replace("eyePoint 0 1 8", "eyePoint -2 0.5 6")
+                  .replace("viewPoint 0 1 0", "viewPoint 0 -0.25 0")
+                  .replace("upDirection 0 1 0", "upDirection 0.1 1 0")
+                  .replace("viewAngle 40", "viewAngle 33.5"))
+    # A Viewpoint's camera looks at the point one unit ahead; fieldOfView 0.5 rad in degrees
+    # as the loader converts it.
+    vrml_camera = {"eye": [2, 1, 8], "look_at": [2, 1, 7], "up": [0, 1, 0],
+                   "fov": 0.5 * 180 / math.pi}
+    vrml_edited = CAMERA_VRML.replace('position 0 0 10 description "Start"',
+                                      'position 2 1 8 fieldOfView 0.5')
+    cases = [("sdl", "scene.sdl", CAMERA_SDL, sdl_edited, sdl_camera),
+             ("vrml", "world.wrl", CAMERA_VRML, vrml_edited, vrml_camera)]
+    with tempfile.TemporaryDirectory() as tmp, Service("--local-workers", "2",
+                                                       "--local-threads", "1") as service:
+        for fmt, name, original, edited, camera in cases:
+            settings = {"width": 48, "height": 64, "aa": 5}  # portrait: VRML's angle is across
+            original_path = os.path.join(tmp, name)
+            edited_path = os.path.join(tmp, "edited-" + name)
+            with open(original_path, "w") as f:
+                f.write(original)
+            with open(edited_path, "w") as f:
+                f.write(edited)
+            render_cli(edited_path, settings, os.path.join(tmp, "edited.exr"))
+            render_cli(original_path, {**settings, "camera": camera},
+                       os.path.join(tmp, "cli.exr"))
+            assert_identical(os.path.join(tmp, "cli.exr"), os.path.join(tmp, "edited.exr"))
+            render_cli(original_path, settings, os.path.join(tmp, "unmoved.exr"))
+            result = subprocess.run([binary("tests", "service", "exr_equal"),
+                                     os.path.join(tmp, "unmoved.exr"),
+                                     os.path.join(tmp, "edited.exr")], capture_output=True)
+            assert result.returncode == 1, "the camera changed nothing in " + fmt
+
+            job = submit_format(service, original, fmt, {**settings, "camera": camera})
+            final = service.wait_job(job["id"])
+            assert final["state"] == "done", final
+            assert final["settings"]["camera"] == camera, final["settings"]
+            assert final["camera"] == camera, final["camera"]
+            assert final["format"] == fmt
+            service.exr(job["id"], os.path.join(tmp, "svc.exr"))
+            assert_identical(os.path.join(tmp, "svc.exr"), os.path.join(tmp, "edited.exr"))
+
+        plain = service.get("/api/jobs/%d" % submit_format(service, CAMERA_VRML, "vrml",
+                                                            {"width": 8, "height": 8})["id"])
+        assert [v["name"] for v in plain["viewpoints"]] == ["Start", "Above"], plain
+        assert plain["camera"] == plain["viewpoints"][0]["camera"], plain
+        assert plain["camera"]["eye"] == [0, 0, 10], plain["camera"]
+        sdl = service.get("/api/jobs/%d" % service.submit(CAMERA_SDL, {"width": 8})["id"])
+        assert sdl["camera"] == {"eye": [0, 1, 8], "look_at": [0, 1, 0], "up": [0, 1, 0],
+                                 "fov": 40}, sdl["camera"]
+        assert sdl["viewpoints"] == []
+
+        for bad, says in [({**sdl_camera, "look_at": sdl_camera["eye"]}, "eye apart"),
+                          ({**sdl_camera, "up": [4, -1.5, -12]}, "up direction"),
+                          ({**sdl_camera, "fov": 180}, "fov in (0, 180)"),
+                          ({"eye": [0, 0, 1], "look_at": [0, 0, 0]}, "\"fov\": degrees")]:
+            reply = service.submit(CAMERA_SDL, {"camera": bad}, expect=400)
+            assert reply["error"] == "bad_request", reply
+            assert reply["detail"].startswith("settings.camera ") and says in reply["detail"], \
+                reply
 
 
 def case_worker_faults():

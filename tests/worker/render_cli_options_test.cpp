@@ -101,6 +101,24 @@ TEST(RenderCli, SettingsTakeTheSchemasRange) {
   }
 }
 
+// Ten values, negative ones too; the last --camera counts, as for every flag.
+TEST(RenderCli, TheCameraTakesTenNumbers) {
+  const auto parsed = parse(
+      "s.wrl -o o.png --camera 9 9 9 0 0 0 0 1 0 45 --camera -2 0.5 6 0 -0.25 0 0.1 1 0 33.5 "
+      "--width 8");
+  ASSERT_TRUE(std::holds_alternative<RenderCliOptions>(parsed)) << std::get<std::string>(parsed);
+  const RenderCliOptions& o = std::get<RenderCliOptions>(parsed);
+  EXPECT_EQ(o.camera, (Camera{{-2, 0.5, 6}, {0, -0.25, 0}, {0.1, 1, 0}, 33.5}));
+  EXPECT_EQ(o.settings.width, 8);
+  EXPECT_FALSE(std::get<RenderCliOptions>(parse("s.sdl -o o.png")).camera);
+  EXPECT_EQ(error_of("s.sdl -o o.png --camera 0 0 1 0 0 1 0 1 0 45"),
+            "--camera: bad value '0 0 1 0 0 1 0 1 0 45': must have its eye apart from look_at");
+  EXPECT_EQ(error_of("s.sdl -o o.png --camera 0 0 1 0 0 0 0 1 0 x"),
+            "--camera: bad value '0 0 1 0 0 0 0 1 0 x': must be ten numbers, EX EY EZ LX LY LZ UX "
+            "UY UZ FOV");
+  EXPECT_NE(error_of("s.sdl -o o.png --camera 0 0 1 0 0 0 0 1 0"), "(accepted)");
+}
+
 TEST(RenderCli, HelpShowsEverySettingWithItsValuesAndDefault) {
   const std::string help = render_cli_usage();
   for (const SettingSpec& spec : settings_schema()) {

@@ -29,7 +29,8 @@ int main(int argc, char** argv) {
     budget.strict = options.strict;
     const Scene scene = load_scene_file(
         options.scene_path, budget,
-        options.root.empty() ? std::nullopt : std::optional<std::filesystem::path>(options.root));
+        options.root.empty() ? std::nullopt : std::optional<std::filesystem::path>(options.root),
+        options.camera);
     const PreparedScene prepared(scene, options.settings.bvh);
     if (!options.quiet) print_warnings(scene, prepared);
     if (options.debug_view != DebugView::None) {

@@ -26,16 +26,38 @@ std::string value_name(const SettingSpec& spec) {
         names += (names.empty() ? "" : "|") + std::string(choice);
       return names;
     }
+    case SettingType::Camera:
+      return "EX EY EZ LX LY LZ UX UY UZ FOV";
     case SettingType::Boolean:
       break;
   }
   return {};
 }
 
+// The camera as ten values ("--camera 0 1 8 0 1 0 0 1 0 45"), checked once all are read.
+void add_camera_setting(CLI::App& app, const SettingSpec& spec, JobSettings& settings) {
+  app.add_option_function<std::vector<std::string>>(
+         cli_flag(spec),
+         [&spec, &settings](const std::vector<std::string>& numbers) {
+           std::string text;
+           for (const std::string& n : numbers) text += (text.empty() ? "" : " ") + n;
+           const std::optional<SettingValue> value = setting_from_text(spec, text);
+           const std::optional<std::string> error =
+               value ? setting_error(spec, *value) : "must be ten numbers, " + value_name(spec);
+           if (error)
+             throw CLI::ValidationError(cli_flag(spec), "bad value '" + text + "': " + *error);
+           spec.access.set(settings, *value);
+         },
+         std::string(spec.help) + " (default " + to_text(spec.default_value()) + ")")
+      ->expected(10)
+      ->type_name(value_name(spec));
+}
+
 // The setting as a flag: a Boolean sets the opposite of its default; any other checks its value
 // against the schema ("--width: bad value '0': must be an integer in [1, 16384]").
 void add_setting(CLI::App& app, const SettingSpec& spec, JobSettings& settings) {
   const std::string help(spec.help);
+  if (spec.type == SettingType::Camera) return add_camera_setting(app, spec, settings);
   if (spec.type == SettingType::Boolean) {
     const bool set_to = !std::get<bool>(spec.default_value());
     app.add_flag_callback(
@@ -109,6 +131,7 @@ std::variant<RenderCliOptions, CliHelp, std::string> parse_render_cli(
   if (o.scene_path.empty()) return std::string("no scene file given");
   if (o.output_path.empty()) return std::string("no output file given (-o OUT.png)");
   o.settings = settings.render;
+  o.camera = settings.overrides.camera;
   o.strict = settings.load.strict;
   return o;
 }

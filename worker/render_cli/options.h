@@ -3,6 +3,7 @@
 // options of this program alone (--threads, --debug-view, --quiet).
 #pragma once
 
+#include <optional>
 #include <string>
 #include <variant>
 #include <vector>
@@ -17,7 +18,8 @@ struct RenderCliOptions {
   std::string scene_path;
   std::string output_path;
   RenderSettings settings;
-  int threads = 0;  // 0: all cores
+  std::optional<Camera> camera;  // --camera: replaces the scene's (load_scene)
+  int threads = 0;               // 0: all cores
   bool quiet = false;
   bool strict = false;  // what lenient loading warns about is an error (LoadBudget::strict)
   std::string root;     // non-empty: the scene's paths must stay inside this folder

@@ -40,7 +40,8 @@ struct PreparedJob {
         // Cancelling stops a long load as it stops a render.
         LoadBudget budget;
         budget.cancel = &cancelled;
-        scene = std::make_unique<Scene>(load_scene(source, bundle->main, *format, budget));
+        scene = std::make_unique<Scene>(
+            load_scene(source, bundle->main, *format, budget, spec.overrides.camera));
         if (cancelled) return;  // the job went while loading: skip building its BVH
         apply_overrides(*scene, spec.overrides);
         prepared = std::make_unique<PreparedScene>(*scene, spec.settings.bvh);

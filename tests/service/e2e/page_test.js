@@ -18,7 +18,7 @@ const fs = require("fs");
 const os = require("os");
 const path = require("path");
 const zlib = require("zlib");
-const { sleep, startService, launchChromium, submitScene, submitForm } = require("./harness");
+const { sleep, until, startService, launchChromium, submitScene, submitForm } = require("./harness");
 
 const [buildDir, sourceDir] = process.argv.slice(2);
 
@@ -147,7 +147,43 @@ async function main() {
     if (vrmlShown.differing !== 0 || vrmlShown.colours < 50)
       throw new Error(`the VRML world's image: ${JSON.stringify(vrmlShown)}`);
 
-    // 3. #job=1 typed later: the page follows it, starting from an empty canvas.
+    // 3. Navigation: a drag in examine mode on a running job cancels it and submits the same
+    // world and settings with another camera; the page shows the new job and its camera.
+    worker.kill("SIGSTOP");
+    let movedFrom, movedTo;
+    try {
+      movedFrom = await submitForm(page, api, 3);
+      const before = await until("the camera shown", 10000, async () => {
+        const shown = await page.textContent("#nav-camera");
+        return shown.startsWith("eye") ? shown : null;
+      });
+      const box = await page.locator("#stage").boundingBox();
+      await page.mouse.move(box.x + box.width / 2, box.y + box.height / 2);
+      await page.mouse.down();
+      await page.mouse.move(box.x + box.width / 2 + 80, box.y + box.height / 2 + 20, { steps: 5 });
+      await page.mouse.up();
+      movedTo = await until("the moved job", 10000, async () => {
+        const jobs = await api("/api/jobs");
+        return jobs.length === 4 ? jobs[jobs.length - 1].id : null;
+      });
+      await page.waitForFunction((id) => location.hash === `#job=${id}`, movedTo, { timeout: 10000 });
+      const from = await api(`/api/jobs/${movedFrom}`), to = await api(`/api/jobs/${movedTo}`);
+      console.log(`moved from job ${movedFrom} (${from.state}, eye ${from.camera.eye}) to job ` +
+                  `${movedTo} (eye ${to.camera.eye})`);
+      if (from.state !== "cancelled") throw new Error(`the moved-from job is ${from.state}`);
+      if (!to.settings.camera || JSON.stringify(to.camera) !== JSON.stringify(to.settings.camera) ||
+          JSON.stringify(to.camera) === JSON.stringify(from.camera))
+        throw new Error(`the new job's camera: ${JSON.stringify([from.camera, to.camera])}`);
+      if (to.scene !== from.scene || to.width !== from.width || to.height !== from.height)
+        throw new Error("the moved job is not the same request");
+      if (await page.textContent("#nav-camera") === before)
+        throw new Error("the camera shown did not change");
+    } finally {
+      worker.kill("SIGCONT");
+    }
+    await page.waitForSelector("#base-canvas[data-state=done]", { timeout: 60000 });
+
+    // 4. #job=1 typed later: the page follows it, starting from an empty canvas.
     const fresh = await page.evaluate((id) => new Promise((resolve) => {
       window.addEventListener("hashchange", () => resolve({
         title: document.getElementById("job-title").textContent,
