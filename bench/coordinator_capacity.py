@@ -55,8 +55,10 @@ HELLO, CHALLENGE, AUTH, WELCOME, REJECT, HEARTBEAT, JOB, UNIT, RESULT = range(1,
 # Read from the source, so that a new protocol version cannot leave this script behind.
 with open(os.path.join(HERE, "..", "common", "protocol", "handshake.h")) as _f:
     PROTOCOL_VERSION = int(re.search(r"kProtocolVersion = (\d+);", _f.read()).group(1))
-# The coordinator closes connections beyond 64 unauthenticated ones (docs/PROTOCOL.md).
-HANDSHAKES_AT_ONCE = 32
+# The coordinator closes connections beyond 8 unauthenticated ones from one address
+# (`WorkerPortLimits::max_unauthenticated_per_address`, docs/SECURITY.md); all of these come
+# from 127.0.0.1.
+HANDSHAKES_AT_ONCE = 8
 
 
 def frame(kind, header, payload=b""):
