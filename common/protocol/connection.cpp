@@ -51,6 +51,11 @@ void FrameConnection::send(const Frame& frame) {
   if (!writing_) write_next();
 }
 
+void FrameConnection::set_timing(ConnectionTiming timing) {
+  timing_ = timing;
+  if (open_) tick();  // re-arms the timer at the new interval (the pending wait is cancelled)
+}
+
 void FrameConnection::close(const std::string& reason) {
   if (!open_) return;
   open_ = false;
