@@ -102,7 +102,7 @@ void FrameConnection::read_body(std::size_t size) {
                      Frame frame;
                      const std::size_t bytes = kFramePrefix + self->body_.size();
                      try {
-                       frame = decode_body(self->body_, self->limits_);
+                       frame = decode_owned_body(std::move(self->body_), self->limits_);
                      } catch (const ProtocolError& e) {
                        if (self->traffic_) self->traffic_(false, std::nullopt, bytes);
                        return self->close(e.what());
