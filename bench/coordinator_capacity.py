@@ -55,8 +55,10 @@ HELLO, CHALLENGE, AUTH, WELCOME, REJECT, HEARTBEAT, JOB, UNIT, RESULT = range(1,
 # Read from the source, so that a new protocol version cannot leave this script behind.
 with open(os.path.join(HERE, "..", "common", "protocol", "handshake.h")) as _f:
     PROTOCOL_VERSION = int(re.search(r"kProtocolVersion = (\d+);", _f.read()).group(1))
-# The coordinator closes connections beyond 64 unauthenticated ones (docs/PROTOCOL.md).
-HANDSHAKES_AT_ONCE = 32
+# The coordinator closes connections beyond 8 unauthenticated ones from one address
+# (`WorkerPortLimits::max_unauthenticated_per_address`, docs/SECURITY.md); all of these come
+# from 127.0.0.1.
+HANDSHAKES_AT_ONCE = 8
 
 
 def frame(kind, header, payload=b""):
@@ -253,7 +255,7 @@ class RealWorkers:
 
 async def keep_alive(workers, seconds):
     """Each synthetic worker sends a heartbeat after `seconds` of sending nothing, as real
-    workers do (2 s): a worker that only received (a job's bundle, units it holds) would
+    workers do (the coordinator's --heartbeat-ms, from the welcome): a worker that only received (a job's bundle, units it holds) would
     otherwise be dropped as silent."""
     while True:
         await asyncio.sleep(seconds / 4)
@@ -410,8 +412,8 @@ def main():
     if args.smoke:
         args.workers, args.size, args.passes = min(args.workers, 8), 64, 2
         args.real = min(args.real, 3)
-        # Real workers send a heartbeat after 2 s of silence, whatever --heartbeat-ms says: a
-        # shorter --silence-ms would drop them whenever they are idle.
+        # Real workers adopt --heartbeat-ms and --silence-ms from the welcome; 3 s leaves their
+        # slow start on a loaded machine some room.
         args.heartbeat_ms, args.idle_seconds = 100, 0.5
         args.silence_ms = 3000 if args.real else 500
     if max(args.workers if not args.real else 0, args.real) < 2:

@@ -51,6 +51,11 @@ void FrameConnection::send(const Frame& frame) {
   if (!writing_) write_next();
 }
 
+void FrameConnection::set_timing(ConnectionTiming timing) {
+  timing_ = timing;
+  if (open_) tick();  // re-arms the timer at the new interval (the pending wait is cancelled)
+}
+
 void FrameConnection::close(const std::string& reason) {
   if (!open_) return;
   open_ = false;
@@ -97,7 +102,7 @@ void FrameConnection::read_body(std::size_t size) {
                      Frame frame;
                      const std::size_t bytes = kFramePrefix + self->body_.size();
                      try {
-                       frame = decode_body(self->body_, self->limits_);
+                       frame = decode_owned_body(std::move(self->body_), self->limits_);
                      } catch (const ProtocolError& e) {
                        if (self->traffic_) self->traffic_(false, std::nullopt, bytes);
                        return self->close(e.what());

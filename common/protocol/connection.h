@@ -49,6 +49,9 @@ class FrameConnection : public std::enable_shared_from_this<FrameConnection> {
   // Raises the frame limits once the peer is trusted (after authentication).
   void set_limits(FrameLimits limits) { limits_ = limits; }
   void set_traffic(FrameTraffic traffic) { traffic_ = std::move(traffic); }
+  // The worker adopts the coordinator's timing once welcomed; takes effect at once.
+  void set_timing(ConnectionTiming timing);
+  const ConnectionTiming& timing() const { return timing_; }
   bool open() const { return open_; }
   const std::string& peer() const { return peer_; }
 

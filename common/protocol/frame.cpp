@@ -75,7 +75,10 @@ std::size_t decode_body_length(const std::uint8_t prefix[kFramePrefix], const Fr
   return body;
 }
 
-Frame decode_body(std::string_view body, const FrameLimits& limits) {
+namespace {
+
+// The frame's type and header; `payload_at` is where its payload starts in the body.
+Frame decode_head(std::string_view body, const FrameLimits& limits, std::size_t& payload_at) {
   if (body.size() < 5) throw ProtocolError("frame body too short");
   const auto* p = reinterpret_cast<const std::uint8_t*>(body.data());
   if (!known_type(p[0])) throw ProtocolError("unknown message type " + std::to_string(p[0]));
@@ -88,7 +91,24 @@ Frame decode_body(std::string_view body, const FrameLimits& limits) {
   if (!frame.header.is_object())
     throw ProtocolError(std::string("header of ") + to_string(frame.type) +
                         " is not a JSON object");
-  frame.payload.assign(body.substr(5 + header_size));
+  payload_at = 5 + header_size;
+  return frame;
+}
+
+}  // namespace
+
+Frame decode_body(std::string_view body, const FrameLimits& limits) {
+  std::size_t payload_at = 0;
+  Frame frame = decode_head(body, limits, payload_at);
+  frame.payload.assign(body.substr(payload_at));
+  return frame;
+}
+
+Frame decode_owned_body(std::string&& body, const FrameLimits& limits) {
+  std::size_t payload_at = 0;
+  Frame frame = decode_head(body, limits, payload_at);
+  body.erase(0, payload_at);
+  frame.payload = std::move(body);
   return frame;
 }
 

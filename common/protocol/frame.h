@@ -60,6 +60,9 @@ constexpr std::size_t kFramePrefix = 4;
 std::size_t decode_body_length(const std::uint8_t prefix[kFramePrefix], const FrameLimits& limits);
 // Decodes a complete body (everything after the length prefix).
 Frame decode_body(std::string_view body, const FrameLimits& limits);
+// The same, the payload taking over the body's buffer instead of a copy of it (a result's
+// pixels are up to 196 kB, and the coordinator reads one for every unit).
+Frame decode_owned_body(std::string&& body, const FrameLimits& limits);
 
 // Bytes in, frames out, for stream transports that deliver arbitrary chunks.
 class FrameDecoder {

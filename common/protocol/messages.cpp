@@ -86,9 +86,8 @@ RenderStats stats_from_wire(const json& stats) {
 }
 
 std::string pack_floats(const std::vector<float>& values) {
-  std::string out(values.size() * sizeof(float), '\0');
-  if (!values.empty()) std::memcpy(out.data(), values.data(), out.size());
-  return out;
+  // Copied as bytes, not zero-filled first: a result is up to 196 kB.
+  return std::string(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(float));
 }
 
 std::vector<float> unpack_rgb(const std::string& payload) {
@@ -148,7 +147,12 @@ AuthMessage decode(const Frame& frame) {
 }
 
 Frame encode(const WelcomeMessage& m) {
-  return frame_of(WelcomeMessage::kType, {{"worker", m.worker}, {"proof", m.proof}});
+  json header = {{"worker", m.worker}, {"proof", m.proof}};
+  if (m.heartbeat_ms > 0) {
+    header["heartbeat_ms"] = m.heartbeat_ms;
+    header["silence_ms"] = m.silence_ms;
+  }
+  return frame_of(WelcomeMessage::kType, std::move(header));
 }
 
 template <>
@@ -156,6 +160,13 @@ WelcomeMessage decode(const Frame& frame) {
   return decoded<WelcomeMessage>(frame, [](const json& h, WelcomeMessage& m) {
     m.worker = h.value("worker", std::int64_t{0});
     m.proof = h.value("proof", std::string());
+    if (!h.contains("heartbeat_ms")) return;
+    m.heartbeat_ms = h.at("heartbeat_ms").get<std::int64_t>();
+    m.silence_ms = h.at("silence_ms").get<std::int64_t>();
+    if (m.heartbeat_ms <= 0 || m.silence_ms <= m.heartbeat_ms)
+      throw ProtocolError("heartbeat_ms " + std::to_string(m.heartbeat_ms) + " and silence_ms " +
+                          std::to_string(m.silence_ms) +
+                          ": both must be positive, the silence longer");
   });
 }
 

@@ -56,6 +56,9 @@ struct WelcomeMessage {
   static constexpr MessageType kType = MessageType::Welcome;
   std::int64_t worker = 0;  // the worker's id at the coordinator
   std::string proof;        // empty under "none"
+  // The coordinator's heartbeat and silence (--heartbeat-ms, --silence-ms), which the worker
+  // adopts so that both ends agree; 0 when not given (the worker keeps its own, 2 s and 10 s).
+  std::int64_t heartbeat_ms = 0, silence_ms = 0;
 };
 
 struct RejectMessage {

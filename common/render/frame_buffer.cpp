@@ -10,21 +10,8 @@ FrameBuffer::FrameBuffer(int width, int height)
       sums_(static_cast<std::size_t>(width) * height * 3, 0.0f),
       counts_(static_cast<std::size_t>(width) * height, 0) {}
 
-void FrameBuffer::add_pass(int x, int y, const float rgb[3]) {
-  const std::size_t i = idx(x, y);
-  if (counts_[i] == kMaxPasses)
-    throw std::length_error("a pixel of the frame buffer has the most passes it can count");
-  sums_[3 * i] += rgb[0];
-  sums_[3 * i + 1] += rgb[1];
-  sums_[3 * i + 2] += rgb[2];
-  ++counts_[i];
-}
-
-Rgb FrameBuffer::mean(int x, int y) const {
-  const std::size_t i = idx(x, y);
-  if (counts_[i] == 0) return {};
-  const double n = counts_[i];
-  return {sums_[3 * i] / n, sums_[3 * i + 1] / n, sums_[3 * i + 2] / n};
+void FrameBuffer::throw_full() {
+  throw std::length_error("a pixel of the frame buffer has the most passes it can count");
 }
 
 Image FrameBuffer::resolve() const {

@@ -28,14 +28,28 @@ class FrameBuffer {
   // same values in a different order may differ in the last bit, so callers add passes of a
   // pixel in pass order (the scheduler guarantees it; the CLI renders them in order). Throws
   // std::length_error beyond kMaxPasses passes.
-  void add_pass(int x, int y, const float rgb[3]);
+  // Inline, with mean(): the coordinator calls both for every pixel it merges.
+  void add_pass(int x, int y, const float rgb[3]) {
+    const std::size_t i = idx(x, y);
+    if (counts_[i] == kMaxPasses) throw_full();
+    sums_[3 * i] += rgb[0];
+    sums_[3 * i + 1] += rgb[1];
+    sums_[3 * i + 2] += rgb[2];
+    ++counts_[i];
+  }
   std::uint32_t passes_at(int x, int y) const { return counts_[idx(x, y)]; }
   // The mean of the passes added so far (black where none).
-  Rgb mean(int x, int y) const;
+  Rgb mean(int x, int y) const {
+    const std::size_t i = idx(x, y);
+    if (counts_[i] == 0) return {};
+    const double n = counts_[i];
+    return {sums_[3 * i] / n, sums_[3 * i + 1] / n, sums_[3 * i + 2] / n};
+  }
   Image resolve() const;
 
  private:
   std::size_t idx(int x, int y) const { return static_cast<std::size_t>(y) * width_ + x; }
+  [[noreturn]] static void throw_full();
   int width_, height_;
   std::vector<float> sums_;  // 3 per pixel
   std::vector<std::uint16_t> counts_;

@@ -26,6 +26,7 @@ std::int64_t Scheduler::add_worker(WorkerHello hello, std::shared_ptr<FrameConne
   w.pipeline = WorkerPipeline(w.hello.threads, w.hello.handshake_round_trip);
   w.connection = std::move(connection);
   w.joined = options_.clock();
+  update_load(w);
   spdlog::info("worker {} \"{}\" joined from {} with {} threads", id, w.hello.name, w.hello.address,
                w.hello.threads);
   return id;
@@ -36,6 +37,8 @@ void Scheduler::remove_worker(std::int64_t id) {
   if (it == workers_.end()) return;
   const int requeued = take_back_units(it->second, [](std::int64_t) { return true; });
   spdlog::info("worker {} \"{}\" left; {} units re-queued", id, it->second.hello.name, requeued);
+  hungry_.erase(id);
+  idle_threads_.erase(id);
   workers_.erase(it);
   fill_slots();
 }
@@ -55,11 +58,12 @@ int Scheduler::take_back_units(WorkerSlot& w, const std::function<bool(std::int6
     std::erase(u.holders, w.id);
     if (u.state == UnitState::InFlight && u.holders.empty()) {
       u.state = UnitState::Pending;
-      run->second.in_flight.erase(unit);
       run->second.pending.push_front(unit);
       ++requeued;
     }
+    update_straggler(run->second, unit);
   }
+  update_load(w);
   if (options_.metrics) options_.metrics->units_requeued.add(requeued);
   return requeued;
 }
@@ -133,11 +137,49 @@ bool Scheduler::dispatchable(const JobRun& run) const {
   return true;
 }
 
+bool Scheduler::any_dispatchable() const {
+  return std::any_of(runs_.begin(), runs_.end(),
+                     [this](const auto& entry) { return dispatchable(entry.second); });
+}
+
 void Scheduler::fill_slots() {
-  for (auto& [id, w] : workers_)
+  // New units first: to each worker with a free slot, in id order, while any job has some. A
+  // worker visited takes at least one unit (unless it reported every such job failing).
+  for (auto it = hungry_.begin(); it != hungry_.end() && any_dispatchable();) {
+    WorkerSlot& w = workers_.at(*it++);  // past w first: filling w takes it out of hungry_
     while (w.connection->open() && static_cast<int>(w.in_flight.size()) < w.pipeline.slots() &&
            dispatch_one(w)) {
     }
+  }
+  // Then duplicates of stragglers, while any is due. Only a worker with idle threads takes one;
+  // its prefetch slots are for new work.
+  const auto now = options_.clock();
+  for (auto it = idle_threads_.begin(); it != idle_threads_.end() && any_straggler_due(now);) {
+    WorkerSlot& w = workers_.at(*it++);
+    while (w.connection->open() && static_cast<int>(w.in_flight.size()) < w.hello.threads &&
+           speculate(w, now)) {
+    }
+  }
+}
+
+void Scheduler::update_load(const WorkerSlot& w) {
+  const int held = static_cast<int>(w.in_flight.size());
+  if (held < w.pipeline.slots())
+    hungry_.insert(w.id);
+  else
+    hungry_.erase(w.id);
+  if (held < w.hello.threads)
+    idle_threads_.insert(w.id);
+  else
+    idle_threads_.erase(w.id);
+}
+
+void Scheduler::update_straggler(JobRun& run, int unit) {
+  const UnitRun& u = run.units[unit];
+  if (u.state == UnitState::InFlight && u.holders.size() == 1)
+    run.stragglers.emplace(u.dispatched, unit);
+  else
+    run.stragglers.erase({u.dispatched, unit});
 }
 
 bool Scheduler::dispatch_one(WorkerSlot& w) {
@@ -146,7 +188,7 @@ bool Scheduler::dispatch_one(WorkerSlot& w) {
     if (dispatchable(run) && !run.failed_on.count(w.id) &&
         (!best || run.virtual_time < best->virtual_time))
       best = &run;
-  if (!best) return speculate(w);
+  if (!best) return false;
   const int unit = best->pending.front();
   best->pending.pop_front();
   best->virtual_time += static_cast<double>(best->job->plan.units[unit].cost) / best->job->priority;
@@ -154,25 +196,36 @@ bool Scheduler::dispatch_one(WorkerSlot& w) {
   return true;
 }
 
-bool Scheduler::speculate(WorkerSlot& w) {
-  // Only a worker with idle threads takes a duplicate; prefetch slots are for new work.
-  if (static_cast<int>(w.in_flight.size()) >= w.hello.threads) return false;
-  const auto now = options_.clock();
+double Scheduler::speculation_wait(const JobRun& run) const {
+  long long units_done = 0;
+  for (const auto& t : run.job->stage_timing) units_done += t.units_done;
+  const double mean = units_done > 0 ? run.job->stats.seconds / static_cast<double>(units_done) : 0;
+  return std::max(options_.speculation_factor * mean,
+                  std::chrono::duration<double>(options_.min_speculation).count());
+}
+
+bool Scheduler::any_straggler_due(Clock::time_point now) const {
+  return std::any_of(runs_.begin(), runs_.end(), [&](const auto& entry) {
+    const JobRun& run = entry.second;
+    return !run.stragglers.empty() &&
+           seconds_since(run.stragglers.begin()->first, now) >= speculation_wait(run);
+  });
+}
+
+bool Scheduler::speculate(WorkerSlot& w, Clock::time_point now) {
+  // The oldest due straggler of any job, not the worker's own; ties go to the lower job id.
   JobRun* pick_run = nullptr;
+  Clock::time_point pick_dispatched;
   int pick = -1;
   for (auto& [id, run] : runs_) {
     if (run.failed_on.count(w.id)) continue;
-    long long units_done = 0;
-    for (const auto& t : run.job->stage_timing) units_done += t.units_done;
-    const double mean =
-        units_done > 0 ? run.job->stats.seconds / static_cast<double>(units_done) : 0;
-    const double wait = std::max(options_.speculation_factor * mean,
-                                 std::chrono::duration<double>(options_.min_speculation).count());
-    for (int u : run.in_flight) {
-      const UnitRun& r = run.units[u];
-      if (r.holders.size() != 1 || r.holders[0] == w.id) continue;
-      if (seconds_since(r.dispatched, now) < wait) continue;
-      if (!pick_run || r.dispatched < pick_run->units[pick].dispatched) pick_run = &run, pick = u;
+    const double wait = speculation_wait(run);
+    for (const auto& [dispatched, unit] : run.stragglers) {
+      if (seconds_since(dispatched, now) < wait) break;  // the rest are younger still
+      if (run.units[unit].holders[0] == w.id) continue;  // at most the worker's slots
+      if (!pick_run || dispatched < pick_dispatched)
+        pick_run = &run, pick_dispatched = dispatched, pick = unit;
+      break;
     }
   }
   if (!pick_run) return false;
@@ -202,8 +255,9 @@ void Scheduler::send_unit(WorkerSlot& w, JobRun& run, int unit) {
   if (r.holders.empty()) r.dispatched = now;
   r.holders.push_back(w.id);
   r.state = UnitState::InFlight;
-  run.in_flight.insert(unit);
+  update_straggler(run, unit);
   w.in_flight.emplace(std::pair{job.id, unit}, now);
+  update_load(w);
   StageTiming& timing = job.stage_timing[wu.stage];
   if (!timing.first_dispatch) timing.first_dispatch = now;
   if (!job.started) job.started = now;
@@ -225,6 +279,7 @@ void Scheduler::on_result(std::int64_t worker, const ResultMessage& result) {
   if (it == runs_.end()) {  // finished or cancelled meanwhile
     if (result.unit >= 0 && result.unit <= std::numeric_limits<int>::max())
       w.in_flight.erase({job_id, static_cast<int>(result.unit)});
+    update_load(w);
     return fill_slots();
   }
   JobRun& run = it->second;
@@ -248,14 +303,15 @@ void Scheduler::on_result(std::int64_t worker, const ResultMessage& result) {
   const Clock::time_point sent_at = sent->second;
   w.pipeline.observe(seconds_since(sent_at, now), stats.seconds);
   w.in_flight.erase(sent);
+  update_load(w);
   UnitRun& r = run.units[unit];
   std::erase(r.holders, worker);
   if (r.state == UnitState::Done) {
     ++w.dropped_results;  // a speculative copy lost the race
     return fill_slots();
   }
+  run.stragglers.erase({r.dispatched, unit});
   r.state = UnitState::Done;
-  run.in_flight.erase(unit);
   job.apply_result(unit, values, worker);
   if (observer_) observer_->merged(job, unit, values, stats, w.hello.name);
   job.stats += stats;
@@ -331,6 +387,7 @@ void Scheduler::finish(JobRun& run, JobState state, const std::string& error) {
     if (!w.open_jobs.erase(job.id)) continue;
     w.connection->send(encode(CancelMessage{.job = job.id}));
     std::erase_if(w.in_flight, [&](const auto& entry) { return entry.first.first == job.id; });
+    update_load(w);
   }
   spdlog::info("job {} {}{}{}", job.id, to_string(state), error.empty() ? "" : ": ", error);
   if (state == JobState::Done && job.ran_alone && job.uncalibrated_prediction &&

@@ -119,7 +119,9 @@ class Scheduler {
     Job* job = nullptr;
     std::deque<int> pending;  // dispatch order; re-queued units go to the front
     std::vector<UnitRun> units;
-    std::set<int> in_flight;  // the speculation candidates, without scanning every unit
+    // The speculation candidates (units in flight on exactly one worker) by (first dispatch,
+    // unit), oldest first: a look for a straggler stops at the first one too young.
+    std::set<std::pair<Clock::time_point, int>> stragglers;
     double virtual_time = 0;  // fair share: advances by cost / priority per dispatch
     // Workers (connections) that reported the job failing, and the first one's message: one
     // worker's word does not fail a job, and the job is not sent to them again.
@@ -143,7 +145,17 @@ class Scheduler {
 
   bool dispatch_one(WorkerSlot& worker);
   bool dispatchable(const JobRun& run) const;
-  bool speculate(WorkerSlot& worker);
+  bool any_dispatchable() const;
+  // How long a unit of the run must have been out before it may be duplicated.
+  double speculation_wait(const JobRun& run) const;
+  bool any_straggler_due(Clock::time_point now) const;
+  bool speculate(WorkerSlot& worker, Clock::time_point now);
+  // Keeps the unit's place among the run's stragglers in step with its state and holders;
+  // called after either changes.
+  static void update_straggler(JobRun& run, int unit);
+  // Keeps the worker's place in hungry_ and idle_threads_ in step with its units in flight and
+  // slots; called after either changes.
+  void update_load(const WorkerSlot& worker);
   void send_unit(WorkerSlot& worker, JobRun& run, int unit);
   // Puts the worker's units in flight of the jobs `of_job` selects back at the front of their
   // queues (unless another worker holds them too); returns how many.
@@ -156,6 +168,9 @@ class Scheduler {
   SchedulerOptions options_;
   std::map<std::int64_t, JobRun> runs_;
   std::map<std::int64_t, WorkerSlot> workers_;
+  // Workers with a free slot, and those with an idle thread (which may take a duplicate), by
+  // id: filling slots looks only at these, so a result costs the same with 10 workers or 1,000.
+  std::set<std::int64_t> hungry_, idle_threads_;
   PredictionCalibration calibration_;
   std::int64_t next_worker_ = 1;
   JobObserver* observer_ = nullptr;

@@ -117,7 +117,9 @@ void WorkerLink::on_auth(const AuthMessage& auth) {
   id_ = scheduler_.add_worker(hello_, connection_);
   connection_->send(encode(WelcomeMessage{
       .worker = id_,
-      .proof = auth_.insecure ? "" : coordinator_proof(auth_.secret, nonce_, worker_nonce_)}));
+      .proof = auth_.insecure ? "" : coordinator_proof(auth_.secret, nonce_, worker_nonce_),
+      .heartbeat_ms = connection_->timing().heartbeat.count(),
+      .silence_ms = connection_->timing().silence.count()}));
   scheduler_.fill_slots();
 }
 

@@ -31,6 +31,17 @@ TEST(Frame, RoundTripsThroughTheDecoderInAnyChunking) {
   }
 }
 
+// The connection hands its read buffer over: the payload takes it, the header stripped.
+TEST(Frame, ABodyHandedOverDecodesAsOneCopied) {
+  std::string body = encode_frame(sample_frame()).substr(kFramePrefix);
+  const Frame copied = decode_body(std::string_view(body), {});
+  const Frame taken = decode_owned_body(std::move(body), {});
+  EXPECT_EQ(taken.type, MessageType::Result);
+  EXPECT_EQ(taken.header, copied.header);
+  EXPECT_EQ(taken.payload, sample_frame().payload);
+  EXPECT_THROW(decode_owned_body(std::string("abc"), {}), ProtocolError);
+}
+
 TEST(Frame, LengthPrefixIsBigEndianBodySize) {
   const std::string bytes = encode_frame(sample_frame());
   const auto* p = reinterpret_cast<const std::uint8_t*>(bytes.data());

@@ -104,6 +104,11 @@ TEST(Messages, DecodeReturnsWhatWasEncoded) {
       decode<WelcomeMessage>(encode(WelcomeMessage{.worker = 7, .proof = "q"}));
   EXPECT_EQ(welcome.worker, 7);
   EXPECT_EQ(welcome.proof, "q");
+  EXPECT_EQ(welcome.heartbeat_ms, 0) << "not given: the worker keeps its own timing";
+  const WelcomeMessage timed = decode<WelcomeMessage>(
+      encode(WelcomeMessage{.worker = 7, .proof = "", .heartbeat_ms = 500, .silence_ms = 3000}));
+  EXPECT_EQ(timed.heartbeat_ms, 500);
+  EXPECT_EQ(timed.silence_ms, 3000);
   EXPECT_EQ(decode<RejectMessage>(encode(RejectMessage{.reason = "r"})).reason, "r");
   EXPECT_EQ(decode<CancelMessage>(encode(CancelMessage{.job = 9})).job, 9);
   const JobFailedMessage failed = decode<JobFailedMessage>(
@@ -137,6 +142,13 @@ TEST(Messages, ResultPixelsTravelBitExactly) {
 
 TEST(Messages, AFrameOfAnotherTypeIsRefused) {
   EXPECT_THROW(decode<UnitMessage>(encode(CancelMessage{.job = 1})), ProtocolError);
+  // A heartbeat the worker cannot keep: none, or not within the silence.
+  for (const auto& [heartbeat, silence] : {std::pair{0, 100}, {500, 500}, {500, 100}}) {
+    Frame welcome = encode(WelcomeMessage{.worker = 1, .proof = ""});
+    welcome.header["heartbeat_ms"] = heartbeat;
+    welcome.header["silence_ms"] = silence;
+    EXPECT_THROW(decode<WelcomeMessage>(welcome), ProtocolError) << heartbeat << " " << silence;
+  }
 }
 
 TEST(Messages, MissingOrMistypedFieldsAreProtocolErrors) {

@@ -357,6 +357,26 @@ TEST_F(SchedulerTest, OnlyAWorkerWithIdleThreadsTakesADuplicate) {
   EXPECT_EQ(b.units[1].unit, a.units[0].unit);
 }
 
+// A worker never duplicates its own unit: it skips its stragglers, however old, for the oldest
+// of another worker.
+TEST_F(SchedulerTest, AnIdleWorkerDuplicatesTheOldestStragglerNotItsOwn) {
+  const Job& job = add_job(8, 4, 1);  // four units
+  FakeWorker& b = add_worker(2);      // 2 threads + 1 prefetch: three units at time 0
+  drain();
+  ASSERT_EQ(b.units.size(), 3u);
+  advance(1);
+  FakeWorker& a = add_worker(1);  // the fourth unit, at time 1
+  drain();
+  ASSERT_EQ(a.units.size(), 1u);
+  send_result(b, b.units[1], job);
+  drain();
+  EXPECT_EQ(b.units.size(), 3u) << "both of b's threads are still busy";
+  send_result(b, b.units[2], job);  // a thread idle; b's own unit 0 is the oldest straggler
+  drain();
+  ASSERT_EQ(b.units.size(), 4u);
+  EXPECT_EQ(b.units[3].unit, a.units[0].unit);
+}
+
 // The scheduler's defaults: a straggler is duplicated after 3 x the job's mean unit time and
 // not before 0.3 s.
 class SpeculationDeadlineTest : public SchedulerTest {

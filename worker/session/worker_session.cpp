@@ -124,6 +124,11 @@ void WorkerSession::on_welcome(const WelcomeMessage& welcome) {
     if (!constant_time_equal(welcome.proof, expected))
       return fail("the coordinator does not know our secret (its welcome proof is wrong)");
   }
+  // Heartbeat and silence as the coordinator's (--heartbeat-ms, --silence-ms): a worker
+  // heartbeating every 2 s whatever they were was dropped as silent under a shorter silence.
+  if (welcome.heartbeat_ms > 0)
+    connection_->set_timing({std::chrono::milliseconds(welcome.heartbeat_ms),
+                             std::chrono::milliseconds(welcome.silence_ms)});
   stage_ = Stage::Ready;
   backoff_ = kFirstBackoff;
   spdlog::info("connected to {}:{} as worker {} with {} threads", config_.host, config_.port,
