@@ -29,6 +29,7 @@ const view = {
   workerSamples: new Map(),        // worker id -> [[time, pixels_done], ...] within the window
   generation: 0,      // bumps with every job shown: an older /tiles loop stops
   polling: false,
+  region: null,       // [x0, y0, x1, y1] of a region job shown over an earlier image (region.js)
 };
 
 function setting(name) { return document.querySelector(`input[name=${name}]:checked`).value; }
@@ -126,7 +127,7 @@ async function mainScene(files) {
 // as JSON, a compressed world or a scene with its files as a form (binary files stay binary),
 // a tar as it is.
 // `request` is the form as it was (navigation.js resends a job's request with a new camera);
-// `extra` settings go over the form's.
+// `extra` settings go over the form's (region.js adds a region).
 const formRequest = () => ({ settings: collectSettings(), files: [...$("scene-file").files],
                              text: $("scene-text").value });
 async function postScene(path, ask = true, request = formRequest(), extra = {}) {
@@ -134,7 +135,8 @@ async function postScene(path, ask = true, request = formRequest(), extra = {}) 
   const files = request.files;
   const file = files[0];
   if (file && file.name.toLowerCase().endsWith(".tar")) {
-    const query = new URLSearchParams(Object.entries(settings).map(([k, v]) => [k, String(v)]));
+    const query = new URLSearchParams(Object.entries(settings).map(
+      ([k, v]) => [k, Array.isArray(v) ? JSON.stringify(v) : String(v)]));
     query.set("format", await tarFormat(file));
     return fetchWithToken(`${path}?${query}`, {
       method: "POST", headers: { "Content-Type": "application/x-tar" }, body: file }, ask);
@@ -191,13 +193,19 @@ async function submit(event) {
   refreshJobs();
 }
 
-// `keepImage`: the old job's pixels stay until the new job's first paint (a camera move).
-function show(id, { keepImage = false } = {}) {
+// Shows job `id`. `keepImage`: the old job's pixels stay until the new job's first paint (a
+// camera move); a region job (region.js) is shown over `under`, the image it refines.
+function show(id, { keepImage = false, under = null, region = null } = {}) {
   if (id === view.job) return;
   Object.assign(view, { job: id, width: 0, height: 0, tilesNext: 0, levelsPainted: new Set(),
                         pending: [], usedWhole: false, wholeIsFinal: false, wholeLoadedAt: 0, tiles: [],
-                        latencies: [], longestPaintMs: 0, lastState: null, clearOnPaint: keepImage });
+                        latencies: [], longestPaintMs: 0, lastState: null, clearOnPaint: keepImage,
+                        region });
   if (!keepImage) clearImage();
+  if (under) {
+    Object.assign($("base-canvas"), { width: under.width, height: under.height });
+    $("base-canvas").getContext("2d").drawImage(under, 0, 0);
+  }
   $("levels-seen").textContent = "";
   $("shown-level").textContent = "-";
   $("job-title").textContent = `Job ${id}`;
@@ -259,6 +267,11 @@ function placeLayer(canvas, step) {
   if (!view.width) return;
   canvas.style.width = `${(100 * canvas.width * step) / view.width}%`;
   canvas.style.height = `${(100 * canvas.height * step) / view.height}%`;
+  // A region's coarse blocks reach past it: only the region covers the image under it.
+  const [x0, y0, x1, y1] = view.region || [0, 0, canvas.width * step, canvas.height * step];
+  const w = canvas.width * step, h = canvas.height * step;
+  canvas.style.clipPath = view.region ? `inset(${(100 * y0) / h}% ${100 - (100 * x1) / w}% ` +
+    `${100 - (100 * y1) / h}% ${(100 * x0) / w}%)` : "";
 }
 
 function layerFor(step) {
@@ -306,8 +319,9 @@ function paintRecord(r) {
   if (view.clearOnPaint) clearImage();
   view.clearOnPaint = false;
   const { ctx } = layerFor(r.step);
-  const cols = Math.ceil((r.x1 - r.x0) / r.step), rows = Math.ceil((r.y1 - r.y0) / r.step);
-  const x0 = r.x0 / r.step, y0 = r.y0 / r.step;
+  // A region's units may start between anchors: their first cell is the first anchor inside.
+  const x0 = Math.ceil(r.x0 / r.step), y0 = Math.ceil(r.y0 / r.step);
+  const cols = Math.ceil(r.x1 / r.step) - x0, rows = Math.ceil(r.y1 / r.step) - y0;
   const skips = (r.flags & 1) !== 0;
   // Skipped cells stay transparent: no record of this layer paints them.
   const image = ctx.createImageData(cols, rows);
@@ -420,6 +434,11 @@ async function loadWhole(id, finished) {
     view.pending = [];
     view.clearOnPaint = false;
     const base = $("base-canvas");
+    if (view.region && base.width === bitmap.width && base.height === bitmap.height) {
+      const [x0, y0, x1, y1] = view.region;  // the rest of a region job's image is black
+      base.getContext("2d").drawImage(bitmap, x0, y0, x1 - x0, y1 - y0, x0, y0, x1 - x0, y1 - y0);
+      return;
+    }
     Object.assign(base, { width: bitmap.width, height: bitmap.height });  // cleared, too
     base.getContext("2d").drawImage(bitmap, 0, 0);
   } catch (e) { /* shown again with the next answer */ }
@@ -435,12 +454,18 @@ function composite() {
   ctx.fillStyle = "#000";  // as #stage shows what nothing has painted yet
   ctx.fillRect(0, 0, view.width, view.height);
   if ($("base-canvas").width) ctx.drawImage($("base-canvas"), 0, 0);
+  if (view.region) {  // as placeLayer clips the layers
+    const [x0, y0, x1, y1] = view.region;
+    ctx.beginPath();
+    ctx.rect(x0, y0, x1 - x0, y1 - y0);
+    ctx.clip();
+  }
   for (const [step, { canvas: layer }] of [...view.layers].sort((a, b) => b[0] - a[0]))
     ctx.drawImage(layer, 0, 0, layer.width * step, layer.height * step);
   return canvas;
 }
 window.tessera = {
-  composite,
+  composite, show, postScene, formRequest, view,
   stats: () => ({ latencies: view.latencies.slice(), longestPaintMs: view.longestPaintMs,
                   levelsPainted: [...view.levelsPainted], usedWhole: view.usedWhole,
                   tilesNext: view.tilesNext }),

@@ -10,16 +10,18 @@ namespace {
 
 long long ceil_div(long long a, long long b) { return (a + b - 1) / b; }
 
-// Tiles of side `tile` (a multiple of `step`) covering the image, in dispatch order.
-std::vector<Tile> tiles(int width, int height, int tile, UnitOrder order) {
+// The image's tiles of side `tile` (a multiple of `step`, so they stay aligned to every block)
+// that meet `area`, clipped to it, in dispatch order.
+std::vector<Tile> tiles(const Tile& area, int tile, UnitOrder order) {
   std::vector<Tile> out;
-  for (int y = 0; y < height; y += tile)
-    for (int x = 0; x < width; x += tile)
-      out.push_back({x, y, std::min(x + tile, width), std::min(y + tile, height)});
+  for (int y = area.y0 / tile * tile; y < area.y1; y += tile)
+    for (int x = area.x0 / tile * tile; x < area.x1; x += tile)
+      out.push_back({std::max(x, area.x0), std::max(y, area.y0), std::min(x + tile, area.x1),
+                     std::min(y + tile, area.y1)});
   if (order == UnitOrder::Centre) {
-    // Rectangular rings around the image centre (the seeds' "central" pattern): the ring is
+    // Rectangular rings around the area's centre (the seeds' "central" pattern): the ring is
     // the larger of the two axis distances; within a ring, scanline order keeps it stable.
-    const double cx = width / 2.0, cy = height / 2.0;
+    const double cx = (area.x0 + area.x1) / 2.0, cy = (area.y0 + area.y1) / 2.0;
     auto ring = [&](const Tile& r) {
       const double dx = std::abs((r.x0 + r.x1) / 2.0 - cx);
       const double dy = std::abs((r.y0 + r.y1) / 2.0 - cy);
@@ -41,7 +43,7 @@ void add_stage(Plan& plan, Stage stage, UnitPixels shape, double density,
                                              std::max(plan.width, plan.height));
   stage.first_unit = static_cast<int>(plan.units.size());
   const int stage_index = static_cast<int>(plan.stages.size());
-  for (const Tile& r : tiles(plan.width, plan.height, static_cast<int>(side), options.order)) {
+  for (const Tile& r : tiles(plan.area, static_cast<int>(side), options.order)) {
     shape.rect = r;
     const long long n = pixel_count(shape);
     if (n == 0) continue;
@@ -49,7 +51,10 @@ void add_stage(Plan& plan, Stage stage, UnitPixels shape, double density,
     stage.traced += n;
   }
   stage.unit_count = static_cast<int>(plan.units.size()) - stage.first_unit;
-  stage.blocks = ceil_div(plan.width, stage.block) * ceil_div(plan.height, stage.block);
+  if (stage.unit_count == 0) return;  // a region too thin for this level's anchors
+  const Tile& a = plan.area;
+  stage.blocks = (ceil_div(a.x1, stage.block) - a.x0 / stage.block) *
+                 (ceil_div(a.y1, stage.block) - a.y0 / stage.block);
   plan.total_cost += stage.traced;
   plan.stages.push_back(stage);
 }
@@ -77,8 +82,16 @@ Plan make_plan(const PlanOptions& o) {
   Plan plan;
   plan.width = o.width;
   plan.height = o.height;
+  plan.area = o.region.value_or(Tile{0, 0, o.width, o.height});
+  const Tile& a = plan.area;
+  if (a.x0 < 0 || a.y0 < 0 || a.x1 > o.width || a.y1 > o.height || a.width() <= 0 ||
+      a.height() <= 0)
+    throw std::invalid_argument("make_plan: the region must be a non-empty part of the image");
   plan.levels = o.progressive ? level_count(o.width, o.height) : 0;
-  for (int l = 1; l <= plan.levels; ++l) {
+  // The first level whose blocks fit the area (level 1 for the whole image); it has no coarser
+  // level's anchors to leave out.
+  const int first_level = std::max(1, plan.levels - level_count(a.width(), a.height()) + 1);
+  for (int l = first_level; l <= plan.levels; ++l) {
     const int s = block_side(plan.levels, l);
     Stage stage;
     stage.level = l;
@@ -89,7 +102,7 @@ Plan make_plan(const PlanOptions& o) {
     if (o.preview == PreviewMode::Area && l < plan.levels) {
       stage.preview_only = true;
       shape.pattern = PixelPattern::Centres;
-    } else if (o.preview == PreviewMode::Anchor && l > 1) {
+    } else if (o.preview == PreviewMode::Anchor && l > first_level) {
       shape.exclude = 2 * s;
       density = 0.75;  // three new anchors per four blocks
     }

@@ -4,8 +4,14 @@
 // Level l = 1..L (L = ceil(log2(max(W, H)))) uses blocks of side 2^(L-l). Each block stands for
 // its top-left pixel, its anchor; a level traces only its new anchors, so pass 0 of every pixel
 // is traced exactly once over the levels. Passes 1..P-1 are whole-image passes.
+//
+// A plan of a region (issue 21 §4) covers only the region's pixels: its units are the whole
+// image's tiles clipped to it, so every pixel keeps its anchors, levels and passes, and the
+// cost is the region's. Levels whose blocks are larger than the region are left out; the first
+// level kept traces every anchor of the region at its block size.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -26,16 +32,17 @@ struct PlanOptions {
   bool progressive = true;  // false: pass 0 is a direct whole-image pass, no levels
   UnitOrder order = UnitOrder::Centre;
   PreviewMode preview = PreviewMode::Anchor;
-  long long unit_pixels = 1024;  // target traced pixels per unit
+  long long unit_pixels = 1024;               // target traced pixels per unit
+  std::optional<Tile> region = std::nullopt;  // inside the image; unset: the whole image
 };
 
 // One row of the per-level table: a refinement level or a sample pass.
 struct Stage {
-  int level = 0;              // 1..L for a level, 0 for a whole-image pass
+  int level = 0;              // 1..L for a level, 0 for a pass over the image (or region)
   int pass = 0;               // the sample pass its values belong to
   int block = 1;              // block side in pixels
   bool preview_only = false;  // values are shown, never accumulated (PreviewMode::Area)
-  long long blocks = 0;       // blocks in the image at this block size
+  long long blocks = 0;       // blocks in the image (or region) at this block size
   long long traced = 0;       // pixels traced by this stage
   int first_unit = 0, unit_count = 0;
 };
@@ -48,7 +55,9 @@ struct WorkUnit {
 
 struct Plan {
   int width = 0, height = 0;
-  int levels = 0;               // L
+  Tile area;                    // the pixels the plan covers: the region, or the whole image
+  int levels = 0;               // L, of the whole image; a region's first stages may be later
+                                // levels
   std::vector<Stage> stages;    // in dispatch order
   std::vector<WorkUnit> units;  // grouped by stage, each stage's units in dispatch order
   long long total_cost = 0;

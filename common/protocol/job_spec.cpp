@@ -51,6 +51,12 @@ nlohmann::json camera_to_json(const Camera& camera) {
           {"fov", camera.view_angle}};
 }
 
+std::optional<Tile> plan_region(const RenderSettings& settings) {
+  if (!settings.region) return std::nullopt;
+  const PixelRegion& r = *settings.region;
+  return Tile{r.x0, r.y0, r.x1, r.y1};
+}
+
 nlohmann::json setting_to_json(const SettingValue& value) {
   return std::visit(
       [](const auto& v) -> nlohmann::json {
@@ -59,6 +65,8 @@ nlohmann::json setting_to_json(const SettingValue& value) {
           return nullptr;
         else if constexpr (std::is_same_v<T, Camera>)
           return camera_to_json(v);
+        else if constexpr (std::is_same_v<T, PixelRegion>)
+          return {v.x0, v.y0, v.x1, v.y1};
         else
           return v;
       },
@@ -88,6 +96,18 @@ std::optional<SettingValue> setting_from_json(const SettingSpec& spec, const nlo
     case SettingType::Camera:
       if (const std::optional<Camera> camera = camera_from_json(j)) return *camera;
       break;
+    case SettingType::Region: {
+      // [x0, y0, x1, y1]: four integers that fit an int (their range is setting_error's).
+      if (!j.is_array() || j.size() != 4) break;
+      int v[4];
+      for (int i = 0; i < 4; ++i) {
+        if (!j[i].is_number_integer() || j[i].get<std::int64_t>() < 0 ||
+            j[i].get<std::int64_t>() > std::numeric_limits<int>::max())
+          return std::nullopt;
+        v[i] = static_cast<int>(j[i].get<std::int64_t>());
+      }
+      return PixelRegion{v[0], v[1], v[2], v[3]};
+    }
   }
   return std::nullopt;
 }
@@ -124,6 +144,8 @@ JobSpec job_spec_from_json(const nlohmann::json& j) {
     if (error) throw ProtocolError("bad job settings: " + name + " " + *error);
     setting.access.set(settings, *value);
   }
+  if (const std::optional<std::string> error = settings_error(settings.render))
+    throw ProtocolError("bad job settings: " + *error);
   return {settings.render, settings.overrides};
 }
 

@@ -8,6 +8,7 @@
 
 #include <nlohmann/json.hpp>
 
+#include "common/progressive/unit_pixels.h"
 #include "common/render/settings.h"
 #include "common/render/settings_schema.h"
 #include "common/render/stats.h"
@@ -23,6 +24,10 @@ struct JobSpec {
 // The scene globals among the overrides (max_depth, min_weight); the camera is the loader's
 // to put in place (load_scene), before anything that depends on it is made.
 void apply_overrides(Scene& scene, const SceneOverrides& overrides);
+
+// The pixels a job's plan covers (PlanOptions::region): the settings' region, unset for the
+// whole image. The region travels with the settings, so a stored job restores its plan.
+std::optional<Tile> plan_region(const RenderSettings& settings);
 
 nlohmann::json to_json(const JobSpec& spec);
 // Throws ProtocolError for missing, mistyped or out-of-range fields.

@@ -137,8 +137,11 @@ Image render_image(const PreparedScene& scene, const RenderSettings& settings, i
                    const RenderInterrupt& interrupt) {
   const auto start = std::chrono::steady_clock::now();
   if (threads <= 0) threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
-  const int tiles_x = (settings.width + kTileSize - 1) / kTileSize;
-  const int tiles_y = (settings.height + kTileSize - 1) / kTileSize;
+  // The region's pixels, or the whole image's; the frame keeps the full size either way.
+  const PixelRegion area =
+      settings.region.value_or(PixelRegion{0, 0, settings.width, settings.height});
+  const int tiles_x = (area.x1 - area.x0 + kTileSize - 1) / kTileSize;
+  const int tiles_y = (area.y1 - area.y0 + kTileSize - 1) / kTileSize;
   const long long tile_count = static_cast<long long>(tiles_x) * tiles_y;
 
   // Tiles own disjoint pixels, so threads add to the frame buffer without locking; each
@@ -156,9 +159,9 @@ Image render_image(const PreparedScene& scene, const RenderSettings& settings, i
     try {
       for (long long t; !failed && (t = next.fetch_add(1)) < tile_count;) {
         const int tx = static_cast<int>(t % tiles_x), ty = static_cast<int>(t / tiles_x);
-        const PixelRect rect{tx * kTileSize, ty * kTileSize,
-                             std::min(settings.width, (tx + 1) * kTileSize),
-                             std::min(settings.height, (ty + 1) * kTileSize)};
+        const PixelRect rect{area.x0 + tx * kTileSize, area.y0 + ty * kTileSize,
+                             std::min(area.x1, area.x0 + (tx + 1) * kTileSize),
+                             std::min(area.y1, area.y0 + (ty + 1) * kTileSize)};
         for (int pass = 0; pass < settings.passes; ++pass) {
           render_pass(scene, settings, rect, pass, values, local, interrupt);
           std::size_t i = 0;

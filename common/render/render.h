@@ -51,8 +51,9 @@ void render_pixels(const PreparedScene& scene, const RenderSettings& settings,
                    std::span<const PixelCoord> pixels, int pass, std::span<Rgb> out,
                    RenderStats& stats, const RenderInterrupt& interrupt = {});
 
-// Renders the whole image with `threads` threads (0 = all cores): settings.passes passes,
-// averaged, then post-normalized when the settings ask for it (§4.6). `progress(done, total)` is
+// Renders the whole image, or only settings.region in a full-size frame that is black
+// elsewhere, with `threads` threads (0 = all cores): settings.passes passes, averaged, then
+// post-normalized when the settings ask for it (§4.6). `progress(done, total)` is
 // called from worker threads with counts of tiles.
 using ProgressFn = std::function<void(long long done, long long total)>;
 Image render_image(const PreparedScene& scene, const RenderSettings& settings, int threads,

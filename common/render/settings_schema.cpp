@@ -20,6 +20,7 @@ SettingValue widen(const std::string& v) { return v; }
 SettingValue widen(BvhMode v) { return v == BvhMode::Sah; }
 SettingValue widen(ShadowMode v) { return std::string(to_string(v)); }
 SettingValue widen(const Camera& v) { return v; }
+SettingValue widen(const PixelRegion& v) { return v; }
 template <typename T>
 SettingValue widen(const std::optional<T>& v) {
   return v ? widen(*v) : SettingValue();
@@ -36,6 +37,7 @@ void assign(BvhMode& field, const SettingValue& v) {
   field = std::get<bool>(v) ? BvhMode::Sah : BvhMode::None;
 }
 void assign(Camera& field, const SettingValue& v) { field = std::get<Camera>(v); }
+void assign(PixelRegion& field, const SettingValue& v) { field = std::get<PixelRegion>(v); }
 void assign(ShadowMode& field, const SettingValue& v) {
   field = parse_shadow_mode(std::get<std::string>(v)).value_or(ShadowMode::Hard);
 }
@@ -171,6 +173,15 @@ const SettingSpec kSchema[] = {
      .layers = kEverywhere,
      .help = "multiplies the post-normalized image",
      .access = field<kRender, &RenderSettings::normalize_brightness>},
+    {.name = "region",
+     .type = SettingType::Region,
+     .max = 16384,
+     .layers = kEverywhere,
+     .cap = ServiceCap::Side,
+     .help = "[x0, y0, x1, y1]: render only the pixels x0 <= x < x1, y0 <= y < y1 (y = 0 at the "
+             "top), each bit for bit as in the whole image, into a full-size frame whose other "
+             "pixels are black; not with normalize",
+     .access = field<kRender, &RenderSettings::region>},
     {.name = "max_depth",
      .type = SettingType::Integer,
      .min = 0,
@@ -289,6 +300,25 @@ std::optional<std::string> camera_error(const Camera& camera, const SettingSpec&
   return std::nullopt;
 }
 
+// Four integers separated by spaces or commas, perhaps in brackets: "0 0 64 32", "0,0,64,32",
+// "[0, 0, 64, 32]" (as to_text writes it).
+std::optional<SettingValue> region_from_text(std::string_view text) {
+  constexpr std::string_view kSeparators = " ,[]";
+  int v[4];
+  int count = 0;
+  std::size_t i = 0;
+  while (true) {
+    i = std::min(text.find_first_not_of(kSeparators, i), text.size());
+    if (i == text.size()) break;
+    const std::size_t end = std::min(text.find_first_of(kSeparators, i), text.size());
+    if (count == 4 || !parse_all(text.substr(i, end - i), v[count])) return std::nullopt;
+    ++count;
+    i = end;
+  }
+  if (count != 4) return std::nullopt;
+  return PixelRegion{v[0], v[1], v[2], v[3]};
+}
+
 }  // namespace
 
 std::span<const SettingSpec> settings_schema() { return kSchema; }
@@ -326,6 +356,9 @@ std::string describe_values(const SettingSpec& spec, double max) {
       return "{\"eye\": [x, y, z], \"look_at\": [x, y, z], \"up\": [x, y, z], \"fov\": "
              "degrees}: the eye apart from look_at, up not along the view, fov in (" +
              format_number(spec.min) + ", " + format_number(max) + ")";
+    case SettingType::Region:
+      return "[x0, y0, x1, y1], integers with 0 <= x0 < x1 <= " + format_number(max) +
+             " and 0 <= y0 < y1 <= " + format_number(max);
   }
   return {};
 }
@@ -360,6 +393,11 @@ std::optional<std::string> setting_error(const SettingSpec& spec, const SettingV
     case SettingType::Camera:
       if (const auto* v = std::get_if<Camera>(&value)) return camera_error(*v, spec);
       break;
+    case SettingType::Region:
+      if (const auto* r = std::get_if<PixelRegion>(&value))
+        ok = r->x0 >= 0 && r->y0 >= 0 && r->x0 < r->x1 && r->y0 < r->y1 && r->x1 <= max &&
+             r->y1 <= max;
+      break;
   }
   if (ok) return std::nullopt;
   return "must be " + describe_values(spec, max);
@@ -367,6 +405,19 @@ std::optional<std::string> setting_error(const SettingSpec& spec, const SettingV
 
 std::optional<std::string> setting_error(const SettingSpec& spec, const SettingValue& value) {
   return setting_error(spec, value, spec.max);
+}
+
+std::optional<std::string> settings_error(const RenderSettings& settings) {
+  if (!settings.region) return std::nullopt;
+  const PixelRegion& r = *settings.region;
+  if (r.x1 > settings.width || r.y1 > settings.height)
+    return "region " + to_text(r) + " must lie inside the " + std::to_string(settings.width) + "x" +
+           std::to_string(settings.height) + " image (x1 <= width, y1 <= height)";
+  if (settings.normalize_colors)
+    return std::string(
+        "region cannot be post-normalized: normalize scales by the whole image's "
+        "highest value, which a region does not know");
+  return std::nullopt;
 }
 
 std::optional<SettingValue> setting_from_text(const SettingSpec& spec, std::string_view text) {
@@ -395,6 +446,8 @@ std::optional<SettingValue> setting_from_text(const SettingSpec& spec, std::stri
     case SettingType::Camera:
       if (const std::optional<Camera> v = camera_from_text(text)) return *v;
       break;
+    case SettingType::Region:
+      return region_from_text(text);
   }
   return std::nullopt;
 }
@@ -415,8 +468,16 @@ std::string to_text(const SettingValue& value) {
       return "eye " + triple(v.eye) + ", look_at " + triple(v.look_at) + ", up " + triple(v.up) +
              ", fov " + format_number(v.view_angle);
     }
+    std::string operator()(const PixelRegion& r) const {
+      return "[" + std::to_string(r.x0) + ", " + std::to_string(r.y0) + ", " +
+             std::to_string(r.x1) + ", " + std::to_string(r.y1) + "]";
+    }
   };
   return std::visit(Format{}, value);
+}
+
+std::string default_text(const SettingSpec& spec) {
+  return spec.type == SettingType::Region ? "the whole image" : to_text(spec.default_value());
 }
 
 std::string settings_table_markdown() {
@@ -426,7 +487,7 @@ std::string settings_table_markdown() {
   for (const SettingSpec& spec : kSchema) {
     if (!(spec.layers & kJobRequest)) continue;
     table += "| `" + std::string(spec.name) + "` | " + describe_values(spec) + " | " +
-             to_text(spec.default_value()) + " | " + std::string(spec.help) + " | " +
+             default_text(spec) + " | " + std::string(spec.help) + " | " +
              (spec.layers & kRenderCli ? "`" + cli_flag(spec) + "`" : std::string("—")) + " |\n";
   }
   return table;

@@ -40,13 +40,14 @@ struct JobSettings {
 };
 
 // Camera: {"eye": [x, y, z], "look_at": [x, y, z], "up": [x, y, z], "fov": degrees} in a job,
-// ten numbers on the command line.
-enum class SettingType { Integer, Number, Boolean, Choice, Seed, Camera };
+// ten numbers on the command line. Region: [x0, y0, x1, y1], four numbers on the command line.
+enum class SettingType { Integer, Number, Boolean, Choice, Seed, Camera, Region };
 
 // A setting's value, in the alternative of its type (Integer: int64_t, Seed: uint64_t, Choice:
-// the choice's name); monostate for an override left unset, which keeps the scene's value.
-using SettingValue =
-    std::variant<std::monostate, std::int64_t, double, bool, std::string, std::uint64_t, Camera>;
+// the choice's name, Region: PixelRegion); monostate for an override left unset, which keeps
+// the scene's value, and for no region, the whole image.
+using SettingValue = std::variant<std::monostate, std::int64_t, double, bool, std::string,
+                                  std::uint64_t, Camera, PixelRegion>;
 
 // The layers that take a setting.
 enum SettingLayer : unsigned {
@@ -96,12 +97,19 @@ std::optional<std::string> setting_error(const SettingSpec& spec, const SettingV
                                          double max);
 std::optional<std::string> setting_error(const SettingSpec& spec, const SettingValue& value);
 
+// What no single setting's range can say: the region lies inside the image and is not
+// post-normalized (that scales by the whole image's highest value). Names the setting.
+std::optional<std::string> settings_error(const RenderSettings& settings);
+
 // A command-line value in the setting's type ("1e-1", "12", "soft"; a camera's ten numbers,
-// separated by spaces or commas); nullopt when it does not read as one. The range is
-// setting_error's to check.
+// separated by spaces or commas; a region's "0 0 64 32"); nullopt when it does not read as
+// one. The range is setting_error's to check.
 std::optional<SettingValue> setting_from_text(const SettingSpec& spec, std::string_view text);
-// A value as the docs and the help show it: "640", "0.2", "true", "hard", "the scene's".
+// A value as the docs and the help show it: "640", "0.2", "true", "hard", "[0, 0, 64, 32]".
 std::string to_text(const SettingValue& value);
+// The setting's default as the docs and the help show it: "the scene's" for an override, "the
+// whole image" for the region.
+std::string default_text(const SettingSpec& spec);
 
 // The docs' table of the job request's settings (docs/SERVICE.md), one row per setting.
 std::string settings_table_markdown();

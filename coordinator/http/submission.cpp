@@ -27,8 +27,7 @@ json settings_from_query(const std::map<std::string, std::string>& query) {
   for (const auto& [key, value] : query) {
     if (key == "main" || key == "format") continue;
     json parsed = json::parse(value, nullptr, false);
-    s[key] =
-        parsed.is_discarded() || parsed.is_object() || parsed.is_array() ? json(value) : parsed;
+    s[key] = parsed.is_discarded() || parsed.is_object() ? json(value) : parsed;
   }
   return s;
 }

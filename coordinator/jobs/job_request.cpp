@@ -4,6 +4,7 @@
 #include <map>
 
 #include "common/image/decoded_texture.h"
+#include "common/loaders/recording_source.h"
 #include "common/loaders/scene_loader.h"
 #include "common/loaders/scene_source.h"
 #include "common/render/prepared_scene.h"
@@ -19,25 +20,6 @@ using nlohmann::json;
 
 ApiError bad_request(const std::string& detail) { return ApiError(400, "bad_request", detail); }
 
-// Submitted files first, then the configured scenes folder; remembers what the scene read so
-// that the bundle holds exactly those files.
-class RecordingSource : public SceneSource {
- public:
-  RecordingSource(const MemorySource& submitted, const SceneSource* folder)
-      : submitted_(submitted), folder_(folder) {}
-  std::optional<std::string> read(const std::string& path) const override {
-    std::optional<std::string> bytes = submitted_.read(path);
-    if (!bytes && folder_) bytes = folder_->read(path);
-    if (bytes) read_[path] = *bytes;
-    return bytes;
-  }
-  std::map<std::string, std::string> files() const { return read_; }
-
- private:
-  const MemorySource& submitted_;
-  const SceneSource* folder_;
-  mutable std::map<std::string, std::string> read_;
-};
 
 // The most a job request may ask of a setting: its range, narrowed by this service's limits.
 double request_max(const SettingSpec& spec, const ServiceLimits& limits) {
@@ -97,6 +79,8 @@ void check_scene(const Submission& sub, const std::optional<std::filesystem::pat
   const MemorySource submitted(sub.files);
   std::optional<DirectorySource> folder;
   if (scenes_dir) folder.emplace(*scenes_dir);
+  // Submitted files first, then the configured scenes folder; the bundle holds exactly the
+  // files the scene read.
   RecordingSource source(submitted, folder ? &*folder : nullptr);
   std::map<std::string, std::string> textures;
   LoadBudget load_budget;  // the defaults of docs/SERVICE.md's "Load budget", and our deadline
@@ -160,6 +144,8 @@ void parse_settings(const json& s, const ServiceLimits& limits, JobRequest& out)
   if (static_cast<long long>(r.width) * r.height > limits.max_pixels)
     throw bad_request("width x height is over this service's limit of " +
                       std::to_string(limits.max_pixels) + " pixels");
+  if (const std::optional<std::string> error = settings_error(r))
+    throw bad_request("settings." + *error);
   out.spec = {r, settings.overrides};
   out.priority = settings.schedule.priority;
   out.strict = settings.load.strict;
@@ -167,6 +153,7 @@ void parse_settings(const json& s, const ServiceLimits& limits, JobRequest& out)
   out.plan.height = r.height;
   out.plan.passes = r.passes;
   out.plan.progressive = settings.schedule.progressive;
+  out.plan.region = plan_region(r);
   // The schema's choices are the names these take (tests/service/coordinator_test.cpp).
   out.plan.order = parse_unit_order(settings.schedule.order);
   out.plan.preview = parse_preview_mode(settings.schedule.preview);

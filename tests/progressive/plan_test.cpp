@@ -142,6 +142,58 @@ TEST(Plan, AreaPreviewTracesEveryBlockCentreAndCostsAboutAThirdMore) {
   EXPECT_NEAR(ratio, 4.0 / 3.0, 0.01);
 }
 
+// A region's plan (issue 21 §4) traces pass 0 of each of its pixels once and nothing outside
+// it, at the whole image's levels: its cost is the region's.
+TEST(Plan, ARegionCoversItsPixelsOnly) {
+  const Tile regions[] = {{0, 0, 640, 480},   {100, 50, 260, 170}, {333, 77, 334, 78},
+                          {5, 400, 639, 403}, {0, 0, 1, 480},      {601, 17, 640, 480}};
+  for (const Tile& r : regions)
+    for (const PreviewMode preview : {PreviewMode::Anchor, PreviewMode::Area})
+      for (const bool progressive : {true, false}) {
+        const Plan plan = make_plan({.width = 640,
+                                     .height = 480,
+                                     .passes = 2,
+                                     .progressive = progressive,
+                                     .preview = preview,
+                                     .unit_pixels = 256,
+                                     .region = r});
+        const std::string name = std::to_string(r.x0) + "," + std::to_string(r.y0) + "," +
+                                 std::to_string(r.x1) + "," + std::to_string(r.y1);
+        const std::vector<int> counts = pass0_counts(plan);
+        for (int y = 0; y < 480; ++y)
+          for (int x = 0; x < 640; ++x) {
+            const bool inside = x >= r.x0 && x < r.x1 && y >= r.y0 && y < r.y1;
+            ASSERT_EQ(counts[static_cast<std::size_t>(y) * 640 + x], inside ? 1 : 0)
+                << name << " at " << x << "," << y;
+          }
+        for (const WorkUnit& u : plan.units) {
+          ASSERT_GT(u.cost, 0) << name;
+          for (Pixel p : expand(u.pixels))
+            ASSERT_TRUE(p.x >= r.x0 && p.x < r.x1 && p.y >= r.y0 && p.y < r.y1) << name;
+        }
+        if (preview == PreviewMode::Anchor) {
+          EXPECT_EQ(plan.total_cost, 2LL * r.width() * r.height()) << name;
+        }
+        EXPECT_EQ(plan.levels, progressive ? 10 : 0);  // the whole image's
+        EXPECT_EQ(plan.area, r);
+      }
+}
+
+TEST(Plan, ARegionStartsAtTheFirstLevelWhoseBlocksFitIt) {
+  const Plan whole = make_plan({.width = 640, .height = 480});
+  EXPECT_EQ(whole.stages.front().level, 1);
+  const Plan part = make_plan({.width = 640, .height = 480, .region = Tile{100, 50, 140, 70}});
+  // 40 pixels across: blocks of 32 (level 5 of 10) are the first to fit.
+  EXPECT_EQ(part.stages.front().level, 5);
+  EXPECT_EQ(part.stages.front().block, 32);
+  EXPECT_EQ(part.stages.front().traced, 1);  // (128, 64), its one pixel at multiples of 32
+  EXPECT_EQ(part.stages.back().level, 10);
+  EXPECT_THROW(make_plan({.width = 64, .height = 64, .region = Tile{0, 0, 65, 1}}),
+               std::invalid_argument);
+  EXPECT_THROW(make_plan({.width = 64, .height = 64, .region = Tile{3, 3, 3, 9}}),
+               std::invalid_argument);
+}
+
 TEST(UnitPixels, CentresAreClampedIntoPartialBlocks) {
   UnitPixels u{.rect = {0, 0, 5, 3}, .step = 4, .pattern = PixelPattern::Centres};
   const auto pixels = expand(u);

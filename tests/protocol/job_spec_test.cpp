@@ -105,6 +105,26 @@ TEST(JobSpec, OutOfRangeSettingsAreProtocolErrors) {
   EXPECT_EQ(job_spec_from_json(j).settings.jitter, 16.0);
 }
 
+// A region travels as [x0, y0, x1, y1] and must lie inside the image (issue 21 §4); no region
+// is left out of the message.
+TEST(JobSpec, ARegionRoundTripsAndLiesInsideTheImage) {
+  EXPECT_FALSE(to_json(JobSpec{}).contains("region"));
+  JobSpec spec;
+  spec.settings.region = PixelRegion{1, 2, 30, 40};
+  const nlohmann::json j = to_json(spec);
+  EXPECT_EQ(j["region"], nlohmann::json({1, 2, 30, 40}));
+  EXPECT_EQ(job_spec_from_json(j).settings.region, spec.settings.region);
+  EXPECT_EQ(plan_region(spec.settings), (Tile{1, 2, 30, 40}));
+  for (const nlohmann::json& bad :
+       {nlohmann::json({1, 2, 641, 40}), nlohmann::json({1, 2, 30}), nlohmann::json({3, 2, 3, 40}),
+        nlohmann::json({1.5, 2, 30, 40}), nlohmann::json({-1, 2, 30, 40}),
+        nlohmann::json("0 0 1 1"), nlohmann::json({0, 0, 4294967297LL, 1})}) {
+    nlohmann::json k = j;
+    k["region"] = bad;
+    EXPECT_THROW(job_spec_from_json(k), ProtocolError) << bad;
+  }
+}
+
 TEST(JobSpec, OverridesChangeTheSceneGlobals) {
   Scene scene;
   apply_overrides(scene, {.max_depth = 1, .min_weight = 0.05, .camera = std::nullopt});

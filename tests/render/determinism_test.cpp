@@ -67,6 +67,22 @@ TEST(Determinism, SubRectangleEqualsThoseImagePixels) {
       ASSERT_EQ(part.get(x, y), whole.get(x, y)) << x << "," << y;
 }
 
+// A region (issue 21 §4) renders its pixels as the whole image does, and nothing else.
+TEST(Determinism, RegionEqualsThoseImagePixelsAndIsBlackElsewhere) {
+  const Scene scene = busy_scene();
+  RenderSettings s = noisy_settings();
+  const Image whole = render(scene, s);
+  s.region = PixelRegion{13, 7, 31, 22};
+  const Image part = render(scene, s, nullptr, 3);
+  ASSERT_EQ(part.width, whole.width);
+  ASSERT_EQ(part.height, whole.height);
+  for (int y = 0; y < s.height; ++y)
+    for (int x = 0; x < s.width; ++x) {
+      const bool inside = x >= 13 && x < 31 && y >= 7 && y < 22;
+      ASSERT_EQ(part.get(x, y), inside ? whole.get(x, y) : Rgb{}) << x << "," << y;
+    }
+}
+
 TEST(Determinism, ListedPixelsEqualTheRectangleRender) {
   const Scene scene = busy_scene();
   const RenderSettings s = noisy_settings();

@@ -101,6 +101,28 @@ TEST(ParseSettings, JitterTakesTheSchemasRange) {
   EXPECT_THROW(parse_settings({{"jitter", 16.5}}, ServiceLimits{}, r), ApiError);
 }
 
+// A region (issue 21 §4) sets the plan's area; outside the image it is a 400 naming it.
+TEST(ParseSettings, ARegionSetsThePlansAreaInsideTheImage) {
+  JobRequest r;
+  parse_settings(nlohmann::json::parse(R"({"width": 64, "height": 48, "region": [8, 4, 64, 48]})"),
+                 ServiceLimits{}, r);
+  EXPECT_EQ(r.plan.region, (Tile{8, 4, 64, 48}));
+  EXPECT_EQ(r.spec.settings.region, (PixelRegion{8, 4, 64, 48}));
+  try {
+    parse_settings(nlohmann::json::parse(R"({"width": 64, "height": 48, "region": [0, 0, 65, 8]})"),
+                   ServiceLimits{}, r);
+    FAIL() << "expected a region outside the image to be refused";
+  } catch (const ApiError& e) {
+    EXPECT_EQ(e.status(), 400);
+    EXPECT_EQ(e.body()["detail"],
+              "settings.region [0, 0, 65, 8] must lie inside the 64x48 image (x1 <= width, y1 <= "
+              "height)");
+  }
+  JobRequest whole;
+  parse_settings(nlohmann::json::parse(R"({"width": 64})"), ServiceLimits{}, whole);
+  EXPECT_EQ(whole.plan.region, std::nullopt);
+}
+
 TEST(ParseJobRequest, SceneErrorsNameLineAndColumn) {
   const std::string body = R"({"scene": "sphere\n  nosuchkeyword\n"})";
   try {

@@ -1,0 +1,35 @@
+// A small blocking HTTP/1.1 client (Boost.Beast) for tessera-submit: one connection per request,
+// to a coordinator named by a URL "http://HOST:PORT".
+#pragma once
+
+#include <string>
+
+namespace tessera {
+
+struct HttpReply {
+  int status = 0;
+  std::string body;
+};
+
+class HttpClient {
+ public:
+  // `url`: "http://HOST[:PORT][/]" (port 80 when left out); throws std::invalid_argument for
+  // another scheme or a malformed URL. `token`, when not empty, goes with every request as
+  // "Authorization: Bearer TOKEN" (the coordinator's --api-token).
+  HttpClient(const std::string& url, std::string token);
+
+  // Throws std::runtime_error when the coordinator cannot be reached or answers garbage.
+  HttpReply get(const std::string& target) const;
+  HttpReply post(const std::string& target, const std::string& content_type,
+                 std::string body) const;
+
+  // "http://HOST:PORT", for messages.
+  const std::string& base() const { return base_; }
+
+ private:
+  HttpReply send(const std::string& method, const std::string& target,
+                 const std::string& content_type, std::string body) const;
+  std::string host_, port_, token_, base_;
+};
+
+}  // namespace tessera
