@@ -413,9 +413,10 @@ def main():
         args.workers, args.size, args.passes = min(args.workers, 8), 64, 2
         args.real = min(args.real, 3)
         # Real workers adopt --heartbeat-ms and --silence-ms from the welcome; 3 s leaves their
-        # slow start on a loaded machine some room.
+        # slow start on a loaded machine some room, and 2 s the synthetic workers' event loop
+        # (at 0.5 s a busy CI machine had the coordinator drop one that was merely late).
         args.heartbeat_ms, args.idle_seconds = 100, 0.5
-        args.silence_ms = 3000 if args.real else 500
+        args.silence_ms = 3000 if args.real else 2000
     if max(args.workers if not args.real else 0, args.real) < 2:
         parser.error("needs at least 2 workers (one crashes, one hangs)")
     # Each connection is a descriptor on both sides; the coordinator inherits this limit.
