@@ -29,12 +29,7 @@ HERE = os.path.dirname(os.path.abspath(__file__))
 sys.path.insert(0, os.path.join(HERE, "..", "service"))
 import service_test  # noqa: E402  (start_coordinator)
 
-FAILURES = []
-
-
-def check(condition, message):
-    if not condition:
-        FAILURES.append(message)
+from checks import FAILURES, check  # noqa: E402
 
 
 def render(kubectl, folder):
