@@ -39,7 +39,7 @@ nlohmann::json json_of(const HttpReply& reply, const std::string& what) {
 
 int submit_job(const SubmitOptions& o) {
   try {
-    const HttpClient http(o.coordinator, o.token);
+    const HttpClient http(o.coordinator, o.token, o.tls);
     const SceneBundle scene = bundle_scene(
         o.scene_path, o.root.empty() ? std::nullopt : std::optional<std::filesystem::path>(o.root),
         o.settings.load.strict);

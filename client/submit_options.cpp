@@ -18,8 +18,13 @@ std::unique_ptr<CLI::App> make_app(SubmitOptions& o) {
   app->option_defaults()->multi_option_policy(CLI::MultiOptionPolicy::TakeLast);
   app->add_option("scene", o.scene_path, "the scene: SCENE.sdl, or WORLD.wrl, .wrl.gz, .wrz")
       ->type_name("SCENE");
-  app->add_option("--coordinator", o.coordinator, "the coordinator's HTTP address")
-      ->type_name("http://HOST:PORT");
+  app->add_option("--coordinator", o.coordinator, "the coordinator's HTTP or HTTPS address")
+      ->type_name("http[s]://HOST:PORT");
+  app->add_option_function<std::string>(
+         "--tls-ca", [&o](const std::string& ca) { o.tls.ca = ca; },
+         "for https: trust these certificates (PEM) instead of the system's")
+      ->type_name("FILE")
+      ->check(CLI::ExistingFile);
   app->add_option("-o", o.output_path,
                   "writes the image: .exr keeps floats, .png clamps to [0, 1] (default: none; "
                   "the job stays on the coordinator)")

@@ -1,5 +1,5 @@
-// tessera-submit's command line (CLI11): the scene, --coordinator URL, -o OUT, --token, --root,
-// and every setting of a job request (common/render/settings_schema.h) as the same flag as
+// tessera-submit's command line (CLI11): the scene, --coordinator URL, --tls-ca, -o OUT, --token,
+// --root, and every setting of a job request (common/render/settings_schema.h) as the same flag as
 // tessera-render's, with the same ranges and help.
 #pragma once
 
@@ -7,13 +7,15 @@
 #include <variant>
 #include <vector>
 
+#include "common/protocol/tls.h"
 #include "common/render/settings_schema.h"
 
 namespace tessera {
 
 struct SubmitOptions {
   std::string scene_path;
-  std::string coordinator;  // http://HOST:PORT
+  std::string coordinator;  // http://HOST:PORT or https://HOST:PORT
+  ClientTlsOptions tls;     // for https: the certificates trusted (the system's by default)
   std::string output_path;  // empty: leave the image on the coordinator
   std::string token;        // the coordinator's --api-token, if it has one
   std::string root;         // non-empty: the folder the bundle's paths are relative to

@@ -70,7 +70,10 @@ FrameStream::FrameStream(tcp::socket socket, std::shared_ptr<ssl::context> tls,
                          const std::string& host)
     : FrameStream(std::move(socket), std::move(tls)) {
   client_ = true;
-  SSL* ssl = tls_->native_handle();
+  expect_peer_name(tls_->native_handle(), host);
+}
+
+void expect_peer_name(SSL* ssl, const std::string& host) {
   // OpenSSL checks the name during the handshake: an address against the certificate's IP
   // entries, a name against its DNS entries (and is sent as SNI).
   X509_VERIFY_PARAM* param = SSL_get0_param(ssl);

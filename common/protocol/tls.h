@@ -28,6 +28,10 @@ struct ClientTlsOptions {
 // checked per connection, FrameStream).
 std::shared_ptr<boost::asio::ssl::context> make_client_tls(const ClientTlsOptions& options);
 
+// A client's TLS stream will check that the peer's certificate is `host`'s (a name or an
+// address; a name is also sent as SNI). Call before the handshake.
+void expect_peer_name(SSL* ssl, const std::string& host);
+
 // A plain socket, or TLS over one; the TLS handshake is run by handshake() before any frame.
 class FrameStream {
  public:

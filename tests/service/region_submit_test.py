@@ -145,8 +145,9 @@ def case_submit():
         result = submit(service, [broken])
         assert result.returncode == 1 and "broken.sdl:" in result.stderr, result.stderr
         result = subprocess.run([binary("client", "tessera-submit"), macros, "--coordinator",
-                                 "https://127.0.0.1:1"], capture_output=True, text=True)
-        assert result.returncode == 1 and "https is not supported" in result.stderr, result.stderr
+                                 "ftp://127.0.0.1:1"], capture_output=True, text=True)
+        assert result.returncode == 1 and "expected http://HOST:PORT or https://" in \
+            result.stderr, result.stderr
 
 
 def main():

@@ -69,7 +69,8 @@ def wait_for(predicate, what, timeout=10):
 
 def case_render():
     """Jobs over TLS render bit-identical to tessera-render: with local workers (started by the
-    coordinator) and with a remote worker that verifies the certificate by name."""
+    coordinator), with a remote worker that verifies the certificate by name, and submitted by
+    tessera-submit over HTTPS."""
     with tempfile.TemporaryDirectory() as tmp:
         cert, key = make_certificate(tmp, "coordinator")
         with TlsService(cert, key, "--local-workers", "2", "--local-threads", "1") as service:
@@ -91,6 +92,25 @@ def case_render():
                 raise AssertionError("a client without the CA was served")
             except urllib.error.URLError as e:
                 assert isinstance(e.reason, ssl.SSLCertVerificationError), e
+            submit_over_https(service, cert, tmp)
+
+
+def submit_over_https(service, cert, tmp):
+    """tessera-submit reaches an HTTPS coordinator that its --tls-ca trusts (the image bit-
+    identical to tessera-render's), and refuses one whose certificate it cannot verify."""
+    scene, out = service_test.demo_scene(), os.path.join(tmp, "submitted.exr")
+    argv = [service_test.binary("client", "tessera-submit"), scene, "--coordinator",
+            "https://localhost:%d" % service.http_port, "--width", str(SETTINGS["width"]),
+            "--height", str(SETTINGS["height"]), "--quiet"]
+    result = subprocess.run(argv + ["--tls-ca", cert, "-o", out], capture_output=True, text=True,
+                            timeout=100)
+    assert result.returncode == 0, result.stdout + result.stderr
+    settings = {"width": SETTINGS["width"], "height": SETTINGS["height"]}
+    service_test.render_cli(scene, settings, os.path.join(tmp, "submitted-cli.exr"))
+    service_test.assert_identical(out, os.path.join(tmp, "submitted-cli.exr"))
+    result = subprocess.run(argv, capture_output=True, text=True, timeout=100)
+    assert result.returncode == 1 and "certificate verify failed" in result.stderr, \
+        result.stdout + result.stderr
 
 
 def plaintext_exchange(port, data):
