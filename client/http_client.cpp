@@ -57,6 +57,10 @@ HttpReply HttpClient::post(const std::string& target, const std::string& content
   return send("POST", target, content_type, std::move(body));
 }
 
+HttpReply HttpClient::del(const std::string& target) const {
+  return send("DELETE", target, "", "");
+}
+
 HttpReply HttpClient::send(const std::string& method, const std::string& target,
                            const std::string& content_type, std::string body) const {
   try {

@@ -27,6 +27,7 @@ class HttpClient {
   HttpReply get(const std::string& target) const;
   HttpReply post(const std::string& target, const std::string& content_type,
                  std::string body) const;
+  HttpReply del(const std::string& target) const;
 
   // "http://HOST:PORT" or "https://HOST:PORT", for messages.
   const std::string& base() const { return base_; }

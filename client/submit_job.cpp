@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <csignal>
 #include <cstdio>
 #include <fstream>
 #include <thread>
@@ -17,6 +18,11 @@ namespace {
 // How often the job's status is asked for: often enough for a smooth progress line, rarely
 // enough to cost the coordinator nothing.
 constexpr auto kPollInterval = std::chrono::milliseconds(100);
+
+// Ctrl-C or SIGTERM while the job runs: the job is cancelled on the coordinator, not left
+// running for nobody. The handler only sets the flag; the polling loop acts on it.
+volatile std::sig_atomic_t interrupted = 0;
+extern "C" void on_interrupt(int) { interrupted = 1; }
 
 // "the coordinator answered 400: settings.region ... (scene.sdl:3:7)" from an error answer's
 // JSON (docs/SERVICE.md), or its raw text when it is not JSON.
@@ -38,6 +44,9 @@ nlohmann::json json_of(const HttpReply& reply, const std::string& what) {
 }  // namespace
 
 int submit_job(const SubmitOptions& o) {
+  // From the start: the job may be running before the answer to its submission arrives.
+  std::signal(SIGINT, on_interrupt);
+  std::signal(SIGTERM, on_interrupt);
   try {
     const HttpClient http(o.coordinator, o.token, o.tls);
     const SceneBundle scene = bundle_scene(
@@ -45,6 +54,7 @@ int submit_job(const SubmitOptions& o) {
         o.settings.load.strict);
     if (!o.quiet)
       for (const std::string& w : scene.warnings) std::fprintf(stderr, "warning: %s\n", w.c_str());
+    if (interrupted) return 130;  // before anything was sent
     std::string boundary;
     std::string body = multipart_body(scene.bundle, settings_json(o.settings), boundary);
     const nlohmann::json created = json_of(
@@ -60,7 +70,16 @@ int submit_job(const SubmitOptions& o) {
       if (!o.quiet) progress.show(status);
       const std::string state = status.value("state", "");
       if (state != "queued" && state != "running") break;
+      if (interrupted) {
+        progress.finish();
+        const HttpReply cancelled = http.del(job);
+        std::fprintf(
+            stderr, "tessera-submit: interrupted: job %s %s\n", job.c_str(),
+            cancelled.status == 200 ? "cancelled" : refusal("cancelling", cancelled).c_str());
+        return 130;  // the shell's status for a command ended by SIGINT
+      }
       std::this_thread::sleep_for(kPollInterval);
+      if (interrupted) continue;
       status = json_of(http.get(job), "following " + job);
     }
     progress.finish();

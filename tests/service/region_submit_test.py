@@ -6,7 +6,8 @@
           service's plan traces only the region's pixels; a bad region is a 400 naming it.
   submit  tessera-submit sends a VRML world with its Inline and texture, and an SDL scene with
           its include as a region, and writes images bit-identical to tessera-render's; plain
-          progress lines when stdout is not a terminal; bad flags and scenes are named.
+          progress lines when stdout is not a terminal; bad flags and scenes are named; Ctrl-C
+          cancels the job.
 
 usage: region_submit_test.py --build BUILD_DIR --source SOURCE_DIR CASE
 """
@@ -14,6 +15,7 @@ import argparse
 import io
 import json
 import os
+import signal
 import subprocess
 import sys
 import tarfile
@@ -148,6 +150,21 @@ def case_submit():
                                  "ftp://127.0.0.1:1"], capture_output=True, text=True)
         assert result.returncode == 1 and "expected http://HOST:PORT or https://" in \
             result.stderr, result.stderr
+
+        # Ctrl-C while the job runs cancels it on the coordinator; exit status 130.
+        proc = subprocess.Popen([binary("client", "tessera-submit"), service_test.demo_scene(),
+                                 "--coordinator", "http://127.0.0.1:%d" % service.http_port,
+                                 "--width", "1024", "--height", "1024", "--aa", "9", "--passes",
+                                 "16", "--quiet"], stderr=subprocess.PIPE, text=True)
+        deadline = time.time() + 30
+        while not [j for j in service.get("/api/jobs") if j["state"] == "running"]:
+            assert time.time() < deadline and proc.poll() is None, "the job never ran"
+            time.sleep(0.05)
+        proc.send_signal(signal.SIGINT)
+        _, err = proc.communicate(timeout=30)
+        assert proc.returncode == 130 and "interrupted" in err, (proc.returncode, err)
+        last = max(service.get("/api/jobs"), key=lambda j: j["id"])
+        assert last["state"] == "cancelled", last
 
 
 def main():
