@@ -2,9 +2,12 @@
 // each size, in headless Chromium with one local worker, the delay from a unit's merge to its
 // pixels painted (median and 90th percentile over every unit), the bytes the page received for
 // the image (/tiles answers and any PNG, as sent: gzip'd) against the final PNG, and the longest
-// task on the page's main thread (Chromium's long tasks: 50 ms and over; 0 when none).
+// task on the page's main thread (Chromium's long tasks: 50 ms and over; 0 when none). With
+// --moves N, then N examine drags on the last size's finished image (issue 21 §3): the time
+// from releasing the mouse to the new job's first pixels painted (the old job cancelled, the
+// same scene resubmitted with the new camera, its first level rendered and polled).
 //
-// usage: node page_bench.js BUILD_DIR SOURCE_DIR [--threads N] [--aa A] WxH...
+// usage: node page_bench.js BUILD_DIR SOURCE_DIR [--threads N] [--aa A] [--moves N] WxH...
 "use strict";
 
 const fs = require("fs");
@@ -19,6 +22,7 @@ const option = (name, fallback) => {
 };
 const threads = +option("--threads", "1");
 const aa = +option("--aa", "1");
+const moves = +option("--moves", "0");
 const sizes = rest.length ? rest : ["1920x1080", "3840x2160"];
 
 const quantile = (values, q) => {
@@ -50,6 +54,30 @@ async function measure(page, service, scene, width, height) {
   };
 }
 
+// Drags in examine mode; answers each move's milliseconds from mouse up to the first paint.
+async function measureMoves(page, count) {
+  await page.locator("#stage").scrollIntoViewIfNeeded();
+  const box = await page.locator("#stage").boundingBox();
+  const x = box.x + box.width / 2, y = box.y + box.height / 2;
+  const delays = [];
+  for (let i = 0; i < count; ++i) {
+    const before = await page.evaluate(() => window.tessera.view.job);
+    await page.mouse.move(x, y);
+    await page.mouse.down();
+    await page.mouse.move(x + 30, y + 10, { steps: 3 });
+    const released = await page.evaluate(() => performance.now());
+    await page.mouse.up();
+    const painted = await page.waitForFunction((old) => {
+      const v = window.tessera.view;
+      return v.job !== old && (v.levelsPainted.size > 0 || v.usedWhole) && performance.now();
+    }, before, { polling: "raf", timeout: 60000 });
+    delays.push(+((await painted.jsonValue()) - released).toFixed(1));
+    await page.waitForSelector("#base-canvas[data-state=done]", { timeout: 600000 });
+  }
+  return { moves: count, first_paint_median_ms: quantile(delays, 0.5),
+           first_paint_max_ms: Math.max(...delays), delays_ms: delays };
+}
+
 async function main() {
   const profile = fs.mkdtempSync(path.join(os.tmpdir(), "tessera-bench-"));
   let context, service;
@@ -69,6 +97,7 @@ async function main() {
       const [width, height] = size.split("x").map(Number);
       console.log(JSON.stringify(await measure(page, service, scene, width, height)));
     }
+    if (moves > 0) console.log(JSON.stringify(await measureMoves(page, moves)));
   } finally {
     if (context) await context.close();
     if (service) service.stop();
