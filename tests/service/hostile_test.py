@@ -98,10 +98,14 @@ def case_intake():
             print("%s: %d %s in %.2f s" % (path, status, reply, seconds))
             assert seconds < INTAKE_SECONDS + 1.5, (path, seconds)
             if path == "/api/jobs":
-                # The load budget counts the bomb's USE replays and stops it.
+                # The load budget counts the bomb's USE replays and stops it, unless the intake
+                # deadline comes first: on a busy machine the bomb may wait behind the three
+                # predictions for an intake thread (the count itself: tests/loaders).
                 assert status == 422, (status, reply)
-                assert reply["error"] == "over_budget" and reply["limit"] == "use_replays", reply
-                assert reply["line"] > 1 and reply["detail"], reply
+                assert reply["error"] == "over_budget", reply
+                assert reply["limit"] in ("use_replays", "max_intake_seconds"), reply
+                if reply["limit"] == "use_replays":
+                    assert reply["line"] > 1 and reply["detail"], reply
             else:
                 # The probe stops inside the runaway pixel at its deadline: the prediction is
                 # a lower bound, and says so.
