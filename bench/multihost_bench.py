@@ -2,8 +2,9 @@
 """Workers behind real round trips (issue 8, item 4), for docs/PERFORMANCE.md, side by side in
 one run: the demo scene through two one-thread workers on loopback, and with the workers in
 their own network namespaces 0, 20 and 50 ms (round trip) from the coordinator
-(tests/multihost/netns.py; tc netem, or delay_proxy.py where the kernel has no netem). Runs are
-interleaved; medians. Then the transfer of a mesh bundle of --mesh-mb (10) MB over a link of
+(tests/multihost/netns.py; tc netem, or delay_proxy.py where the kernel has no netem), and
+20 ms away with TLS on both ports (issue 17 §6: a self-signed certificate the workers verify).
+Runs are interleaved; medians. Then the transfer of a mesh bundle of --mesh-mb (10) MB over a link of
 --rate-mbit. Exits 77 (ctest: skipped) where network namespaces cannot be made.
 
 Needs root (network namespaces).
@@ -27,8 +28,10 @@ sys.path.insert(0, os.path.join(HERE, "..", "tests", "multihost"))
 import netns  # noqa: E402
 import service_bench  # noqa: E402  (submit_and_time)
 import service_test  # noqa: E402  (Service)
+import tls_test  # noqa: E402  (TlsService, make_certificate)
 
 RTTS_MS = (0, 20, 50)
+TLS_RTT_MS = 20
 
 
 def sphere_obj(target_bytes):
@@ -102,15 +105,24 @@ def main():
         services = {"loopback": loopback}
         loopback.worker("w1")
         loopback.worker("w2")
+        where = {"prefix": network.coordinator_prefix(), "host": network.api_host}
         for rtt in RTTS_MS:
             # Each Service is its own coordinator in the namespace, reached at its own port.
             # The API is reached from the root namespace, not loopback: open it as the
             # multihost tests do.
-            service = service_test.Service("--open-submit", prefix=network.coordinator_prefix(),
-                                           host=network.api_host)
+            service = service_test.Service("--open-submit", **where)
             services["%d ms" % rtt] = service
             network.add_worker(service, "w1", rtt_ms=rtt)
             network.add_worker(service, "w2", rtt_ms=rtt)
+        # The certificate names every address a client or worker may use to reach it: the
+        # API's, each worker link's coordinator end, and loopback (behind delay_proxy.py).
+        cert, key = tls_test.make_certificate(
+            loopback.tmp.name, "bench", "IP:127.0.0.1,IP:%s,%s" % (
+                network.api_host, ",".join("IP:10.213.%d.1" % i for i in range(1, 16))))
+        service = tls_test.TlsService(cert, key, "--open-submit", **where)
+        services["%d ms TLS" % TLS_RTT_MS] = service
+        for name in ("w1", "w2"):
+            network.add_worker(service, name, rtt_ms=TLS_RTT_MS, worker_args=("--tls-ca", cert))
         try:
             for service in services.values():
                 service.wait_workers(2)

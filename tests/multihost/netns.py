@@ -93,9 +93,9 @@ class Network:
                     "limit", "100000")
         return b_dev if b_ns == self.coordinator_ns else a_dev
 
-    def add_worker(self, service, name, rtt_ms=0, rate_mbit=0, threads=1):
-        """Starts a worker of `service` in a new namespace `rtt_ms` away from the coordinator;
-        returns the name of its link for cut()."""
+    def add_worker(self, service, name, rtt_ms=0, rate_mbit=0, threads=1, worker_args=()):
+        """Starts a worker of `service` (with `worker_args`, e.g. its --tls-ca) in a new
+        namespace `rtt_ms` away from the coordinator; returns the name of its link for cut()."""
         index = len(self.namespaces)
         ns = "%s-w%d" % (self.tag, index)
         self._add_namespace(ns)
@@ -117,7 +117,8 @@ class Network:
                 time.sleep(0.02)
             with open(port_file) as f:
                 address, port = "127.0.0.1", json.load(f)["port"]
-        service.worker(name, threads=threads, prefix=prefix, address=address, port=port)
+        service.worker(name, threads=threads, prefix=prefix, address=address, port=port,
+                       extra=worker_args)
         return coord_dev
 
     def coordinator_prefix(self):

@@ -81,10 +81,11 @@ class Service:
         self.procs.append(proc)
         return proc
 
-    def worker(self, name, secret=SECRET, threads=1, prefix=(), address="127.0.0.1", port=None):
+    def worker(self, name, secret=SECRET, threads=1, prefix=(), address="127.0.0.1", port=None,
+               extra=()):
         argv = [*prefix, binary("worker", "tessera-worker"), "--coordinator",
                 "%s:%d" % (address, port or self.worker_port), "--threads", str(threads),
-                "--name", name]
+                "--name", name, *extra]
         if secret:
             argv += ["--secret", secret]
         return self.spawn(argv, name)
