@@ -14,6 +14,7 @@
 #include "coordinator/http/job_json.h"
 #include "coordinator/http/submission.h"
 #include "coordinator/http/tile_deltas.h"
+#include "coordinator/http/worker_json.h"
 #include "coordinator/jobs/api_error.h"
 
 namespace tessera {
@@ -125,7 +126,7 @@ void Api::route(HttpRequest& request, const std::string& path, const Query& quer
   }
   if (path == "/api/workers") {
     if (method != http::verb::get) throw ApiError(405, "method_not_allowed", "GET /api/workers");
-    return respond(json_response(200, scheduler_.workers_json()));
+    return respond(json_response(200, workers_json(scheduler_.workers())));
   }
   if (path == "/api/predict") {
     if (method != http::verb::post) throw ApiError(405, "method_not_allowed", "POST /api/predict");

@@ -419,26 +419,23 @@ Prediction Scheduler::predict(double seconds_per_pixel_pass, long long pixel_pas
   return p;
 }
 
-nlohmann::json Scheduler::workers_json() const {
+std::vector<Scheduler::WorkerView> Scheduler::workers() const {
   const auto now = options_.clock();
-  nlohmann::json out = nlohmann::json::array();
-  for (const auto& [id, w] : workers_) {
-    const double connected = seconds_since(w.joined, now);
-    out.push_back({{"id", id},
-                   {"name", w.hello.name},
-                   {"address", w.hello.address},
-                   {"threads", w.hello.threads},
-                   {"in_flight", w.in_flight.size()},
-                   {"slots", w.pipeline.slots()},
-                   {"round_trip_ms", w.pipeline.round_trip_seconds() * 1e3},
-                   {"units_done", w.units_done},
-                   {"dropped_results", w.dropped_results},
-                   {"pixels_done", w.pixels_done},
-                   {"busy_seconds", w.busy_seconds},
-                   {"connected_seconds", connected},
-                   {"pixels_per_second",
-                    connected > 0 ? static_cast<double>(w.pixels_done) / connected : 0.0}});
-  }
+  std::vector<WorkerView> out;
+  out.reserve(workers_.size());
+  for (const auto& [id, w] : workers_)
+    out.push_back({.id = id,
+                   .name = w.hello.name,
+                   .address = w.hello.address,
+                   .threads = w.hello.threads,
+                   .in_flight = w.in_flight.size(),
+                   .slots = w.pipeline.slots(),
+                   .round_trip_seconds = w.pipeline.round_trip_seconds(),
+                   .units_done = w.units_done,
+                   .dropped_results = w.dropped_results,
+                   .pixels_done = w.pixels_done,
+                   .busy_seconds = w.busy_seconds,
+                   .connected_seconds = seconds_since(w.joined, now)});
   return out;
 }
 

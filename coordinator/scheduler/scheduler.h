@@ -21,14 +21,12 @@
 #include <utility>
 #include <vector>
 
-#include <nlohmann/json.hpp>
-
 #include "common/protocol/connection.h"
 #include "common/protocol/messages.h"
 #include "common/render/time_prediction.h"
-#include "coordinator/scheduler/prediction_calibration.h"
 #include "coordinator/jobs/job_store.h"
 #include "coordinator/metrics/service_metrics.h"
+#include "coordinator/scheduler/prediction_calibration.h"
 #include "coordinator/scheduler/worker_pipeline.h"
 
 namespace tessera {
@@ -99,7 +97,19 @@ class Scheduler {
   // Time limits and speculation deadlines; called periodically.
   void tick();
 
-  nlohmann::json workers_json() const;
+  // What GET /api/workers shows of each connected worker (coordinator/http/worker_json.h),
+  // in order of id.
+  struct WorkerView {
+    std::int64_t id = 0;
+    std::string name, address;
+    int threads = 0;
+    std::size_t in_flight = 0;
+    int slots = 0;
+    double round_trip_seconds = 0;
+    long long units_done = 0, dropped_results = 0, pixels_done = 0;
+    double busy_seconds = 0, connected_seconds = 0;
+  };
+  std::vector<WorkerView> workers() const;
   struct WorkerTotals {
     int workers = 0, threads = 0;
   };

@@ -205,7 +205,7 @@ TEST_F(SchedulerTest, AFailureReportTakesTheJobFromThatWorkerOnly) {
   drain();
   ASSERT_EQ(a.cancels.size(), 1u);
   EXPECT_EQ(a.cancels[0].job, job.id);
-  EXPECT_EQ(scheduler_.workers_json()[0]["in_flight"], 0);
+  EXPECT_EQ(scheduler_.workers()[0].in_flight, 0u);
   // A result the reporting worker had already rendered is dropped, not held against it.
   const long long done = job.done_cost;
   EXPECT_NO_THROW(send_result(a, a.units[0], job));
@@ -448,7 +448,7 @@ TEST_F(SchedulerTest, ALateDuplicateOfARunningJobIsDropped) {
   const long long done = job.done_cost;
   send_result(slow, first, job);
   EXPECT_EQ(job.done_cost, done);
-  EXPECT_EQ(scheduler_.workers_json()[0]["dropped_results"], 1);
+  EXPECT_EQ(scheduler_.workers()[0].dropped_results, 1);
 }
 
 TEST_F(SchedulerTest, ALaterPassWaitsForTheEarlierOne) {
@@ -494,7 +494,7 @@ TEST_F(SchedulerTest, CancelFreesTheWorkersAtOnce) {
   EXPECT_EQ(job.state, JobState::Cancelled);
   // Every worker holding the job is sent one Cancel for it (and none for the other job).
   // Their slots keep only the other job's units.
-  const nlohmann::json workers = scheduler_.workers_json();
+  const std::vector<Scheduler::WorkerView> workers = scheduler_.workers();
   for (FakeWorker* w : {&a, &b}) {
     const auto held = [&](const Job& j) {
       return std::count_if(w->units.begin(), w->units.end(),
@@ -503,7 +503,7 @@ TEST_F(SchedulerTest, CancelFreesTheWorkersAtOnce) {
     ASSERT_GT(held(job), 0);
     ASSERT_EQ(w->cancels.size(), 1u);
     EXPECT_EQ(w->cancels[0].job, job.id);
-    EXPECT_EQ(workers[w == &a ? 0 : 1]["in_flight"], held(other));
+    EXPECT_EQ(static_cast<long>(workers[w == &a ? 0 : 1].in_flight), held(other));
   }
   EXPECT_FALSE(scheduler_.cancel(job.id));
   EXPECT_EQ(other.state, JobState::Running);
