@@ -47,6 +47,10 @@ mutations=(
   "tiles_since_ignored~coordinator/http/job_json.cpp~for (std::size_t i = since; i < job.tiles.size(); ++i)~for (std::size_t i = 0 * since; i < job.tiles.size(); ++i)~tessera-coordinator~python3 tests/service/job_answers_test.py --build $build --source . tiles_since"
   "image_format_unchecked~coordinator/http/api.cpp~if (format != \"png\" && format != \"exr\")~if ((false))~tessera-coordinator~python3 tests/service/job_answers_test.py --build $build --source . image_format"
   "round_trip_in_centiseconds~coordinator/scheduler/scheduler.cpp~{\"round_trip_ms\", w.pipeline.round_trip_seconds() * 1e3},~{\"round_trip_ms\", w.pipeline.round_trip_seconds() * 1e2},~tessera-coordinator~python3 tests/multihost/multihost_test.py --build $build --source . identical"
+  "rerender_route_missing~coordinator/http/api.cpp~if (sub == \"rerender\" && method == http::verb::post)~if ((false))~tessera-coordinator~python3 tests/service/rerender_test.py --build $build --source . answers"
+  "rerender_settings_ignored~coordinator/http/submission.cpp~      if (!value.is_null())\n        settings[key] = value;~      if (!value.is_null())\n        (void)0;~tessera-coordinator~python3 tests/service/rerender_test.py --build $build --source . images"
+  "status_settings_lose_preview~coordinator/http/job_json.cpp~  settings[\"preview\"] = to_string(job.plan_options.preview);\n~~test_coordinator~gtest service/test_coordinator JobSettingsJson.*"
+  "page_moves_only_own_jobs~web/navigation.js~  if (view.job === null || !nav.camera) return;~  if (view.job === null || !nav.camera || !nav.own.has(view.job)) return;~~node tests/service/e2e/page_test.js $build ."
 )
 
 built=()

@@ -30,6 +30,7 @@ const view = {
   generation: 0,      // bumps with every job shown: an older /tiles loop stops
   polling: false,
   region: null,       // [x0, y0, x1, y1] of a region job shown over an earlier image (region.js)
+  base: null,         // the id of the job whose image a region job is shown over
 };
 
 function setting(name) { return document.querySelector(`input[name=${name}]:checked`).value; }
@@ -126,13 +127,9 @@ async function mainScene(files) {
 // the same request and only answers how long it would take). SDL and VRML alike: a text scene
 // as JSON, a compressed world or a scene with its files as a form (binary files stay binary),
 // a tar as it is.
-// `request` is the form as it was (navigation.js resends a job's request with a new camera);
-// `extra` settings go over the form's (region.js adds a region).
-const formRequest = () => ({ settings: collectSettings(), files: [...$("scene-file").files],
-                             text: $("scene-text").value });
-async function postScene(path, ask = true, request = formRequest(), extra = {}) {
-  const settings = { ...request.settings, ...extra };
-  const files = request.files;
+async function postScene(path, ask = true) {
+  const settings = collectSettings();
+  const files = [...$("scene-file").files];
   const file = files[0];
   if (file && file.name.toLowerCase().endsWith(".tar")) {
     const query = new URLSearchParams(Object.entries(settings).map(
@@ -151,7 +148,7 @@ async function postScene(path, ask = true, request = formRequest(), extra = {}) 
     for (const f of files) form.append("file", f, bundlePath(f));
     return fetchWithToken(path, { method: "POST", body: form }, ask);
   }
-  const scene = file ? await file.text() : request.text;
+  const scene = file ? await file.text() : $("scene-text").value;
   const format = file ? formatOf(file.name) || "sdl" : /^\s*#VRML/.test(scene) ? "vrml" : "sdl";
   return fetchWithToken(path, {
     method: "POST", headers: { "Content-Type": "application/json" },
@@ -181,26 +178,35 @@ function schedulePrediction() {
 async function submit(event) {
   event.preventDefault();
   $("submit-error").textContent = "";
-  const request = formRequest();
-  const response = await postScene("/api/jobs", true, request);
+  const response = await postScene("/api/jobs", true);
   const body = await response.json().catch(() => null);
   if (response.status !== 201) {
     $("submit-error").textContent = describeError(response.status, body);
     return;
   }
-  navigationSubmitted(body.id, (extra) => postScene("/api/jobs", true, request, extra));
+  navigationSubmitted(body.id);
   show(body.id);
   refreshJobs();
 }
 
+// A new job of job `id`'s scene and settings, `settings` replacing some (null: back to the
+// default), from the coordinator's copy of its bundle: any job can be rendered again, however
+// it was submitted (POST /api/jobs/{id}/rerender; navigation.js, region.js).
+function rerender(id, settings) {
+  return fetchWithToken(`/api/jobs/${id}/rerender`, {
+    method: "POST", headers: { "Content-Type": "application/json" },
+    body: JSON.stringify({ settings }) });
+}
+
 // Shows job `id`. `keepImage`: the old job's pixels stay until the new job's first paint (a
-// camera move); a region job (region.js) is shown over `under`, the image it refines.
-function show(id, { keepImage = false, under = null, region = null } = {}) {
+// camera move); a region job (region.js) is shown over `under`, the image of job `base` it
+// refines.
+function show(id, { keepImage = false, under = null, region = null, base = null } = {}) {
   if (id === view.job) return;
   Object.assign(view, { job: id, width: 0, height: 0, tilesNext: 0, levelsPainted: new Set(),
                         pending: [], usedWhole: false, wholeIsFinal: false, wholeLoadedAt: 0, tiles: [],
                         latencies: [], longestPaintMs: 0, lastState: null, clearOnPaint: keepImage,
-                        region });
+                        region, base });
   if (!keepImage) clearImage();
   if (under) {
     Object.assign($("base-canvas"), { width: under.width, height: under.height });
@@ -465,7 +471,7 @@ function composite() {
   return canvas;
 }
 window.tessera = {
-  composite, show, postScene, formRequest, view,
+  composite, show, rerender, view,
   stats: () => ({ latencies: view.latencies.slice(), longestPaintMs: view.longestPaintMs,
                   levelsPainted: [...view.levelsPainted], usedWhole: view.usedWhole,
                   tilesNext: view.tilesNext }),

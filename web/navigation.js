@@ -1,9 +1,10 @@
 // Moving through the scene on the image (issue 21 §3, Glazer's browser): examine (a drag orbits
 // about the look-at point, the wheel zooms), walk (arrow keys or WASD move on the ground plane,
 // a drag turns) and fly (as walk, and Q/E or PageUp/PageDown move up and down). Each move
-// cancels the running job and submits the same request with the new camera (the job setting
-// "camera", docs/SERVICE.md); the image keeps the old job's pixels until the new job's first
-// level paints. Only jobs this page submitted can be moved: the page resends their request.
+// renders the job shown again with the new camera (POST /api/jobs/{id}/rerender with the job
+// setting "camera", docs/SERVICE.md), so any job can be moved, whoever submitted it; the image
+// keeps the old job's pixels until the new job's first level paints. A move cancels the job
+// it leaves only when this page started that job: another client's job runs on for it.
 // A drag with Shift held is left to other tools.
 "use strict";
 
@@ -16,9 +17,8 @@ const nav = {
   camera: null,         // {eye, look_at, up, fov}
   format: "sdl",
   viewpoints: [],
-  // job id -> {resend(extraSettings): submits the request that made it again, moved: whether
-  // a move made it, so that its camera is the page's already}
-  requests: new Map(),
+  own: new Set(),       // ids of the jobs this page started: a move may cancel them
+  moved: new Set(),     // ids of the jobs moves made: their camera is the page's already
   drag: null,           // {x, y} of the last pointer position while dragging
   timer: null,
   busy: false, again: false,
@@ -92,20 +92,17 @@ function showCamera() {
     ? `eye ${triple(c.eye)}, look-at ${triple(c.look_at)}, up ${triple(c.up)}, angle ` +
       `${+c.fov.toFixed(2)}° (${nav.format === "vrml" ? "smaller side" : "vertical"})`
     : "not known for this job";
-  $("nav-hint").textContent = nav.requests.has(nav.job) ? ""
-    : "(moves only jobs submitted from this page)";
 }
 
-// A job this page submitted, and how to submit it again with other settings.
-function navigationSubmitted(id, resend) { nav.requests.set(id, { resend, moved: false }); }
+// A job this page started (the form, a region): a move away from it cancels it.
+function navigationSubmitted(id) { nav.own.add(id); }
 
 // The job status (app.js update): a newly shown job's camera and Viewpoints.
 function navigationUpdate(job) {
   if (job.id === nav.job) return;
-  const request = nav.requests.get(job.id);
   nav.job = job.id;
   // A job a move made keeps the page's camera: further moves may have come since.
-  if (!(request && request.moved)) nav.camera = job.camera;
+  if (!nav.moved.has(job.id)) nav.camera = job.camera;
   nav.format = job.format;
   nav.viewpoints = job.viewpoints || [];
   const select = $("nav-viewpoint");
@@ -116,22 +113,22 @@ function navigationUpdate(job) {
 }
 
 // ---- Submitting the moved camera ----
-// Cancels the job shown and submits its request with the camera; one at a time, the latest
-// camera last.
+// Renders the job shown again with the camera (a region job: the whole image of the job under
+// it), cancelling the job shown if this page started it; one at a time, the latest camera last.
 async function resubmit() {
-  const request = nav.requests.get(view.job);
-  if (!request || !nav.camera) return;
+  if (view.job === null || !nav.camera) return;
   if (nav.busy) { nav.again = true; return; }
   nav.busy = true;
   try {
-    await fetchWithToken(`/api/jobs/${view.job}`, { method: "DELETE" });
-    const response = await request.resend({ camera: nav.camera });
+    if (nav.own.has(view.job)) await fetchWithToken(`/api/jobs/${view.job}`, { method: "DELETE" });
+    const response = await rerender(view.base ?? view.job, { camera: nav.camera });
     const body = await response.json().catch(() => null);
     if (response.status !== 201) {
       $("submit-error").textContent = describeError(response.status, body);
       return;
     }
-    nav.requests.set(body.id, { resend: request.resend, moved: true });
+    nav.own.add(body.id);
+    nav.moved.add(body.id);
     nav.job = body.id;
     show(body.id, { keepImage: true });
     refreshJobs();

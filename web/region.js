@@ -1,7 +1,8 @@
 // Rendering a region (issue 21 §4, docs/SERVICE.md): shift-drag a rectangle on a finished
-// image and the same scene is rendered again in that rectangle only — with the job's settings,
-// or at the higher accuracy chosen beside the image — and painted over the image as it refines.
-// The region job's pixels are the whole image's bit for bit at the same settings.
+// image and its job is rendered again (POST /api/jobs/{id}/rerender) in that rectangle only —
+// with the job's settings, or at the higher accuracy chosen beside the image — and painted over
+// the image as it refines. The region job's pixels are the whole image's bit for bit at the
+// same settings. Any job shown works, however it was submitted.
 "use strict";
 
 (() => {
@@ -28,29 +29,32 @@
     });
   }
 
-  // The settings of the job shown, as a new request takes them, with the region and the
-  // accuracy chosen in #region-accuracy.
-  async function regionSettings(region) {
-    const job = await (await fetch(`/api/jobs/${view.job}`, { cache: "no-store" })).json();
-    const settings = { ...job.settings, region };
+  // What the region job changes of job `base`'s settings: the region, and the accuracy chosen
+  // in #region-accuracy.
+  async function regionSettings(base, region) {
+    const settings = { region };
     const accuracy = $("region-accuracy").value;
     if (accuracy !== "same") settings.aa = 9;
-    if (accuracy === "passes") settings.passes = Math.min(256, 4 * settings.passes);
+    if (accuracy === "passes") {
+      const job = await (await fetch(`/api/jobs/${base}`, { cache: "no-store" })).json();
+      settings.passes = Math.min(256, 4 * job.settings.passes);
+    }
     return settings;
   }
 
   async function renderRegion(region) {
     $("region-error").textContent = "";
     const under = window.tessera.composite();
-    const settings = await regionSettings(region);
-    const { postScene, formRequest } = window.tessera;
-    const response = await postScene("/api/jobs", true, formRequest(), settings);
+    // A region over a region job refines the image under both: it starts from that job.
+    const base = view.base ?? view.job;
+    const response = await window.tessera.rerender(base, await regionSettings(base, region));
     const body = await response.json().catch(() => null);
     if (response.status !== 201) {
       $("region-error").textContent = describeError(response.status, body);
       return;
     }
-    window.tessera.show(body.id, { under, region });
+    navigationSubmitted(body.id);
+    window.tessera.show(body.id, { under, region, base });
     refreshJobs();
   }
 

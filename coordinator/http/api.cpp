@@ -173,7 +173,9 @@ void Api::route(HttpRequest& request, const std::string& path, const Query& quer
       return job_image(request, *job, query, respond);
     if (sub == "tiles" && method == http::verb::get)
       return job_tiles(request, *job, query, respond);
-    if (sub.empty() || sub == "image" || sub == "tiles")
+    if (sub == "rerender" && method == http::verb::post)
+      return rerender(request, *job, client, respond);
+    if (sub.empty() || sub == "image" || sub == "tiles" || sub == "rerender")
       throw ApiError(405, "method_not_allowed", std::string(request.method_string()) + " " + path);
   }
   throw ApiError(404, "not_found", "no route " + path);
@@ -229,6 +231,25 @@ void Api::offload(HttpRespond respond, std::function<Finish(const IntakeBudget&)
 
 void Api::create_job(HttpRequest& request, const Query& query, const std::string& client,
                      HttpRespond& respond) {
+  auto upload = std::make_shared<const HttpRequest>(std::move(request));
+  submit_job(client, respond, [upload, query, scenes = config_.scenes_dir] {
+    const auto type = (*upload)[http::field::content_type];
+    return read_submission({upload->body(), std::string_view(type.data(), type.size()), query},
+                           scenes);
+  });
+}
+
+void Api::rerender(HttpRequest& request, const Job& job, const std::string& client,
+                   HttpRespond& respond) {
+  auto upload = std::make_shared<const HttpRequest>(std::move(request));
+  // The bundle is shared, not copied here: the intake thread copies what admission needs.
+  submit_job(client, respond, [upload, bundle = job.bundle, settings = job_settings_json(job)] {
+    return read_rerender(upload->body(), *bundle, settings);
+  });
+}
+
+void Api::submit_job(const std::string& client, HttpRespond& respond,
+                     std::function<Submission()> read) {
   const auto over_cap = [this, &client] {
     return jobs_.unfinished_of(client) >= config_.max_jobs_per_client;
   };
@@ -238,14 +259,10 @@ void Api::create_job(HttpRequest& request, const Query& query, const std::string
           " unfinished jobs, the limit; cancel some or wait",
       {{"limit", "max_jobs_per_client"}, {"value", config_.max_jobs_per_client}});
   if (over_cap()) throw too_many;
-  auto upload = std::make_shared<const HttpRequest>(std::move(request));
   offload(std::move(respond),
-          [this, upload, query, client, over_cap, too_many, limits = config_.limits,
+          [this, read = std::move(read), client, over_cap, too_many, limits = config_.limits,
            scenes = config_.scenes_dir](const IntakeBudget& budget) -> Finish {
-            const auto type = (*upload)[http::field::content_type];
-            auto parsed = std::make_shared<JobRequest>(parse_job_request(
-                {upload->body(), std::string_view(type.data(), type.size()), query}, limits, scenes,
-                budget));
+            auto parsed = std::make_shared<JobRequest>(admit_job(read(), limits, scenes, budget));
             return [this, parsed, client, over_cap, too_many] {
               if (over_cap())
                 throw too_many;  // other submissions of this client finished meanwhile

@@ -63,6 +63,14 @@ class Api {
              const std::string& client, HttpRespond& respond);
   void create_job(HttpRequest& request, const Query& query, const std::string& client,
                   HttpRespond& respond);
+  // POST /api/jobs/{id}/rerender: a new job of `job`'s bundle and settings, the body's
+  // settings over them.
+  void rerender(HttpRequest& request, const Job& job, const std::string& client,
+                HttpRespond& respond);
+  // The intake both share: the per-client cap, `read` and admission on the pool under a
+  // budget, then the job created and scheduled on the io thread; 201 with its status.
+  void submit_job(const std::string& client, HttpRespond& respond,
+                  std::function<Submission()> read);
   // The time a job would take, without submitting it (the page asks as settings change).
   void predict(HttpRequest& request, const Query& query, HttpRespond& respond);
   void job_image(const HttpRequest& request, Job& job, const Query& query, HttpRespond& respond);

@@ -68,23 +68,27 @@ nlohmann::json job_summary_json(const Job& job, Clock::time_point now) {
   return j;
 }
 
-nlohmann::json job_status_json(const Job& job, Clock::time_point now) {
-  nlohmann::json j = job_summary_json(job, now);
+nlohmann::json job_settings_json(const Job& job) {
   nlohmann::json settings = to_json(job.spec);
   settings["order"] = to_string(job.plan_options.order);
   settings["preview"] = to_string(job.plan_options.preview);
   settings["progressive"] = job.plan_options.progressive;
   settings["priority"] = job.priority;
-  j["settings"] = settings;
+  return settings;
+}
+
+nlohmann::json job_status_json(const Job& job, Clock::time_point now) {
+  nlohmann::json j = job_summary_json(job, now);
+  j["settings"] = job_settings_json(job);
   j["stage"] = job.current_stage();
   j["levels_table"] = levels_table(job, now);
   j["effects"] = job.effects;
   j["warnings"] = job.warnings;
   j["stats"] = to_json(job.stats);
   j["tiles"] = job.tiles_next();
-  j["scene"] = job.bundle.main;
+  j["scene"] = job.bundle->main;
   // The camera the page navigates from; its fov is the format's angle (docs/SERVICE.md).
-  j["format"] = job.bundle.format;
+  j["format"] = job.bundle->format;
   j["camera"] = job.camera ? camera_to_json(*job.camera) : nlohmann::json(nullptr);
   nlohmann::json viewpoints = nlohmann::json::array();
   for (const NamedCamera& v : job.viewpoints)

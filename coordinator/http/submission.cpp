@@ -135,6 +135,28 @@ Submission read_multipart_submission(std::string_view body, const std::string& b
 
 }  // namespace
 
+Submission read_rerender(std::string_view body, const Bundle& bundle, json settings) {
+  const json j = body.empty() ? json::object() : json::parse(body, nullptr, false);
+  if (!j.is_object()) throw ApiError(400, "bad_json", "the body is not a JSON object");
+  for (const auto& [key, value] : j.items())
+    if (key != "settings") throw bad_request("unknown field \"" + key + "\"");
+  if (j.contains("settings")) {
+    if (!j["settings"].is_object()) throw bad_request("settings must be an object");
+    for (const auto& [key, value] : j["settings"].items()) {
+      if (!value.is_null())
+        settings[key] = value;
+      else if (settings.erase(key) == 0 && !find_setting(key))
+        throw bad_request("unknown setting \"" + key + "\"");
+    }
+  }
+  Submission sub;
+  sub.files = bundle.files;
+  sub.main = bundle.main;
+  sub.format = bundle.format;
+  sub.settings = std::move(settings);
+  return sub;
+}
+
 Submission read_submission(const JobUpload& upload,
                            const std::optional<std::filesystem::path>& scenes_dir) {
   const std::string_view type = upload.content_type;

@@ -27,8 +27,8 @@ const char* to_string(JobState state) {
 
 Job::Job(std::int64_t id_, Bundle bundle_, JobSpec spec_, PlanOptions plan_options_, int priority_)
     : id(id_),
-      bundle(std::move(bundle_)),
-      hash(content_hash(bundle)),
+      bundle(std::make_shared<const Bundle>(std::move(bundle_))),
+      hash(content_hash(*bundle)),
       spec(std::move(spec_)),
       plan_options(plan_options_),
       priority(priority_),

@@ -74,7 +74,9 @@ struct Job {
   Job(std::int64_t id, Bundle bundle, JobSpec spec, PlanOptions plan_options, int priority);
 
   std::int64_t id;
-  Bundle bundle;
+  // Shared and never changed: a rerender (POST /api/jobs/{id}/rerender) reads it on an intake
+  // thread without copying it on the io thread, even if the job is evicted meanwhile.
+  std::shared_ptr<const Bundle> bundle;
   std::string hash;
   JobSpec spec;
   PlanOptions plan_options;

@@ -63,7 +63,7 @@ std::string route_label(const std::string& path) {
     if (id.empty() || id.find_first_not_of("0123456789") != std::string::npos) return "other";
     if (slash == std::string::npos) return "/api/jobs/{id}";
     const std::string sub = rest.substr(slash + 1);
-    if (sub == "image" || sub == "tiles") return "/api/jobs/{id}/" + sub;
+    if (sub == "image" || sub == "tiles" || sub == "rerender") return "/api/jobs/{id}/" + sub;
     return "other";
   }
   if (path.starts_with("/api/")) return "other";

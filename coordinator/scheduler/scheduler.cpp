@@ -69,7 +69,7 @@ int Scheduler::take_back_units(WorkerSlot& w, const std::function<bool(std::int6
 }
 
 void Scheduler::add_job(Job& job, const std::vector<bool>& done) {
-  spdlog::info("job {} queued: {} ({}x{}, {} units)", job.id, job.bundle.main,
+  spdlog::info("job {} queued: {} ({}x{}, {} units)", job.id, job.bundle->main,
                job.spec.settings.width, job.spec.settings.height, job.plan.units.size());
   JobRun& run = runs_[job.id];
   run.job = &job;
@@ -240,7 +240,7 @@ void Scheduler::send_unit(WorkerSlot& w, JobRun& run, int unit) {
   if (!w.open_jobs.count(job.id)) {
     JobMessage open{.job = job.id, .hash = job.hash, .spec = job.spec, .bundle = std::nullopt};
     if (!w.bundles.count(job.hash)) {
-      open.bundle = job.bundle;
+      open.bundle = *job.bundle;
       w.bundles.insert(job.hash);
     }
     w.connection->send(encode(open));

@@ -4,15 +4,18 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <set>
 
 #include "common/image/decoded_texture.h"
 #include "common/render/settings_schema.h"
 #include "coordinator/http/api.h"
+#include "coordinator/http/job_json.h"
 #include "coordinator/http/multipart.h"
 #include "coordinator/http/submission.h"
 #include "coordinator/http/submit_policy.h"
 #include "coordinator/jobs/api_error.h"
 #include "coordinator/jobs/job.h"
+#include "coordinator/jobs/job_store.h"
 #include "coordinator/options.h"
 #include "coordinator/scheduler/scheduler.h"
 
@@ -196,6 +199,75 @@ TEST(ParseJobRequest, TheBundleHoldsTheImageTexture) {
     EXPECT_EQ(e.body()["error"], "scene_error");
     EXPECT_EQ(e.body()["line"], 1);
     EXPECT_EQ(e.body()["column"], 14);
+  }
+}
+
+// A rerender (POST /api/jobs/{id}/rerender) builds on the job's settings as its status shows
+// them: every setting of a job request reads back as it was given, and parses to the same job.
+// Only "strict" is not kept: it decides only whether admission refuses load warnings, which
+// the job's bundle passed already.
+TEST(JobSettingsJson, EverySettingRoundTripsThroughTheStatus) {
+  const nlohmann::json common = nlohmann::json::parse(R"({"width": 64, "height": 48, "aa": 5,
+      "stochastic": true, "jitter": 0.375, "seed": 18446744073709551615, "passes": 3,
+      "time_samples": 2, "bvh": false, "shadows": "soft", "cone_samples": 5,
+      "shadow_jitter": 0.3, "max_depth": 3, "min_weight": 0.05, "progressive": false,
+      "order": "scanline", "preview": "area", "priority": 7,
+      "camera": {"eye": [1, 2.5, 7], "look_at": [0, 0.1, 0], "up": [0, 1, 0.2], "fov": 33.3}})");
+  nlohmann::json normalized = common, region = common;
+  normalized.update({{"normalize", true}, {"brightness", 0.5}});
+  region.update({{"region", {3, 4, 60, 40}}, {"normalize", false}, {"brightness", 1.5}});
+  std::set<std::string> given;
+  for (const nlohmann::json& settings : {normalized, region}) {
+    JobRequest first;
+    parse_settings(settings, ServiceLimits{}, first);
+    JobStore store(4);
+    const Job* job = store.create(std::move(first));
+    EXPECT_EQ(job_settings_json(*job), settings);
+    JobRequest again;
+    parse_settings(job_settings_json(*job), ServiceLimits{}, again);
+    EXPECT_EQ(job_settings_json(*store.create(std::move(again))), settings);
+    for (const auto& [key, value] : settings.items()) given.insert(key);
+  }
+  for (const SettingSpec& spec : settings_schema()) {
+    if (spec.layers & kJobRequest && spec.name != "strict") {
+      EXPECT_TRUE(given.count(std::string(spec.name))) << spec.name << " is not tested";
+    }
+  }
+}
+
+// The body's settings replace the job's, null drops one; the bundle is the job's as admitted,
+// its texture decoded, and admits again to the same bundle.
+TEST(ReadRerender, TheBodysSettingsGoOverTheJobsBundleAndSettings) {
+  const std::string body = R"({"scene": "imageTexture tex/c.ppm 1 1 1\nsphere\n", "files": )"
+                           R"({"tex/c.ppm": "P3\n2 1\n255\n255 0 0  0 0 255\n"},)"
+                           R"("settings": {"width": 32, "aa": 5, "region": [0, 0, 8, 8]}})";
+  JobStore store(4);
+  const Job* job = store.create(
+      parse_job_request({body, "application/json", {}}, ServiceLimits{}, std::nullopt));
+  const Submission same = read_rerender("", *job->bundle, job_settings_json(*job));
+  EXPECT_EQ(same.settings, job_settings_json(*job));
+  const JobRequest again = admit_job(same, ServiceLimits{}, std::nullopt);
+  EXPECT_EQ(again.bundle, *job->bundle);
+
+  const Submission moved = read_rerender(
+      R"({"settings": {"aa": 9, "region": null, "camera": {"eye": [0, 0, 4], "look_at": [0, 0, 0],
+          "up": [0, 1, 0], "fov": 50}}})",
+      *job->bundle, job_settings_json(*job));
+  EXPECT_EQ(moved.settings["aa"], 9);
+  EXPECT_EQ(moved.settings["width"], 32);
+  EXPECT_FALSE(moved.settings.contains("region"));
+  EXPECT_EQ(moved.settings["camera"]["fov"], 50);
+  EXPECT_EQ(moved.main, "scene.sdl");
+  EXPECT_EQ(moved.files, job->bundle->files);
+
+  for (const char* bad : {"[]", R"({"scene": "sphere"})", R"({"settings": 3})",
+                          R"({"settings": {"colour": null}})"}) {
+    try {
+      read_rerender(bad, *job->bundle, job_settings_json(*job));
+      FAIL() << "expected " << bad << " to be refused";
+    } catch (const ApiError& e) {
+      EXPECT_EQ(e.status(), 400) << bad;
+    }
   }
 }
 

@@ -8,7 +8,10 @@
 //    what the page shows is compared pixel for pixel with the server's PNG.
 // 2. A gzip'd VRML world with an Inline and an image texture, chosen as three files in the
 //    form's file input, is submitted as VRML and renders; the page shows its final PNG.
-// 3. #job=N typed later is followed: the page switches to job 1, its canvas empty at first,
+// 3. Navigation: a drag in examine mode on a running job the form submitted cancels it and
+//    renders the same world and settings with another camera. A job submitted through the API
+//    (not this page), shown after a reload, is moved the same way, and left running.
+// 4. #job=N typed later is followed: the page switches to job 1, its canvas empty at first,
 //    then job 1's final image.
 //
 // usage: node page_test.js BUILD_DIR SOURCE_DIR
@@ -178,6 +181,44 @@ async function main() {
         throw new Error("the moved job is not the same request");
       if (await page.textContent("#nav-camera") === before)
         throw new Error("the camera shown did not change");
+    } finally {
+      worker.kill("SIGCONT");
+    }
+    await page.waitForSelector("#base-canvas[data-state=done]", { timeout: 60000 });
+
+    // A job submitted through the API, shown after a reload: moved from the coordinator's copy
+    // of its scene (POST /api/jobs/{id}/rerender), and left running, since this page did not
+    // submit it.
+    worker.kill("SIGSTOP");
+    try {
+      const posted = await (await fetch(service.base + "/api/jobs", {
+        method: "POST", headers: { "Content-Type": "application/json" },
+        body: JSON.stringify({ scene: fs.readFileSync(path.join(sourceDir, "scenes", "demo.sdl"), "utf8"),
+                               settings: { width: 200, height: 150, aa: 5 } }),
+      })).json();
+      await page.goto(`${service.base}/#job=${posted.id}`);
+      await page.reload();
+      await page.waitForFunction((n) => document.getElementById("job-title").textContent === `Job ${n}`,
+                                 posted.id, { timeout: 10000 });
+      await until("the API job's camera shown", 10000, async () =>
+        (await page.textContent("#nav-camera")).startsWith("eye"));
+      const box = await page.locator("#stage").boundingBox();
+      await page.mouse.move(box.x + box.width / 2, box.y + box.height / 2);
+      await page.mouse.down();
+      await page.mouse.move(box.x + box.width / 2 - 60, box.y + box.height / 2 - 10, { steps: 5 });
+      await page.mouse.up();
+      const moved = await until("the job moved from the API's", 10000, async () => {
+        const jobs = await api("/api/jobs");
+        return jobs.length === 6 ? jobs[jobs.length - 1].id : null;
+      });
+      await page.waitForFunction((id) => location.hash === `#job=${id}`, moved, { timeout: 10000 });
+      const from = await api(`/api/jobs/${posted.id}`), to = await api(`/api/jobs/${moved}`);
+      console.log(`moved API job ${posted.id} (${from.state}) to job ${moved} (eye ${to.camera.eye})`);
+      if (from.state === "cancelled") throw new Error("the page cancelled a job it did not submit");
+      const sorted = (o) => JSON.stringify(Object.entries(o).sort());
+      if (sorted(to.settings) !== sorted({ ...from.settings, camera: to.camera }) ||
+          JSON.stringify(to.camera) === JSON.stringify(from.camera) || to.scene !== from.scene)
+        throw new Error(`the moved API job: ${JSON.stringify([from.settings, to.settings])}`);
     } finally {
       worker.kill("SIGCONT");
     }
