@@ -47,6 +47,8 @@ std::int64_t JobPersistence::admit(const JobRequest& r) {
   stored.effects = r.effects;
   stored.warnings = r.warnings;
   stored.seconds_per_pixel_pass = r.seconds_per_pixel_pass;
+  stored.camera = r.camera;
+  stored.viewpoints = r.viewpoints;
   return db_.add_job(stored, WallClock::now());
 }
 
@@ -132,6 +134,8 @@ void JobPersistence::restore(JobStore& jobs, Scheduler& scheduler,
     request.effects = r.effects;
     request.warnings = r.warnings;
     request.seconds_per_pixel_pass = r.seconds_per_pixel_pass;
+    request.camera = r.camera;
+    request.viewpoints = std::move(r.viewpoints);
     Job* job = jobs.create(std::move(request), {}, [&](const JobRequest&) { return stored.id; });
     if (!job) {
       spdlog::warn("job {} not restored: more unfinished jobs than the limit", stored.id);

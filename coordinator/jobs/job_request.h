@@ -30,7 +30,8 @@ struct JobRequest {
   bool probe_cut_short = false;       // the probe hit its deadline: the cost is a lower bound
   bool strict = false;  // settings.strict: what loading warns about is a 400 (LoadBudget::strict)
   // The loaded scene's camera (the camera setting's when given) and VRML's Viewpoints, for the
-  // page's navigation; a job restored from the store knows only its camera setting.
+  // page's navigation; kept in the store with the job (a job stored by schema version 1 has
+  // neither, and shows its camera setting if any).
   std::optional<Camera> camera;
   std::vector<NamedCamera> viewpoints;
 };

@@ -4,6 +4,7 @@
 #include <bit>
 #include <cctype>
 #include <cstring>
+#include <iterator>
 #include <system_error>
 
 #include <nlohmann/json.hpp>
@@ -22,7 +23,10 @@ namespace {
 // given as --data-dir is refused rather than written into.
 constexpr std::int64_t kApplicationId = 0x54455353;
 
-constexpr const char* kSchema = R"sql(
+// The tables as schema version 1 made them. A new store is made at version 1 and then taken
+// through every migration below, exactly as an old store is, so that a new store and a migrated
+// one are the same.
+constexpr const char* kSchemaVersion1 = R"sql(
 CREATE TABLE bundles (
   hash TEXT PRIMARY KEY,
   bytes INTEGER NOT NULL
@@ -58,6 +62,23 @@ CREATE TABLE images (
   PRIMARY KEY (job_id, name)
 );
 )sql";
+
+// One step of the schema: from version `to - 1` to version `to`, run in one transaction with
+// the new user_version, so a crash leaves either version whole.
+struct Migration {
+  std::int64_t to;
+  const char* sql;
+};
+
+constexpr Migration kMigrations[] = {
+    // The scene's camera and Viewpoints (issue 21 §3): stored jobs had none, so a restored job
+    // lost what the page navigates from. Old rows keep no camera and no Viewpoints.
+    {2,
+     "ALTER TABLE jobs ADD COLUMN camera TEXT;"
+     "ALTER TABLE jobs ADD COLUMN viewpoints TEXT NOT NULL DEFAULT '[]'"},
+};
+static_assert(std::size(kMigrations) == JobDatabase::kSchemaVersion - 1,
+              "one migration per schema version after the first");
 
 std::int64_t to_micros(WallClock::time_point t) {
   return std::chrono::duration_cast<std::chrono::microseconds>(t.time_since_epoch()).count();
@@ -112,6 +133,44 @@ Bundle parse_bundle(const std::string& bytes) {
   return decode_bundle(nlohmann::json::parse(bytes.substr(0, newline)), bytes.substr(newline + 1));
 }
 
+// A camera as the store keeps it: the status's form (camera_to_json, whose numbers JSON gives
+// back exactly) and which side of the image the angle spans, which that form leaves out.
+nlohmann::json camera_record(const Camera& camera) {
+  nlohmann::json record = camera_to_json(camera);
+  record["fov_on_smaller_side"] = camera.view_angle_on_smaller_side;
+  return record;
+}
+
+// Throws nlohmann::json's exceptions for a record this code did not write.
+Camera camera_from_record(const nlohmann::json& record) {
+  auto vec3 = [&](const char* key) {
+    const nlohmann::json& v = record.at(key);
+    return Vec3{v.at(0).get<double>(), v.at(1).get<double>(), v.at(2).get<double>()};
+  };
+  Camera camera;
+  camera.eye = vec3("eye");
+  camera.look_at = vec3("look_at");
+  camera.up = vec3("up");
+  camera.view_angle = record.at("fov").get<double>();
+  camera.view_angle_on_smaller_side = record.at("fov_on_smaller_side").get<bool>();
+  return camera;
+}
+
+std::string viewpoints_record(const std::vector<NamedCamera>& viewpoints) {
+  nlohmann::json records = nlohmann::json::array();
+  for (const NamedCamera& v : viewpoints)
+    records.push_back({{"name", v.name}, {"camera", camera_record(v.camera)}});
+  return records.dump();
+}
+
+std::vector<NamedCamera> viewpoints_from_record(const std::string& text) {
+  std::vector<NamedCamera> viewpoints;
+  for (const nlohmann::json& record : nlohmann::json::parse(text))
+    viewpoints.push_back(
+        {record.at("name").get<std::string>(), camera_from_record(record.at("camera"))});
+  return viewpoints;
+}
+
 }  // namespace
 
 StoreError::StoreError(std::vector<std::int64_t> jobs, const std::string& cause)
@@ -155,16 +214,24 @@ void JobDatabase::open() {
       if (db_->query_int("SELECT count(*) FROM sqlite_schema") != 0)
         throw StoreError({}, file + " is a SQLite database of another application");
       sqlite::Transaction transaction(*db_);
-      db_->exec(kSchema);
+      db_->exec(kSchemaVersion1);
       db_->exec("PRAGMA application_id = " + std::to_string(kApplicationId) +
-                "; PRAGMA user_version = " + std::to_string(kSchemaVersion));
+                "; PRAGMA user_version = 1");
       transaction.commit();
+      version = 1;
     } else if (application != kApplicationId) {
       throw StoreError({}, file + " is a SQLite database of another application");
-    } else if (version != kSchemaVersion) {
+    } else if (version < 1 || version > kSchemaVersion) {
       throw StoreError({}, file + " has schema version " + std::to_string(version) +
-                               "; this coordinator reads version " +
-                               std::to_string(kSchemaVersion) + " only");
+                               "; this coordinator reads versions 1 to " +
+                               std::to_string(kSchemaVersion));
+    }
+    for (const Migration& migration : kMigrations) {
+      if (migration.to <= version) continue;
+      sqlite::Transaction transaction(*db_);
+      db_->exec(migration.sql);
+      db_->exec("PRAGMA user_version = " + std::to_string(migration.to));
+      transaction.commit();
     }
     if (max_disk_bytes_ != kUnlimited) {
       // SQLite itself refuses to grow the file past the budget (SQLITE_FULL), so one huge
@@ -255,8 +322,8 @@ std::int64_t JobDatabase::add_job(const StoredRequest& request, WallClock::time_
         INSERT INTO jobs (bundle_hash, spec, width, height, passes, progressive, unit_order,
           preview, unit_pixels, priority, effects, warnings, seconds_per_pixel_pass,
           uncalibrated_prediction, predicted_seconds, prediction_threads, state, error,
-          created_us)
-        VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, 'queued', '', ?))sql");
+          created_us, camera, viewpoints)
+        VALUES (?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, ?, 'queued', '', ?, ?, ?))sql");
       const PlanOptions& plan = request.plan;
       insert.bind(1, hash)
           .bind(2, to_json(request.spec).dump())
@@ -275,7 +342,9 @@ std::int64_t JobDatabase::add_job(const StoredRequest& request, WallClock::time_
           .bind(15, request.predicted_seconds)
           .bind(16, std::int64_t{request.prediction_threads})
           .bind(17, to_micros(created))
-          .run();
+          .bind(19, viewpoints_record(request.viewpoints));
+      if (request.camera) insert.bind(18, camera_record(*request.camera).dump());  // else NULL
+      insert.run();
       std::int64_t id = db_->last_insert_rowid();
       check_budget({});
       transaction.commit();
@@ -418,7 +487,8 @@ std::vector<StoredJob> JobDatabase::load_all() {
     sqlite::Statement select(*db_, R"sql(
     SELECT id, bundle_hash, spec, width, height, passes, progressive, unit_order, preview,
       unit_pixels, priority, effects, warnings, seconds_per_pixel_pass, uncalibrated_prediction,
-      predicted_seconds, prediction_threads, state, error, created_us, finished_us
+      predicted_seconds, prediction_threads, state, error, created_us, finished_us, camera,
+      viewpoints
     FROM jobs ORDER BY id)sql");
     sqlite::Statement results(*db_,
                               "SELECT sequence, unit, payload, stats, worker FROM results "
@@ -460,6 +530,9 @@ std::vector<StoredJob> JobDatabase::load_all() {
         job.error = select.column_text(18);
         job.created = from_micros(select.column_int(19));
         if (!select.is_null(20)) job.finished = from_micros(select.column_int(20));
+        if (!select.is_null(21))
+          request.camera = camera_from_record(nlohmann::json::parse(select.column_text(21)));
+        request.viewpoints = viewpoints_from_record(select.column_text(22));
 
         results.bind(1, job.id);
         while (results.step()) {

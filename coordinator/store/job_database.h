@@ -44,11 +44,13 @@ class StoreError : public std::runtime_error {
 
 class JobDatabase {
  public:
-  static constexpr std::int64_t kSchemaVersion = 1;
+  // 2: jobs keep their scene's camera and Viewpoints.
+  static constexpr std::int64_t kSchemaVersion = 2;
   static constexpr std::int64_t kUnlimited = std::numeric_limits<std::int64_t>::max();
 
-  // Opens DIR (created if missing) and its database; refuses a database of another schema
-  // version or another application. A write that would take size_bytes() above
+  // Opens DIR (created if missing) and its database, migrating a store of an older schema
+  // version (a crash mid-way leaves it at a whole version); refuses a newer schema version or
+  // another application's database. A write that would take size_bytes() above
   // max_disk_bytes fails with StoreError. Throws StoreError.
   explicit JobDatabase(const std::filesystem::path& dir, std::int64_t max_disk_bytes = kUnlimited);
   ~JobDatabase();

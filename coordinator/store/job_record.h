@@ -14,6 +14,7 @@
 #include "common/protocol/bundle.h"
 #include "common/protocol/job_spec.h"
 #include "common/render/stats.h"
+#include "common/scene/camera.h"
 
 namespace tessera {
 
@@ -30,6 +31,10 @@ struct StoredRequest {
   double seconds_per_pixel_pass = 0;
   std::optional<double> uncalibrated_prediction, predicted_seconds;
   int prediction_threads = 0;
+  // The loaded scene's camera (the camera setting's when given) and VRML's Viewpoints, which a
+  // job's status shows for the page's navigation. A job stored by schema version 1 has none.
+  std::optional<Camera> camera;
+  std::vector<NamedCamera> viewpoints;
 };
 
 // One merged unit result. Replaying a job's results in sequence order into a fresh frame

@@ -2,8 +2,9 @@
 """Jobs survive a coordinator crash (issue 17 §1-2): the coordinator is SIGKILLed again and
 again while a job of several levels and passes renders, restarted each time with the same
 --data-dir, and the job's final image is still bit-identical to tessera-render's; jobs finished
-before the crashes keep their ids and images. And a store over --max-disk fails only the job
-it could not store. Cases: crash_resume, max_disk."""
+before the crashes keep their ids and images, and every job its camera and Viewpoints (issue 21
+§3). And a store over --max-disk fails only the job it could not store. Cases: crash_resume,
+max_disk, read_only."""
 import hashlib
 import json
 import os
@@ -17,7 +18,8 @@ import urllib.error
 import urllib.request
 
 import service_test
-from service_test import SECRET, assert_identical, demo_scene, render_cli, start_coordinator
+from service_test import (CAMERA_SDL, CAMERA_VRML, SECRET, assert_identical, demo_scene,
+                          render_cli, start_coordinator)
 
 # Several levels and three passes, long enough on two threads for ten kills spread over it.
 # Long enough (about 5 s of one core) that 0.3 s after a kill point the job is still running.
@@ -65,12 +67,17 @@ class Coordinator:
         assert status == 200, (path, status, body)
         return json.loads(body)
 
-    def submit(self, settings):
+    def submit(self, settings, scene=None, fmt="sdl"):
         status, body = self.request(
-            "POST", "/api/jobs", json.dumps({"scene": open(demo_scene()).read(),
-                                             "settings": settings}).encode())
+            "POST", "/api/jobs", json.dumps({"scene": scene or open(demo_scene()).read(),
+                                             "format": fmt, "settings": settings}).encode())
         assert status == 201, (status, body)
         return json.loads(body)["id"]
+
+    def views(self, job_id):
+        """What the page navigates from: the job's camera and Viewpoints."""
+        job = self.get("/api/jobs/%d" % job_id)
+        return job["camera"], job["viewpoints"]
 
     def wait(self, job_id, until, timeout=60):
         deadline = time.time() + timeout
@@ -107,6 +114,9 @@ def case_crash_resume():
             first_exr = c.image(first)
             job = c.submit(SETTINGS)
             assert job == first + 1
+            # The demo scene's own camera: a resumed job shows it again.
+            job_views = c.views(job)
+            assert job_views[0] is not None, job_views
             seen, restored = set(), [0.0]
             for k in range(1, KILLS + 1):
                 # Kill points spread evenly over the job's work, so over its levels and passes.
@@ -125,6 +135,7 @@ def case_crash_resume():
                 back = c.get("/api/jobs/%d" % job)
                 assert back["state"] in ("queued", "running"), back
                 assert back["progress"] >= restored[-1], (restored, back["progress"])
+                assert (back["camera"], back["viewpoints"]) == job_views, back
                 restored.append(back["progress"])
             assert restored[-1] > 0.5, restored
             final = c.finished(job)
@@ -143,13 +154,26 @@ def case_crash_resume():
             for bad in ("limit=0", "limit=1001", "after=-1", "limit=x"):
                 status, body = c.request("GET", "/api/jobs?" + bad)
                 assert status == 400 and json.loads(body)["error"] == "bad_query", (bad, body)
+            # A world with two Viewpoints, and an SDL job whose camera is a setting.
+            world = c.submit({"width": 8, "height": 8}, CAMERA_VRML, "vrml")
+            world_views = c.views(world)
+            assert [v["name"] for v in world_views[1]] == ["Start", "Above"], world_views
+            camera = {"eye": [-2, 0.5, 6], "look_at": [0, -0.25, 0], "up": [0.1, 1, 0],
+                      "fov": 33.5}
+            moved = c.submit({"width": 8, "height": 8, "camera": camera}, CAMERA_SDL)
+            assert c.views(moved) == (camera, []), c.views(moved)
+            for extra in (world, moved):
+                assert c.finished(extra)["state"] == "done"
             c.kill()
             c.start()
             assert c.get("/api/jobs/%d" % job)["state"] == "done"
+            assert c.views(job) == job_views, c.views(job)
+            assert c.views(world) == world_views, c.views(world)
+            assert c.views(moved) == (camera, []), c.views(moved)
             with open(os.path.join(tmp, "after.exr"), "wb") as f:
                 f.write(c.image(job))
             assert_identical(os.path.join(tmp, "after.exr"), os.path.join(tmp, "cli.exr"))
-            assert c.submit(SMALL) == job + 1
+            assert c.submit(SMALL) == moved + 1
             print("killed %d times at (level, pass) %s; progress back after each restart: %s" %
                   (KILLS, sorted(seen), " ".join("%.2f" % p for p in restored[1:])))
         except BaseException:

@@ -1,6 +1,6 @@
 // The coordinator's durable job store (coordinator/store): round trips, a crash before flush,
-// schema refusal, shared bundle files, retention by age and size, paging, and a full store
-// that fails the write without damaging what it holds.
+// schema refusal and migration, shared bundle files, retention by age and size, paging, and a
+// full store that fails the write without damaging what it holds.
 #include <gtest/gtest.h>
 
 #include <unistd.h>
@@ -71,6 +71,10 @@ StoredRequest make_request(const std::string& scene = "camera { }\n") {
   request.seconds_per_pixel_pass = 1.25e-7;
   request.predicted_seconds = 4.5;
   request.prediction_threads = 6;
+  // Numbers whose every digit matters, and the flag the status's camera form leaves out.
+  request.camera = Camera{{0.1 + 0.2, -1e-300, 5}, {0, 1.0 / 3, 0}, {0, 1, 1e-9}, 33.5, true};
+  request.viewpoints = {{"Start", Camera{}},
+                        {"world.wrl:12:3", Camera{{1, 2, 3}, {1, 2, 2}, {0, 1, 0}, 28.6, true}}};
   return request;
 }
 
@@ -148,6 +152,8 @@ TEST_F(JobDatabaseTest, RoundTripsAJobItsResultsAndImages) {
   EXPECT_FALSE(job.request.uncalibrated_prediction);
   EXPECT_EQ(job.request.predicted_seconds, 4.5);
   EXPECT_EQ(job.request.prediction_threads, 6);
+  EXPECT_EQ(job.request.camera, expected.camera);
+  EXPECT_EQ(job.request.viewpoints, expected.viewpoints);
   EXPECT_EQ(job.state, "done");
   EXPECT_EQ(job.created, at_seconds(0));
   EXPECT_EQ(job.finished, at_seconds(9));
@@ -165,6 +171,70 @@ TEST_F(JobDatabaseTest, RoundTripsAJobItsResultsAndImages) {
   EXPECT_EQ(job.results[2].stats.seconds, 0.125);
   EXPECT_EQ(job.images, (std::vector<std::string>{"image.exr", "image.png"}));
   EXPECT_EQ(read_whole_file(db.image_path(id, "image.png")), std::string("\x89PNG\0\1", 6));
+}
+
+// A job whose scene gave no camera (none is stored for it) and no Viewpoints.
+TEST_F(JobDatabaseTest, AJobWithoutCameraOrViewpointsRoundTrips) {
+  StoredRequest request = make_request();
+  request.camera.reset();
+  request.viewpoints.clear();
+  JobDatabase(dir_).add_job(request, at_seconds(0));
+  const std::vector<StoredJob> jobs = JobDatabase(dir_).load_all();
+  ASSERT_EQ(jobs.size(), 1u);
+  EXPECT_FALSE(jobs[0].request.camera);
+  EXPECT_TRUE(jobs[0].request.viewpoints.empty());
+}
+
+// The schema as a store holds it: every table's and index's statement, by name.
+std::string schema_of(const fs::path& dir) {
+  sqlite::Connection raw((dir / "tessera.db").string());
+  sqlite::Statement select(raw, "SELECT name, sql FROM sqlite_schema ORDER BY name");
+  std::string schema;
+  while (select.step())
+    schema += select.column_text(0) + ": " +
+              (select.is_null(1) ? std::string("(implicit)") : select.column_text(1)) + "\n";
+  return schema;
+}
+
+// A store written by a coordinator of schema version 1 (tests/service/data/job_store_v1: its
+// database as `sqlite3 .dump` printed it, and its one bundle file) holds one queued job. Opened
+// now, it is migrated: the job loads as it was, without camera or Viewpoints, new jobs keep
+// theirs, and the store's schema is the one a new store gets.
+TEST_F(JobDatabaseTest, MigratesAVersion1StoreWhoseJobsKeepWorking) {
+  const fs::path fixture = fs::path(TESSERA_SOURCE_DIR) / "tests/service/data/job_store_v1";
+  fs::create_directories(dir_);
+  fs::copy(fixture / "bundles", dir_ / "bundles", fs::copy_options::recursive);
+  {
+    sqlite::Connection raw((dir_ / "tessera.db").string());
+    raw.exec(read_whole_file(fixture / "tessera.sql"));
+    ASSERT_EQ(raw.query_int("PRAGMA user_version"), 1);
+  }
+  {
+    JobDatabase db(dir_);
+    std::vector<StoredJob> jobs = db.load_all();
+    ASSERT_EQ(jobs.size(), 1u);
+    const StoredJob& old_job = jobs[0];
+    EXPECT_EQ(old_job.id, 1);
+    EXPECT_EQ(old_job.state, "queued");
+    EXPECT_EQ(old_job.request.bundle.main, "scene.sdl");
+    EXPECT_EQ(old_job.request.spec.settings.width, 16);
+    EXPECT_FALSE(old_job.request.spec.overrides.camera);
+    EXPECT_EQ(old_job.request.plan.width, 16);
+    EXPECT_FALSE(old_job.request.camera);
+    EXPECT_TRUE(old_job.request.viewpoints.empty());
+    EXPECT_EQ(db.add_job(make_request(), at_seconds(1)), 2);
+  }
+  const std::vector<StoredJob> jobs = JobDatabase(dir_).load_all();
+  ASSERT_EQ(jobs.size(), 2u);
+  EXPECT_EQ(jobs[1].request.camera, make_request().camera);
+  EXPECT_EQ(jobs[1].request.viewpoints, make_request().viewpoints);
+  {
+    sqlite::Connection raw((dir_ / "tessera.db").string());
+    EXPECT_EQ(raw.query_int("PRAGMA user_version"), JobDatabase::kSchemaVersion);
+  }
+  const fs::path fresh = dir_ / "fresh";
+  { JobDatabase created(fresh); }
+  EXPECT_EQ(schema_of(dir_), schema_of(fresh));
 }
 
 TEST_F(JobDatabaseTest, ACrashLosesOnlyTheResultsNotFlushed) {
@@ -230,15 +300,16 @@ TEST_F(JobDatabaseTest, IdsAreNeverReusedAcrossRestartsAndDeletions) {
 
 TEST_F(JobDatabaseTest, RefusesAnUnknownSchemaVersionAndAForeignDatabase) {
   { JobDatabase db(dir_); }
+  const std::string newer = std::to_string(JobDatabase::kSchemaVersion + 1);
   {
     sqlite::Connection raw((dir_ / "tessera.db").string());
-    raw.exec("PRAGMA user_version = 2");
+    raw.exec("PRAGMA user_version = " + newer);
   }
   try {
     JobDatabase db(dir_);
     FAIL() << "a newer schema was opened";
   } catch (const StoreError& e) {
-    EXPECT_NE(std::string(e.what()).find("schema version 2"), std::string::npos) << e.what();
+    EXPECT_NE(std::string(e.what()).find("schema version " + newer), std::string::npos) << e.what();
   }
 
   fs::path other = dir_ / "other";
