@@ -25,10 +25,6 @@ struct JobSpec {
 // to put in place (load_scene), before anything that depends on it is made.
 void apply_overrides(Scene& scene, const SceneOverrides& overrides);
 
-// The pixels a job's plan covers (PlanOptions::region): the settings' region, unset for the
-// whole image. The region travels with the settings, so a stored job restores its plan.
-std::optional<Tile> plan_region(const RenderSettings& settings);
-
 nlohmann::json to_json(const JobSpec& spec);
 // Throws ProtocolError for missing, mistyped or out-of-range fields.
 JobSpec job_spec_from_json(const nlohmann::json& j);

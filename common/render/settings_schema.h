@@ -44,10 +44,10 @@ struct JobSettings {
 enum class SettingType { Integer, Number, Boolean, Choice, Seed, Camera, Region };
 
 // A setting's value, in the alternative of its type (Integer: int64_t, Seed: uint64_t, Choice:
-// the choice's name, Region: PixelRegion); monostate for an override left unset, which keeps
+// the choice's name, Region: PixelRect); monostate for an override left unset, which keeps
 // the scene's value, and for no region, the whole image.
 using SettingValue = std::variant<std::monostate, std::int64_t, double, bool, std::string,
-                                  std::uint64_t, Camera, PixelRegion>;
+                                  std::uint64_t, Camera, PixelRect>;
 
 // The layers that take a setting.
 enum SettingLayer : unsigned {
