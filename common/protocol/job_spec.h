@@ -1,7 +1,7 @@
 // What a worker needs besides the bundle to render a job's units: the render settings and the
 // scene overrides of the page's controls (recursion depth, minimum weight, camera). Coordinator and
 // worker apply the same overrides to the same parsed scene. The fields and their ranges are
-// the wire layer's settings of common/render/settings_schema.h.
+// the wire layer's settings of common/settings/settings_schema.h.
 #pragma once
 
 #include <optional>
@@ -9,10 +9,10 @@
 #include <nlohmann/json.hpp>
 
 #include "common/progressive/unit_pixels.h"
-#include "common/render/settings.h"
-#include "common/render/settings_schema.h"
-#include "common/render/stats.h"
 #include "common/scene/scene.h"
+#include "common/settings/render_settings.h"
+#include "common/settings/settings_schema.h"
+#include "common/stats/render_stats.h"
 
 namespace tessera {
 

@@ -18,8 +18,8 @@
 #include "common/math/pixel_rect.h"
 #include "common/render/interrupt.h"
 #include "common/render/prepared_scene.h"
-#include "common/render/settings.h"
-#include "common/render/stats.h"
+#include "common/settings/render_settings.h"
+#include "common/stats/render_stats.h"
 
 namespace tessera {
 

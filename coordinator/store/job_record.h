@@ -13,7 +13,7 @@
 #include "common/progressive/plan.h"
 #include "common/protocol/bundle.h"
 #include "common/protocol/job_spec.h"
-#include "common/render/stats.h"
+#include "common/stats/render_stats.h"
 
 namespace tessera {
 

@@ -89,7 +89,7 @@ TEST(JobSpec, MistypedFieldsAreProtocolErrors) {
   EXPECT_THROW(job_spec_from_json(nlohmann::json::object()), ProtocolError);
 }
 
-// The wire takes each setting's one range (common/render/settings_schema.h), as the job request
+// The wire takes each setting's one range (common/settings/settings_schema.h), as the job request
 // and tessera-render do; an unset override is left out of the message.
 TEST(JobSpec, OutOfRangeSettingsAreProtocolErrors) {
   const nlohmann::json good = to_json(JobSpec{});

@@ -6,7 +6,7 @@
 #include <algorithm>
 
 #include "common/image/decoded_texture.h"
-#include "common/render/settings_schema.h"
+#include "common/settings/settings_schema.h"
 #include "coordinator/http/api.h"
 #include "coordinator/http/multipart.h"
 #include "coordinator/http/submission.h"

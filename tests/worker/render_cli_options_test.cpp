@@ -2,7 +2,7 @@
 // errors name the flag and the bad value, ranges and help come from the settings schema.
 #include <gtest/gtest.h>
 
-#include "common/render/settings_schema.h"
+#include "common/settings/settings_schema.h"
 #include "worker/render_cli/options.h"
 
 namespace tessera {

@@ -1,4 +1,4 @@
-#include "common/render/settings_schema.h"
+#include "common/settings/settings_schema.h"
 
 #include <algorithm>
 #include <charconv>

@@ -1,6 +1,6 @@
-// The settings schema (common/render/settings_schema.h): its table agrees with itself, with the
+// The settings schema (common/settings/settings_schema.h): its table agrees with itself, with the
 // structs it sets and with the docs' table of settings in docs/SERVICE.md.
-#include "common/render/settings_schema.h"
+#include "common/settings/settings_schema.h"
 
 #include <gtest/gtest.h>
 

@@ -6,10 +6,10 @@
 #include <optional>
 #include <string_view>
 
-#include "common/accel/bvh.h"
 #include "common/math/pixel_rect.h"
 #include "common/scene/camera.h"
 #include "common/scene/motion.h"  // kMaxTimeSamples
+#include "common/settings/bvh_mode.h"
 
 namespace tessera {
 
