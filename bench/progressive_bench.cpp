@@ -53,8 +53,7 @@ void BM_Progressive(benchmark::State& state) {
   for (auto _ : state) {
     FrameBuffer frame(kWidth, kHeight);
     for (const WorkUnit& unit : plan.units) {
-      std::vector<PixelCoord> coords;
-      for (const Pixel& p : expand(unit.pixels)) coords.push_back({p.x, p.y});
+      const std::vector<PixelCoord> coords = expand(unit.pixels);
       std::vector<Rgb> out(coords.size());
       render_pixels(demo_scene(), settings, coords, plan.stages[unit.stage].pass, out, stats);
       for (std::size_t i = 0; i < coords.size(); ++i)

@@ -1,6 +1,6 @@
 // tessera-submit's command line (CLI11): the scene, --coordinator URL, --tls-ca, -o OUT, --token,
-// --root, and every setting of a job request (common/render/settings_schema.h) as the same flag as
-// tessera-render's, with the same ranges and help.
+// --root, and every setting of a job request (common/settings/settings_schema.h) as the same flag
+// as tessera-render's, with the same ranges and help.
 #pragma once
 
 #include <string>
@@ -8,7 +8,7 @@
 #include <vector>
 
 #include "common/protocol/tls.h"
-#include "common/render/settings_schema.h"
+#include "common/settings/settings_schema.h"
 
 namespace tessera {
 

@@ -56,8 +56,7 @@ std::vector<LevelRow> measure_levels(const Scene& scene, const RenderSettings& b
     RenderStats stats;
     const auto start = Clock::now();
     for (int u = stage.first_unit; u < stage.first_unit + stage.unit_count; ++u) {
-      std::vector<PixelCoord> coords;
-      for (const Pixel& p : expand(plan.units[u].pixels)) coords.push_back({p.x, p.y});
+      const std::vector<PixelCoord> coords = expand(plan.units[u].pixels);
       std::vector<Rgb> values(coords.size());
       render_pixels(prepared, base, coords, stage.pass, values, stats);
       for (std::size_t i = 0; i < coords.size(); ++i)
@@ -68,7 +67,7 @@ std::vector<LevelRow> measure_levels(const Scene& scene, const RenderSettings& b
     Image preview(base.width, base.height);
     for (int y = 0; y < base.height; ++y)
       for (int x = 0; x < base.width; ++x) {
-        const Pixel a = block_of({x, y}, stage.block);
+        const PixelCoord a = block_of({x, y}, stage.block);
         preview.set(x, y, anchors.get(a.x, a.y));
       }
     rows.push_back({stage.level, stage.block, stage.blocks, stage.traced, seconds, cumulative,

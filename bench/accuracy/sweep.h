@@ -5,8 +5,8 @@
 #include <string>
 #include <vector>
 
-#include "common/render/settings.h"
 #include "common/scene/scene.h"
+#include "common/settings/render_settings.h"
 
 namespace tessera {
 

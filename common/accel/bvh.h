@@ -9,10 +9,9 @@
 
 #include "common/accel/child_boxes.h"
 #include "common/math/ray.h"
+#include "common/settings/bvh_mode.h"
 
 namespace tessera {
-
-enum class BvhMode { Sah, None };
 
 struct BvhNode {
   Bounds3 bounds;

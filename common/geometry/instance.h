@@ -10,6 +10,7 @@
 #include "common/math/ray.h"
 #include "common/scene/motion.h"
 #include "common/scene/shape.h"
+#include "common/stats/intersection_counters.h"
 
 namespace tessera {
 

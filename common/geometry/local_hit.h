@@ -18,11 +18,4 @@ struct LocalHit {
   std::uint32_t part = 0;
 };
 
-// Work counters that intersection routines add to; merged into render statistics.
-struct IntersectionCounters {
-  std::uint64_t shape_tests = 0;     // object-level intersection routine calls
-  std::uint64_t triangle_tests = 0;  // ray/triangle tests inside meshes
-  std::uint64_t bvh_nodes = 0;       // BVH nodes visited (scene and mesh hierarchies)
-};
-
 }  // namespace tessera

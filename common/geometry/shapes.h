@@ -14,6 +14,7 @@
 #include "common/geometry/local_hit.h"
 #include "common/math/ray.h"
 #include "common/scene/shape.h"
+#include "common/stats/intersection_counters.h"
 
 namespace tessera {
 

@@ -12,8 +12,8 @@ long long ceil_div(long long a, long long b) { return (a + b - 1) / b; }
 
 // The image's tiles of side `tile` (a multiple of `step`, so they stay aligned to every block)
 // that meet `area`, clipped to it, in dispatch order.
-std::vector<Tile> tiles(const Tile& area, int tile, UnitOrder order) {
-  std::vector<Tile> out;
+std::vector<PixelRect> tiles(const PixelRect& area, int tile, UnitOrder order) {
+  std::vector<PixelRect> out;
   for (int y = area.y0 / tile * tile; y < area.y1; y += tile)
     for (int x = area.x0 / tile * tile; x < area.x1; x += tile)
       out.push_back({std::max(x, area.x0), std::max(y, area.y0), std::min(x + tile, area.x1),
@@ -22,13 +22,13 @@ std::vector<Tile> tiles(const Tile& area, int tile, UnitOrder order) {
     // Rectangular rings around the area's centre (the seeds' "central" pattern): the ring is
     // the larger of the two axis distances; within a ring, scanline order keeps it stable.
     const double cx = (area.x0 + area.x1) / 2.0, cy = (area.y0 + area.y1) / 2.0;
-    auto ring = [&](const Tile& r) {
+    auto ring = [&](const PixelRect& r) {
       const double dx = std::abs((r.x0 + r.x1) / 2.0 - cx);
       const double dy = std::abs((r.y0 + r.y1) / 2.0 - cy);
       return std::floor(std::max(dx, dy) / tile);
     };
     std::stable_sort(out.begin(), out.end(),
-                     [&](const Tile& a, const Tile& b) { return ring(a) < ring(b); });
+                     [&](const PixelRect& a, const PixelRect& b) { return ring(a) < ring(b); });
   }
   return out;
 }
@@ -43,7 +43,7 @@ void add_stage(Plan& plan, Stage stage, UnitPixels shape, double density,
                                              std::max(plan.width, plan.height));
   stage.first_unit = static_cast<int>(plan.units.size());
   const int stage_index = static_cast<int>(plan.stages.size());
-  for (const Tile& r : tiles(plan.area, static_cast<int>(side), options.order)) {
+  for (const PixelRect& r : tiles(plan.area, static_cast<int>(side), options.order)) {
     shape.rect = r;
     const long long n = pixel_count(shape);
     if (n == 0) continue;
@@ -52,7 +52,7 @@ void add_stage(Plan& plan, Stage stage, UnitPixels shape, double density,
   }
   stage.unit_count = static_cast<int>(plan.units.size()) - stage.first_unit;
   if (stage.unit_count == 0) return;  // a region too thin for this level's anchors
-  const Tile& a = plan.area;
+  const PixelRect& a = plan.area;
   stage.blocks = (ceil_div(a.x1, stage.block) - a.x0 / stage.block) *
                  (ceil_div(a.y1, stage.block) - a.y0 / stage.block);
   plan.total_cost += stage.traced;
@@ -82,8 +82,8 @@ Plan make_plan(const PlanOptions& o) {
   Plan plan;
   plan.width = o.width;
   plan.height = o.height;
-  plan.area = o.region.value_or(Tile{0, 0, o.width, o.height});
-  const Tile& a = plan.area;
+  plan.area = o.region.value_or(PixelRect{0, 0, o.width, o.height});
+  const PixelRect& a = plan.area;
   if (a.x0 < 0 || a.y0 < 0 || a.x1 > o.width || a.y1 > o.height || a.width() <= 0 ||
       a.height() <= 0)
     throw std::invalid_argument("make_plan: the region must be a non-empty part of the image");

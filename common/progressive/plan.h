@@ -32,8 +32,8 @@ struct PlanOptions {
   bool progressive = true;  // false: pass 0 is a direct whole-image pass, no levels
   UnitOrder order = UnitOrder::Centre;
   PreviewMode preview = PreviewMode::Anchor;
-  long long unit_pixels = 1024;               // target traced pixels per unit
-  std::optional<Tile> region = std::nullopt;  // inside the image; unset: the whole image
+  long long unit_pixels = 1024;                    // target traced pixels per unit
+  std::optional<PixelRect> region = std::nullopt;  // inside the image; unset: the whole image
 };
 
 // One row of the per-level table: a refinement level or a sample pass.
@@ -55,7 +55,7 @@ struct WorkUnit {
 
 struct Plan {
   int width = 0, height = 0;
-  Tile area;                    // the pixels the plan covers: the region, or the whole image
+  PixelRect area;               // the pixels the plan covers: the region, or the whole image
   int levels = 0;               // L, of the whole image; a region's first stages may be later
                                 // levels
   std::vector<Stage> stages;    // in dispatch order

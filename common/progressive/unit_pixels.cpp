@@ -9,16 +9,16 @@ int first_multiple_at_or_after(int v, int step) { return (v + step - 1) / step *
 
 template <typename Visit>
 void for_each_pixel(const UnitPixels& u, Visit&& visit) {
-  const Tile& r = u.rect;
+  const PixelRect& r = u.rect;
   if (u.step <= 0 || r.width() <= 0 || r.height() <= 0) return;
   const int x_start = first_multiple_at_or_after(r.x0, u.step);
   const int y_start = first_multiple_at_or_after(r.y0, u.step);
   for (int by = y_start; by < r.y1; by += u.step) {
     for (int bx = x_start; bx < r.x1; bx += u.step) {
       if (u.pattern == PixelPattern::Centres) {
-        visit(Pixel{std::min(bx + u.step / 2, r.x1 - 1), std::min(by + u.step / 2, r.y1 - 1)});
+        visit(PixelCoord{std::min(bx + u.step / 2, r.x1 - 1), std::min(by + u.step / 2, r.y1 - 1)});
       } else if (u.exclude <= 0 || bx % u.exclude != 0 || by % u.exclude != 0) {
-        visit(Pixel{bx, by});
+        visit(PixelCoord{bx, by});
       }
     }
   }
@@ -26,15 +26,15 @@ void for_each_pixel(const UnitPixels& u, Visit&& visit) {
 
 }  // namespace
 
-std::vector<Pixel> expand(const UnitPixels& unit) {
-  std::vector<Pixel> out;
-  for_each_pixel(unit, [&](Pixel p) { out.push_back(p); });
+std::vector<PixelCoord> expand(const UnitPixels& unit) {
+  std::vector<PixelCoord> out;
+  for_each_pixel(unit, [&](PixelCoord p) { out.push_back(p); });
   return out;
 }
 
 long long pixel_count(const UnitPixels& unit) {
   long long n = 0;
-  for_each_pixel(unit, [&](Pixel) { ++n; });
+  for_each_pixel(unit, [&](PixelCoord) { ++n; });
   return n;
 }
 

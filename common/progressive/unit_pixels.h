@@ -4,21 +4,9 @@
 
 #include <vector>
 
-namespace tessera {
+#include "common/math/pixel_rect.h"
 
-// Plain pixel geometry, so the plan does not depend on the tracer (the worker converts to the
-// render API's PixelCoord when it traces).
-struct Pixel {
-  int x = 0, y = 0;
-  friend bool operator==(const Pixel&, const Pixel&) = default;
-};
-// A half-open rectangle [x0, x1) x [y0, y1).
-struct Tile {
-  int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
-  int width() const { return x1 - x0; }
-  int height() const { return y1 - y0; }
-  friend bool operator==(const Tile&, const Tile&) = default;
-};
+namespace tessera {
 
 enum class PixelPattern {
   Anchors,  // block anchors: (x, y) multiples of `step`, minus those that are multiples of
@@ -28,7 +16,7 @@ enum class PixelPattern {
 };
 
 struct UnitPixels {
-  Tile rect;  // aligned to `step` except where it is clipped by the image's edge
+  PixelRect rect;  // aligned to `step` except where it is clipped by the image's edge
   int step = 1;
   int exclude = 0;  // 0: nothing excluded
   PixelPattern pattern = PixelPattern::Anchors;
@@ -36,10 +24,12 @@ struct UnitPixels {
 };
 
 // The unit's pixels in scanline order; results travel in this order.
-std::vector<Pixel> expand(const UnitPixels& unit);
+std::vector<PixelCoord> expand(const UnitPixels& unit);
 long long pixel_count(const UnitPixels& unit);
 
 // The top-left corner of the block of side `step` that pixel (x, y) stands for on display.
-inline Pixel block_of(Pixel p, int step) { return {p.x / step * step, p.y / step * step}; }
+inline PixelCoord block_of(PixelCoord p, int step) {
+  return {p.x / step * step, p.y / step * step};
+}
 
 }  // namespace tessera

@@ -51,12 +51,6 @@ nlohmann::json camera_to_json(const Camera& camera) {
           {"fov", camera.view_angle}};
 }
 
-std::optional<Tile> plan_region(const RenderSettings& settings) {
-  if (!settings.region) return std::nullopt;
-  const PixelRegion& r = *settings.region;
-  return Tile{r.x0, r.y0, r.x1, r.y1};
-}
-
 nlohmann::json setting_to_json(const SettingValue& value) {
   return std::visit(
       [](const auto& v) -> nlohmann::json {
@@ -65,7 +59,7 @@ nlohmann::json setting_to_json(const SettingValue& value) {
           return nullptr;
         else if constexpr (std::is_same_v<T, Camera>)
           return camera_to_json(v);
-        else if constexpr (std::is_same_v<T, PixelRegion>)
+        else if constexpr (std::is_same_v<T, PixelRect>)
           return {v.x0, v.y0, v.x1, v.y1};
         else
           return v;
@@ -106,7 +100,7 @@ std::optional<SettingValue> setting_from_json(const SettingSpec& spec, const nlo
           return std::nullopt;
         v[i] = static_cast<int>(j[i].get<std::int64_t>());
       }
-      return PixelRegion{v[0], v[1], v[2], v[3]};
+      return PixelRect{v[0], v[1], v[2], v[3]};
     }
   }
   return std::nullopt;

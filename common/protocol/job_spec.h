@@ -1,7 +1,7 @@
 // What a worker needs besides the bundle to render a job's units: the render settings and the
 // scene overrides of the page's controls (recursion depth, minimum weight, camera). Coordinator and
 // worker apply the same overrides to the same parsed scene. The fields and their ranges are
-// the wire layer's settings of common/render/settings_schema.h.
+// the wire layer's settings of common/settings/settings_schema.h.
 #pragma once
 
 #include <optional>
@@ -9,10 +9,10 @@
 #include <nlohmann/json.hpp>
 
 #include "common/progressive/unit_pixels.h"
-#include "common/render/settings.h"
-#include "common/render/settings_schema.h"
-#include "common/render/stats.h"
 #include "common/scene/scene.h"
+#include "common/settings/render_settings.h"
+#include "common/settings/settings_schema.h"
+#include "common/stats/render_stats.h"
 
 namespace tessera {
 
@@ -24,10 +24,6 @@ struct JobSpec {
 // The scene globals among the overrides (max_depth, min_weight); the camera is the loader's
 // to put in place (load_scene), before anything that depends on it is made.
 void apply_overrides(Scene& scene, const SceneOverrides& overrides);
-
-// The pixels a job's plan covers (PlanOptions::region): the settings' region, unset for the
-// whole image. The region travels with the settings, so a stored job restores its plan.
-std::optional<Tile> plan_region(const RenderSettings& settings);
 
 nlohmann::json to_json(const JobSpec& spec);
 // Throws ProtocolError for missing, mistyped or out-of-range fields.

@@ -65,7 +65,7 @@ UnitPixels pixels_from_json(const json& j) {
   const auto pattern = j.at("pattern").get<std::string>();
   if (pattern != "anchors" && pattern != "centres") throw ProtocolError("unit pattern");
   u.pattern = pattern == "anchors" ? PixelPattern::Anchors : PixelPattern::Centres;
-  const Tile& t = u.rect;
+  const PixelRect& t = u.rect;
   if (t.x0 < 0 || t.y0 < 0 || t.x1 < t.x0 || t.y1 < t.y0 || t.x1 > kMaxCoordinate ||
       t.y1 > kMaxCoordinate || u.step <= 0 || u.step > kMaxCoordinate || u.exclude < 0)
     throw ProtocolError("unit pixel set out of range");

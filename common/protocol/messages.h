@@ -18,7 +18,7 @@
 #include "common/protocol/bundle.h"
 #include "common/protocol/frame.h"
 #include "common/protocol/job_spec.h"
-#include "common/render/stats.h"
+#include "common/stats/render_stats.h"
 
 namespace tessera {
 

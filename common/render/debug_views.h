@@ -6,7 +6,7 @@
 
 #include "common/image/image.h"
 #include "common/render/prepared_scene.h"
-#include "common/render/settings.h"
+#include "common/settings/render_settings.h"
 
 namespace tessera {
 

@@ -138,10 +138,9 @@ Image render_image(const PreparedScene& scene, const RenderSettings& settings, i
   const auto start = std::chrono::steady_clock::now();
   if (threads <= 0) threads = static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   // The region's pixels, or the whole image's; the frame keeps the full size either way.
-  const PixelRegion area =
-      settings.region.value_or(PixelRegion{0, 0, settings.width, settings.height});
-  const int tiles_x = (area.x1 - area.x0 + kTileSize - 1) / kTileSize;
-  const int tiles_y = (area.y1 - area.y0 + kTileSize - 1) / kTileSize;
+  const PixelRect area = settings.region.value_or(PixelRect{0, 0, settings.width, settings.height});
+  const int tiles_x = (area.width() + kTileSize - 1) / kTileSize;
+  const int tiles_y = (area.height() + kTileSize - 1) / kTileSize;
   const long long tile_count = static_cast<long long>(tiles_x) * tiles_y;
 
   // Tiles own disjoint pixels, so threads add to the frame buffer without locking; each

@@ -15,20 +15,13 @@
 #include <span>
 
 #include "common/image/image.h"
+#include "common/math/pixel_rect.h"
 #include "common/render/interrupt.h"
 #include "common/render/prepared_scene.h"
-#include "common/render/settings.h"
-#include "common/render/stats.h"
+#include "common/settings/render_settings.h"
+#include "common/stats/render_stats.h"
 
 namespace tessera {
-
-// A half-open rectangle of pixels [x0, x1) x [y0, y1); y = 0 is the top row.
-struct PixelRect {
-  int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
-  int width() const { return x1 - x0; }
-  int height() const { return y1 - y0; }
-  long long area() const { return static_cast<long long>(width()) * height(); }
-};
 
 // The effects a render simulates: the scene's, plus anti-aliasing when the settings ask for
 // more than one sample per pixel; the shadow mode turns hard shadows off or into soft ones;
@@ -44,9 +37,6 @@ void render_pass(const PreparedScene& scene, const RenderSettings& settings, con
 
 // Traces the listed pixels (x, y) of one pass, for the progressive scheduler whose units are
 // sparse anchors; same values as render_pass.
-struct PixelCoord {
-  int x = 0, y = 0;
-};
 void render_pixels(const PreparedScene& scene, const RenderSettings& settings,
                    std::span<const PixelCoord> pixels, int pass, std::span<Rgb> out,
                    RenderStats& stats, const RenderInterrupt& interrupt = {});

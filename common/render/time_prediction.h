@@ -9,7 +9,7 @@
 
 #include "common/render/prepared_scene.h"
 #include "common/render/render.h"
-#include "common/render/settings.h"
+#include "common/settings/render_settings.h"
 
 namespace tessera {
 

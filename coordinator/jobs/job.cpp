@@ -63,14 +63,14 @@ void append_difference(std::string& out, std::uint8_t previous[3], const Rgb& va
 void Job::apply_result(int unit_index, std::span<const float> values, std::int64_t worker) {
   const WorkUnit& unit = plan.units[unit_index];
   const Stage& stage = plan.stages[unit.stage];
-  const std::vector<Pixel> pixels = expand(unit.pixels);
+  const std::vector<PixelCoord> pixels = expand(unit.pixels);
   // Normalized jobs' values change with the whole image's highest one: the page loads the PNG.
   const bool log_pixels = !spec.settings.normalize_colors;
   TileRecord record{unit.pixels.rect, unit.stage, worker, wall_clock_ms(), {}};
   if (log_pixels) record.pixels.reserve(3 * pixels.size());
   std::uint8_t previous[3] = {0, 0, 0};
   for (std::size_t i = 0; i < pixels.size(); ++i) {
-    const Pixel p = pixels[i];
+    const PixelCoord p = pixels[i];
     const float* rgb = values.data() + 3 * i;
     if (!stage.preview_only) frame_buffer.add_pass(p.x, p.y, rgb);
     if (!log_pixels) continue;
@@ -112,7 +112,7 @@ Image Job::known_so_far() const {
       // the anchor of its block at each coarser level (levels overlap across workers).
       for (int level = std::max(plan.levels, 1); level >= 1; --level) {
         const int side = plan.levels > 0 ? block_side(plan.levels, level) : 1;
-        const Pixel a = block_of({x, y}, side);
+        const PixelCoord a = block_of({x, y}, side);
         if (frame_buffer.passes_at(a.x, a.y) == 0) continue;
         image.set(x, y, frame_buffer.mean(a.x, a.y));
         break;

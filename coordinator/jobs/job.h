@@ -46,7 +46,7 @@ struct WorkerShare {
 // stand for their blocks (the page fills them); a whole-image pass's are the pixels' means so
 // far. Emptied once the log holds more than kDeltaLogBytes of newer values.
 struct TileRecord {
-  Tile rect;
+  PixelRect rect;
   int stage = 0;
   std::int64_t worker = 0;
   double merged_at_ms = 0;  // wall clock, milliseconds since 1970: for measuring latency

@@ -153,7 +153,7 @@ void parse_settings(const json& s, const ServiceLimits& limits, JobRequest& out)
   out.plan.height = r.height;
   out.plan.passes = r.passes;
   out.plan.progressive = settings.schedule.progressive;
-  out.plan.region = plan_region(r);
+  out.plan.region = r.region;
   // The schema's choices are the names these take (tests/service/coordinator_test.cpp).
   out.plan.order = parse_unit_order(settings.schedule.order);
   out.plan.preview = parse_preview_mode(settings.schedule.preview);

@@ -516,7 +516,8 @@ std::vector<StoredJob> JobDatabase::load_all() {
         request.plan.order = parse_unit_order(select.column_text(7));
         request.plan.preview = parse_preview_mode(select.column_text(8));
         request.plan.unit_pixels = select.column_int(9);
-        request.plan.region = plan_region(request.spec.settings);
+        // The region travels with the settings, so a stored job restores its plan.
+        request.plan.region = request.spec.settings.region;
         request.priority = static_cast<int>(select.column_int(10));
         request.effects =
             nlohmann::json::parse(select.column_text(11)).get<std::vector<std::string>>();

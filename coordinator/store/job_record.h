@@ -13,8 +13,8 @@
 #include "common/progressive/plan.h"
 #include "common/protocol/bundle.h"
 #include "common/protocol/job_spec.h"
-#include "common/render/stats.h"
 #include "common/scene/camera.h"
+#include "common/stats/render_stats.h"
 
 namespace tessera {
 

@@ -15,7 +15,8 @@ std::vector<int> pass0_counts(const Plan& plan) {
   for (const WorkUnit& u : plan.units) {
     const Stage& s = plan.stages[u.stage];
     if (s.pass != 0 || s.preview_only) continue;
-    for (Pixel p : expand(u.pixels)) ++counts[static_cast<std::size_t>(p.y) * plan.width + p.x];
+    for (PixelCoord p : expand(u.pixels))
+      ++counts[static_cast<std::size_t>(p.y) * plan.width + p.x];
   }
   return counts;
 }
@@ -48,7 +49,7 @@ TEST(Plan, LevelOneIsTwoByTwoBlocks) {
   EXPECT_EQ(first.traced, 4);
   std::set<std::pair<int, int>> anchors;
   for (int i = 0; i < first.unit_count; ++i)
-    for (Pixel p : expand(plan.units[first.first_unit + i].pixels)) anchors.insert({p.x, p.y});
+    for (PixelCoord p : expand(plan.units[first.first_unit + i].pixels)) anchors.insert({p.x, p.y});
   EXPECT_EQ(anchors, (std::set<std::pair<int, int>>{{0, 0}, {128, 0}, {0, 128}, {128, 128}}));
 }
 
@@ -109,18 +110,18 @@ TEST(Plan, CentreOrderStartsInTheMiddleScanlineAtTheTopLeft) {
   const Plan scan =
       make_plan({.width = 512, .height = 512, .order = UnitOrder::Scanline, .unit_pixels = 256});
   const Stage& s = centre.stages[centre.levels - 1];
-  const Tile first = centre.units[s.first_unit].pixels.rect;
+  const PixelRect first = centre.units[s.first_unit].pixels.rect;
   const int side = first.width();
   EXPECT_LE(std::abs((first.x0 + first.x1) / 2 - 256), side);
   EXPECT_LE(std::abs((first.y0 + first.y1) / 2 - 256), side);
-  const Tile last = centre.units[s.first_unit + s.unit_count - 1].pixels.rect;
+  const PixelRect last = centre.units[s.first_unit + s.unit_count - 1].pixels.rect;
   EXPECT_TRUE(last.x0 == 0 || last.y0 == 0 || last.x1 == 512 || last.y1 == 512);
   const Stage& t = scan.stages[scan.levels - 1];
   EXPECT_EQ(scan.units[t.first_unit].pixels.rect.x0, 0);
   EXPECT_EQ(scan.units[t.first_unit].pixels.rect.y0, 0);
   for (int i = 1; i < t.unit_count; ++i) {
-    const Tile a = scan.units[t.first_unit + i - 1].pixels.rect;
-    const Tile b = scan.units[t.first_unit + i].pixels.rect;
+    const PixelRect a = scan.units[t.first_unit + i - 1].pixels.rect;
+    const PixelRect b = scan.units[t.first_unit + i].pixels.rect;
     EXPECT_TRUE(b.y0 > a.y0 || (b.y0 == a.y0 && b.x0 > a.x0));
   }
 }
@@ -133,7 +134,7 @@ TEST(Plan, AreaPreviewTracesEveryBlockCentreAndCostsAboutAThirdMore) {
     EXPECT_TRUE(s.preview_only);
     EXPECT_EQ(s.traced, s.blocks);
     for (int i = 0; i < s.unit_count; ++i)
-      for (Pixel p : expand(plan.units[s.first_unit + i].pixels)) {
+      for (PixelCoord p : expand(plan.units[s.first_unit + i].pixels)) {
         EXPECT_EQ(p.x % s.block, s.block / 2);
         EXPECT_EQ(p.y % s.block, s.block / 2);
       }
@@ -145,9 +146,9 @@ TEST(Plan, AreaPreviewTracesEveryBlockCentreAndCostsAboutAThirdMore) {
 // A region's plan (issue 21 §4) traces pass 0 of each of its pixels once and nothing outside
 // it, at the whole image's levels: its cost is the region's.
 TEST(Plan, ARegionCoversItsPixelsOnly) {
-  const Tile regions[] = {{0, 0, 640, 480},   {100, 50, 260, 170}, {333, 77, 334, 78},
-                          {5, 400, 639, 403}, {0, 0, 1, 480},      {601, 17, 640, 480}};
-  for (const Tile& r : regions)
+  const PixelRect regions[] = {{0, 0, 640, 480},   {100, 50, 260, 170}, {333, 77, 334, 78},
+                               {5, 400, 639, 403}, {0, 0, 1, 480},      {601, 17, 640, 480}};
+  for (const PixelRect& r : regions)
     for (const PreviewMode preview : {PreviewMode::Anchor, PreviewMode::Area})
       for (const bool progressive : {true, false}) {
         const Plan plan = make_plan({.width = 640,
@@ -168,7 +169,7 @@ TEST(Plan, ARegionCoversItsPixelsOnly) {
           }
         for (const WorkUnit& u : plan.units) {
           ASSERT_GT(u.cost, 0) << name;
-          for (Pixel p : expand(u.pixels))
+          for (PixelCoord p : expand(u.pixels))
             ASSERT_TRUE(p.x >= r.x0 && p.x < r.x1 && p.y >= r.y0 && p.y < r.y1) << name;
         }
         if (preview == PreviewMode::Anchor) {
@@ -182,15 +183,15 @@ TEST(Plan, ARegionCoversItsPixelsOnly) {
 TEST(Plan, ARegionStartsAtTheFirstLevelWhoseBlocksFitIt) {
   const Plan whole = make_plan({.width = 640, .height = 480});
   EXPECT_EQ(whole.stages.front().level, 1);
-  const Plan part = make_plan({.width = 640, .height = 480, .region = Tile{100, 50, 140, 70}});
+  const Plan part = make_plan({.width = 640, .height = 480, .region = PixelRect{100, 50, 140, 70}});
   // 40 pixels across: blocks of 32 (level 5 of 10) are the first to fit.
   EXPECT_EQ(part.stages.front().level, 5);
   EXPECT_EQ(part.stages.front().block, 32);
   EXPECT_EQ(part.stages.front().traced, 1);  // (128, 64), its one pixel at multiples of 32
   EXPECT_EQ(part.stages.back().level, 10);
-  EXPECT_THROW(make_plan({.width = 64, .height = 64, .region = Tile{0, 0, 65, 1}}),
+  EXPECT_THROW(make_plan({.width = 64, .height = 64, .region = PixelRect{0, 0, 65, 1}}),
                std::invalid_argument);
-  EXPECT_THROW(make_plan({.width = 64, .height = 64, .region = Tile{3, 3, 3, 9}}),
+  EXPECT_THROW(make_plan({.width = 64, .height = 64, .region = PixelRect{3, 3, 3, 9}}),
                std::invalid_argument);
 }
 

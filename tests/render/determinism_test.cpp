@@ -72,7 +72,7 @@ TEST(Determinism, RegionEqualsThoseImagePixelsAndIsBlackElsewhere) {
   const Scene scene = busy_scene();
   RenderSettings s = noisy_settings();
   const Image whole = render(scene, s);
-  s.region = PixelRegion{13, 7, 31, 22};
+  s.region = PixelRect{13, 7, 31, 22};
   const Image part = render(scene, s, nullptr, 3);
   ASSERT_EQ(part.width, whole.width);
   ASSERT_EQ(part.height, whole.height);

@@ -7,7 +7,7 @@
 #include <set>
 
 #include "common/image/decoded_texture.h"
-#include "common/render/settings_schema.h"
+#include "common/settings/settings_schema.h"
 #include "coordinator/http/api.h"
 #include "coordinator/http/job_json.h"
 #include "coordinator/http/multipart.h"
@@ -109,8 +109,8 @@ TEST(ParseSettings, ARegionSetsThePlansAreaInsideTheImage) {
   JobRequest r;
   parse_settings(nlohmann::json::parse(R"({"width": 64, "height": 48, "region": [8, 4, 64, 48]})"),
                  ServiceLimits{}, r);
-  EXPECT_EQ(r.plan.region, (Tile{8, 4, 64, 48}));
-  EXPECT_EQ(r.spec.settings.region, (PixelRegion{8, 4, 64, 48}));
+  EXPECT_EQ(r.plan.region, (PixelRect{8, 4, 64, 48}));
+  EXPECT_EQ(r.spec.settings.region, (PixelRect{8, 4, 64, 48}));
   try {
     parse_settings(nlohmann::json::parse(R"({"width": 64, "height": 48, "region": [0, 0, 65, 8]})"),
                    ServiceLimits{}, r);
@@ -305,7 +305,7 @@ Job make_job(int w, int h, int passes) {
 std::vector<float> values_for(const Job& job, int unit) {
   std::vector<float> v;
   const int pass = job.plan.stages[job.plan.units[unit].stage].pass;
-  for (Pixel p : expand(job.plan.units[unit].pixels))
+  for (PixelCoord p : expand(job.plan.units[unit].pixels))
     for (int c = 0; c < 3; ++c) v.push_back(static_cast<float>(p.x + 100 * p.y + 0.25 * pass + c));
   return v;
 }

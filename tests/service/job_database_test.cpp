@@ -105,13 +105,13 @@ RenderStats stats_with(std::uint64_t camera_rays, double seconds) {
 // settings and the plan is made from them again.
 TEST_F(JobDatabaseTest, ARegionJobRestoresItsRegionsPlan) {
   StoredRequest request = make_request();
-  request.spec.settings.region = PixelRegion{8, 4, 40, 28};
-  request.plan.region = plan_region(request.spec.settings);
+  request.spec.settings.region = PixelRect{8, 4, 40, 28};
+  request.plan.region = request.spec.settings.region;
   JobDatabase(dir_).add_job(request, at_seconds(0));
   const std::vector<StoredJob> jobs = JobDatabase(dir_).load_all();
   ASSERT_EQ(jobs.size(), 1u);
-  EXPECT_EQ(jobs[0].request.spec.settings.region, (PixelRegion{8, 4, 40, 28}));
-  EXPECT_EQ(jobs[0].request.plan.region, (Tile{8, 4, 40, 28}));
+  EXPECT_EQ(jobs[0].request.spec.settings.region, (PixelRect{8, 4, 40, 28}));
+  EXPECT_EQ(jobs[0].request.plan.region, (PixelRect{8, 4, 40, 28}));
   EXPECT_EQ(make_plan(jobs[0].request.plan).total_cost, 4LL * 32 * 24);  // 4 passes
 }
 

@@ -99,7 +99,7 @@ Job make_job(int w, int h, int passes) {
 std::vector<float> values_for(const Job& job, int unit) {
   std::vector<float> v;
   const int pass = job.plan.stages[job.plan.units[unit].stage].pass;
-  for (Pixel p : expand(job.plan.units[unit].pixels))
+  for (PixelCoord p : expand(job.plan.units[unit].pixels))
     for (int c = 0; c < 3; ++c)
       v.push_back(static_cast<float>((p.x * 37 + p.y * 91 + pass * 53 + c * 17) % 120) / 100.0f -
                   0.1f);

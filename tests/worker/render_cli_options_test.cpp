@@ -2,7 +2,7 @@
 // errors name the flag and the bad value, ranges and help come from the settings schema.
 #include <gtest/gtest.h>
 
-#include "common/render/settings_schema.h"
+#include "common/settings/settings_schema.h"
 #include "worker/render_cli/options.h"
 
 namespace tessera {
@@ -88,7 +88,7 @@ TEST(RenderCli, ErrorsNameTheFlagAndTheBadValue) {
 TEST(RenderCli, RegionTakesFourValuesInsideTheImage) {
   const auto parsed = parse("s.sdl -o o.exr --width 64 --height 32 --region 8 4 64 32 --quiet");
   ASSERT_TRUE(std::holds_alternative<RenderCliOptions>(parsed)) << std::get<std::string>(parsed);
-  EXPECT_EQ(std::get<RenderCliOptions>(parsed).settings.region, (PixelRegion{8, 4, 64, 32}));
+  EXPECT_EQ(std::get<RenderCliOptions>(parsed).settings.region, (PixelRect{8, 4, 64, 32}));
   EXPECT_EQ(std::get<RenderCliOptions>(parse("s.sdl -o o.exr")).settings.region, std::nullopt);
   EXPECT_EQ(error_of("s.sdl -o o.exr --width 64 --height 32 --region 0 0 65 32"),
             "--region [0, 0, 65, 32] must lie inside the 64x32 image (x1 <= width, y1 <= height)");

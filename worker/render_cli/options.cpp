@@ -6,7 +6,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "common/render/settings_schema.h"
+#include "common/settings/settings_schema.h"
 #include "worker/render_cli/setting_flags.h"
 
 namespace tessera {

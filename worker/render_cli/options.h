@@ -1,5 +1,5 @@
 // Command line of tessera-render (CLI11): the scene, -o OUT, the render settings of
-// common/render/settings_schema.h as flags (their help and ranges come from it), and the
+// common/settings/settings_schema.h as flags (their help and ranges come from it), and the
 // options of this program alone (--threads, --debug-view, --quiet).
 #pragma once
 
@@ -8,7 +8,7 @@
 #include <variant>
 #include <vector>
 
-#include "common/render/settings.h"
+#include "common/settings/render_settings.h"
 
 namespace tessera {
 

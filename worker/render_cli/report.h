@@ -5,8 +5,8 @@
 #include <string>
 
 #include "common/render/prepared_scene.h"
-#include "common/render/settings.h"
-#include "common/render/stats.h"
+#include "common/settings/render_settings.h"
+#include "common/stats/render_stats.h"
 
 namespace tessera {
 

@@ -1,9 +1,9 @@
-// The settings of common/render/settings_schema.h as command-line flags (CLI11), shared by
+// The settings of common/settings/settings_schema.h as command-line flags (CLI11), shared by
 // tessera-render and tessera-submit so both take each setting with the same name, range, help
 // and default.
 #pragma once
 
-#include "common/render/settings_schema.h"
+#include "common/settings/settings_schema.h"
 
 namespace CLI {
 class App;

@@ -152,13 +152,11 @@ void RenderLoop::render(const Task& task) {
     return;
   }
   const auto start = std::chrono::steady_clock::now();
-  const std::vector<Pixel> pixels = expand(task.pixels);
-  std::vector<PixelCoord> coords(pixels.size());
-  for (std::size_t i = 0; i < pixels.size(); ++i) coords[i] = {pixels[i].x, pixels[i].y};
+  const std::vector<PixelCoord> pixels = expand(task.pixels);
   std::vector<Rgb> colours(pixels.size());
   RenderStats stats;
   try {
-    render_pixels(*job.prepared, job.spec.settings, coords, task.pass, colours, stats,
+    render_pixels(*job.prepared, job.spec.settings, pixels, task.pass, colours, stats,
                   {.cancel = &job.cancelled});
   } catch (const RenderInterrupted&) {
     return;  // cancelled: the coordinator expects nothing more of this job

@@ -3,7 +3,7 @@
 
 #include <cstdint>
 
-#include "common/geometry/local_hit.h"
+#include "common/stats/intersection_counters.h"
 
 namespace tessera {
 

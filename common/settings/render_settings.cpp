@@ -1,4 +1,4 @@
-#include "common/render/settings.h"
+#include "common/settings/render_settings.h"
 
 namespace tessera {
 

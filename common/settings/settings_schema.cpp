@@ -1,4 +1,4 @@
-#include "common/render/settings_schema.h"
+#include "common/settings/settings_schema.h"
 
 #include <algorithm>
 #include <charconv>
@@ -20,7 +20,7 @@ SettingValue widen(const std::string& v) { return v; }
 SettingValue widen(BvhMode v) { return v == BvhMode::Sah; }
 SettingValue widen(ShadowMode v) { return std::string(to_string(v)); }
 SettingValue widen(const Camera& v) { return v; }
-SettingValue widen(const PixelRegion& v) { return v; }
+SettingValue widen(const PixelRect& v) { return v; }
 template <typename T>
 SettingValue widen(const std::optional<T>& v) {
   return v ? widen(*v) : SettingValue();
@@ -37,7 +37,7 @@ void assign(BvhMode& field, const SettingValue& v) {
   field = std::get<bool>(v) ? BvhMode::Sah : BvhMode::None;
 }
 void assign(Camera& field, const SettingValue& v) { field = std::get<Camera>(v); }
-void assign(PixelRegion& field, const SettingValue& v) { field = std::get<PixelRegion>(v); }
+void assign(PixelRect& field, const SettingValue& v) { field = std::get<PixelRect>(v); }
 void assign(ShadowMode& field, const SettingValue& v) {
   field = parse_shadow_mode(std::get<std::string>(v)).value_or(ShadowMode::Hard);
 }
@@ -316,7 +316,7 @@ std::optional<SettingValue> region_from_text(std::string_view text) {
     i = end;
   }
   if (count != 4) return std::nullopt;
-  return PixelRegion{v[0], v[1], v[2], v[3]};
+  return PixelRect{v[0], v[1], v[2], v[3]};
 }
 
 }  // namespace
@@ -394,7 +394,7 @@ std::optional<std::string> setting_error(const SettingSpec& spec, const SettingV
       if (const auto* v = std::get_if<Camera>(&value)) return camera_error(*v, spec);
       break;
     case SettingType::Region:
-      if (const auto* r = std::get_if<PixelRegion>(&value))
+      if (const auto* r = std::get_if<PixelRect>(&value))
         ok = r->x0 >= 0 && r->y0 >= 0 && r->x0 < r->x1 && r->y0 < r->y1 && r->x1 <= max &&
              r->y1 <= max;
       break;
@@ -409,7 +409,7 @@ std::optional<std::string> setting_error(const SettingSpec& spec, const SettingV
 
 std::optional<std::string> settings_error(const RenderSettings& settings) {
   if (!settings.region) return std::nullopt;
-  const PixelRegion& r = *settings.region;
+  const PixelRect& r = *settings.region;
   if (r.x1 > settings.width || r.y1 > settings.height)
     return "region " + to_text(r) + " must lie inside the " + std::to_string(settings.width) + "x" +
            std::to_string(settings.height) + " image (x1 <= width, y1 <= height)";
@@ -468,7 +468,7 @@ std::string to_text(const SettingValue& value) {
       return "eye " + triple(v.eye) + ", look_at " + triple(v.look_at) + ", up " + triple(v.up) +
              ", fov " + format_number(v.view_angle);
     }
-    std::string operator()(const PixelRegion& r) const {
+    std::string operator()(const PixelRect& r) const {
       return "[" + std::to_string(r.x0) + ", " + std::to_string(r.y0) + ", " +
              std::to_string(r.x1) + ", " + std::to_string(r.y1) + "]";
     }

@@ -2,7 +2,7 @@
 // range, default, help and the layers that take it. The job request's parser
 // (coordinator/jobs/job_request.cpp), the wire codec (common/protocol/job_spec.cpp),
 // tessera-render's options and help (worker/render_cli/options.cpp) and the table of settings in
-// docs/SERVICE.md (tests/render/settings_schema_test.cpp) are all read from it: a new setting is
+// docs/SERVICE.md (tests/settings/settings_schema_test.cpp) are all read from it: a new setting is
 // one row in settings_schema.cpp and the field it sets.
 #pragma once
 
@@ -13,7 +13,7 @@
 #include <string_view>
 #include <variant>
 
-#include "common/render/settings.h"
+#include "common/settings/render_settings.h"
 
 namespace tessera {
 
@@ -44,10 +44,10 @@ struct JobSettings {
 enum class SettingType { Integer, Number, Boolean, Choice, Seed, Camera, Region };
 
 // A setting's value, in the alternative of its type (Integer: int64_t, Seed: uint64_t, Choice:
-// the choice's name, Region: PixelRegion); monostate for an override left unset, which keeps
+// the choice's name, Region: PixelRect); monostate for an override left unset, which keeps
 // the scene's value, and for no region, the whole image.
 using SettingValue = std::variant<std::monostate, std::int64_t, double, bool, std::string,
-                                  std::uint64_t, Camera, PixelRegion>;
+                                  std::uint64_t, Camera, PixelRect>;
 
 // The layers that take a setting.
 enum SettingLayer : unsigned {

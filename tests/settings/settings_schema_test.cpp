@@ -1,6 +1,6 @@
-// The settings schema (common/render/settings_schema.h): its table agrees with itself, with the
+// The settings schema (common/settings/settings_schema.h): its table agrees with itself, with the
 // structs it sets and with the docs' table of settings in docs/SERVICE.md.
-#include "common/render/settings_schema.h"
+#include "common/settings/settings_schema.h"
 
 #include <gtest/gtest.h>
 
@@ -38,7 +38,7 @@ TEST(SettingsSchema, EverySettingSetsItsOwnField) {
         case SettingType::Camera:
           return Camera{{1, 2, 3}, {0, 0, 0}, {0, 0, 1}, 30};
         case SettingType::Region:
-          return PixelRegion{1, 2, 3, 4};
+          return PixelRect{1, 2, 3, 4};
       }
       return {};
     }();
@@ -81,16 +81,16 @@ TEST(SettingsSchema, ValuesOfTheWrongTypeOrOutOfRangeAreRefused) {
   EXPECT_EQ(setting_error(*find_setting("seed"), std::int64_t{2}), "must be an integer >= 0");
   EXPECT_EQ(setting_from_text(width, "12px"), std::nullopt);
   const SettingSpec& region = *find_setting("region");
-  EXPECT_EQ(setting_error(region, PixelRegion{0, 0, 16384, 1}), std::nullopt);
+  EXPECT_EQ(setting_error(region, PixelRect{0, 0, 16384, 1}), std::nullopt);
   const std::string region_range =
       "must be [x0, y0, x1, y1], integers with 0 <= x0 < x1 <= 16384 and 0 <= y0 < y1 <= 16384";
-  EXPECT_EQ(setting_error(region, PixelRegion{5, 0, 5, 1}), region_range);  // empty
-  EXPECT_EQ(setting_error(region, PixelRegion{0, 3, 1, 2}), region_range);
-  EXPECT_EQ(setting_error(region, PixelRegion{-1, 0, 1, 1}), region_range);
-  EXPECT_EQ(setting_error(region, PixelRegion{0, 0, 1, 16385}), region_range);
+  EXPECT_EQ(setting_error(region, PixelRect{5, 0, 5, 1}), region_range);  // empty
+  EXPECT_EQ(setting_error(region, PixelRect{0, 3, 1, 2}), region_range);
+  EXPECT_EQ(setting_error(region, PixelRect{-1, 0, 1, 1}), region_range);
+  EXPECT_EQ(setting_error(region, PixelRect{0, 0, 1, 16385}), region_range);
   EXPECT_EQ(setting_error(region, std::int64_t{3}), region_range);
-  EXPECT_EQ(setting_from_text(region, "1 2 3 4"), SettingValue(PixelRegion{1, 2, 3, 4}));
-  EXPECT_EQ(setting_from_text(region, "[1, 2, 3, 4]"), SettingValue(PixelRegion{1, 2, 3, 4}));
+  EXPECT_EQ(setting_from_text(region, "1 2 3 4"), SettingValue(PixelRect{1, 2, 3, 4}));
+  EXPECT_EQ(setting_from_text(region, "[1, 2, 3, 4]"), SettingValue(PixelRect{1, 2, 3, 4}));
   EXPECT_EQ(setting_from_text(region, "1 2 3"), std::nullopt);
   EXPECT_EQ(setting_from_text(region, "1 2 3 4 5"), std::nullopt);
   EXPECT_EQ(setting_from_text(region, "1 2 3 x"), std::nullopt);
@@ -103,14 +103,14 @@ TEST(SettingsSchema, ARegionLiesInsideTheImageAndIsNotNormalized) {
   s.width = 64;
   s.height = 32;
   EXPECT_EQ(settings_error(s), std::nullopt);
-  s.region = PixelRegion{0, 0, 64, 32};
+  s.region = PixelRect{0, 0, 64, 32};
   EXPECT_EQ(settings_error(s), std::nullopt);
-  s.region = PixelRegion{0, 0, 65, 32};
+  s.region = PixelRect{0, 0, 65, 32};
   EXPECT_EQ(settings_error(s),
             "region [0, 0, 65, 32] must lie inside the 64x32 image (x1 <= width, y1 <= height)");
-  s.region = PixelRegion{0, 31, 1, 33};
+  s.region = PixelRect{0, 31, 1, 33};
   EXPECT_NE(settings_error(s), std::nullopt);
-  s.region = PixelRegion{0, 0, 1, 1};
+  s.region = PixelRect{0, 0, 1, 1};
   s.normalize_colors = true;
   EXPECT_NE(settings_error(s), std::nullopt);
   EXPECT_EQ(setting_from_text(*find_setting("seed"), "-1"), std::nullopt);

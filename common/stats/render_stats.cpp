@@ -1,4 +1,4 @@
-#include "common/render/stats.h"
+#include "common/stats/render_stats.h"
 
 namespace tessera {
 

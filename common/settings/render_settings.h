@@ -6,9 +6,10 @@
 #include <optional>
 #include <string_view>
 
-#include "common/accel/bvh.h"
+#include "common/math/pixel_rect.h"
 #include "common/scene/camera.h"
 #include "common/scene/motion.h"  // kMaxTimeSamples
+#include "common/settings/bvh_mode.h"
 
 namespace tessera {
 
@@ -18,13 +19,6 @@ enum class ShadowMode { None, Hard, Soft };
 // "none", "hard", "soft": the names of CLI flags and job settings.
 const char* to_string(ShadowMode mode);
 std::optional<ShadowMode> parse_shadow_mode(std::string_view name);
-
-// A rectangle of the image rendered alone (POV-Ray's +SC/+EC): pixels [x0, x1) x [y0, y1), half
-// open like every rectangle here, y = 0 the top row; [0, 0, width, height] is the whole image.
-struct PixelRegion {
-  int x0 = 0, y0 = 0, x1 = 0, y1 = 0;
-  friend bool operator==(const PixelRegion&, const PixelRegion&) = default;
-};
 
 struct RenderSettings {
   int width = 640;
@@ -48,9 +42,10 @@ struct RenderSettings {
   // exceeds 1 the image is scaled so that it becomes 1; then multiplied by the brightness.
   bool normalize_colors = false;
   double normalize_brightness = 1.0;
-  // Unset renders the whole image; set, only these pixels, each bit for bit as in the whole
-  // image, in a frame of the full size whose other pixels are black.
-  std::optional<PixelRegion> region = std::nullopt;
+  // A rectangle of the image rendered alone (POV-Ray's +SC/+EC). Unset renders the whole image;
+  // set, only these pixels, each bit for bit as in the whole image, in a frame of the full size
+  // whose other pixels are black.
+  std::optional<PixelRect> region = std::nullopt;
 };
 
 // The scene globals a job may override (the page's controls, Glazer §4.4.2): unset keeps the
