@@ -1,9 +1,9 @@
 #include "common/protocol/job_spec.h"
 
-#include <limits>
 #include <type_traits>
 
 #include "common/protocol/frame.h"
+#include "common/protocol/json_integer.h"
 
 namespace tessera {
 
@@ -70,10 +70,7 @@ nlohmann::json setting_to_json(const SettingValue& value) {
 std::optional<SettingValue> setting_from_json(const SettingSpec& spec, const nlohmann::json& j) {
   switch (spec.type) {
     case SettingType::Integer:
-      if (j.is_number_unsigned() &&
-          j.get<std::uint64_t>() > std::numeric_limits<std::int64_t>::max())
-        break;
-      if (j.is_number_integer()) return j.get<std::int64_t>();
+      if (const auto v = json_integer<std::int64_t>(j)) return *v;
       break;
     case SettingType::Number:
       if (j.is_number()) return j.get<double>();
@@ -95,10 +92,9 @@ std::optional<SettingValue> setting_from_json(const SettingSpec& spec, const nlo
       if (!j.is_array() || j.size() != 4) break;
       int v[4];
       for (int i = 0; i < 4; ++i) {
-        if (!j[i].is_number_integer() || j[i].get<std::int64_t>() < 0 ||
-            j[i].get<std::int64_t>() > std::numeric_limits<int>::max())
-          return std::nullopt;
-        v[i] = static_cast<int>(j[i].get<std::int64_t>());
+        const std::optional<int> coordinate = json_integer<int>(j[i]);
+        if (!coordinate || *coordinate < 0) return std::nullopt;
+        v[i] = *coordinate;
       }
       return PixelRect{v[0], v[1], v[2], v[3]};
     }

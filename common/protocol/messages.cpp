@@ -2,9 +2,11 @@
 
 #include <bit>
 #include <cstring>
+#include <string_view>
 #include <utility>
 
 #include "common/protocol/handshake.h"
+#include "common/protocol/json_integer.h"
 
 namespace tessera {
 
@@ -19,6 +21,18 @@ namespace {
 using nlohmann::json;
 
 constexpr int kMaxCoordinate = 1 << 16;
+
+// An integer of type T (json_integer.h), else a ProtocolError naming `what`.
+template <typename T>
+T integer(const json& v, std::string_view what) {
+  if (const std::optional<T> value = json_integer<T>(v)) return *value;
+  throw ProtocolError(std::string(what) + " is not an integer in range: " + v.dump());
+}
+
+template <typename T>
+T integer_at(const json& object, const char* key) {
+  return integer<T>(object.at(key), key);
+}
 
 // The counts of a result's statistics (common/protocol/job_spec.cpp reads them). Read as
 // unsigned, a negative count would wrap around to an absurd one: they are refused first.
@@ -59,9 +73,10 @@ UnitPixels pixels_from_json(const json& j) {
   UnitPixels u;
   const auto& r = j.at("rect");
   if (!r.is_array() || r.size() != 4) throw ProtocolError("unit rect needs 4 numbers");
-  u.rect = {r[0].get<int>(), r[1].get<int>(), r[2].get<int>(), r[3].get<int>()};
-  u.step = j.at("step").get<int>();
-  u.exclude = j.at("exclude").get<int>();
+  u.rect = {integer<int>(r[0], "rect"), integer<int>(r[1], "rect"), integer<int>(r[2], "rect"),
+            integer<int>(r[3], "rect")};
+  u.step = integer_at<int>(j, "step");
+  u.exclude = integer_at<int>(j, "exclude");
   const auto pattern = j.at("pattern").get<std::string>();
   if (pattern != "anchors" && pattern != "centres") throw ProtocolError("unit pattern");
   u.pattern = pattern == "anchors" ? PixelPattern::Anchors : PixelPattern::Centres;
@@ -74,11 +89,8 @@ UnitPixels pixels_from_json(const json& j) {
 
 RenderStats stats_from_wire(const json& stats) {
   if (!stats.is_object()) throw ProtocolError("statistics are not an object");
-  auto non_negative_integer = [](const json& v) {
-    return v.is_number_unsigned() || (v.is_number_integer() && v.get<std::int64_t>() >= 0);
-  };
   for (const char* key : kStatCounts)
-    if (stats.contains(key) && !non_negative_integer(stats[key]))
+    if (stats.contains(key) && !json_integer<std::uint64_t>(stats[key]))
       throw ProtocolError(std::string("statistic ") + key + " is not a non-negative integer");
   if (stats.contains("seconds") && !stats["seconds"].is_number())
     throw ProtocolError("statistic seconds is not a number");
@@ -113,10 +125,10 @@ Frame encode(const HelloMessage& m) {
 template <>
 HelloMessage decode(const Frame& frame) {
   return decoded<HelloMessage>(frame, [](const json& h, HelloMessage& m) {
-    m.version = h.at("version").get<int>();
+    m.version = integer_at<int>(h, "version");
     if (m.version != kProtocolVersion) return;
     m.name = h.at("name").get<std::string>().substr(0, kMaxWorkerName);
-    m.threads = h.at("threads").get<int>();
+    m.threads = integer_at<int>(h, "threads");
     m.nonce = h.at("nonce").get<std::string>();
     for (const auto& hash : h.value("cached", json::array()))
       if (m.cached.size() < kMaxCachedHashes) m.cached.push_back(hash.get<std::string>());
@@ -131,7 +143,7 @@ Frame encode(const ChallengeMessage& m) {
 template <>
 ChallengeMessage decode(const Frame& frame) {
   return decoded<ChallengeMessage>(frame, [](const json& h, ChallengeMessage& m) {
-    m.version = h.at("version").get<int>();
+    m.version = integer_at<int>(h, "version");
     if (m.version != kProtocolVersion) return;
     m.nonce = h.at("nonce").get<std::string>();
     m.auth = h.at("auth").get<std::string>();
@@ -161,8 +173,8 @@ WelcomeMessage decode(const Frame& frame) {
     m.worker = h.value("worker", std::int64_t{0});
     m.proof = h.value("proof", std::string());
     if (!h.contains("heartbeat_ms")) return;
-    m.heartbeat_ms = h.at("heartbeat_ms").get<std::int64_t>();
-    m.silence_ms = h.at("silence_ms").get<std::int64_t>();
+    m.heartbeat_ms = integer_at<std::int64_t>(h, "heartbeat_ms");
+    m.silence_ms = integer_at<std::int64_t>(h, "silence_ms");
     if (m.heartbeat_ms <= 0 || m.silence_ms <= m.heartbeat_ms)
       throw ProtocolError("heartbeat_ms " + std::to_string(m.heartbeat_ms) + " and silence_ms " +
                           std::to_string(m.silence_ms) +
@@ -197,7 +209,7 @@ Frame encode(const JobMessage& m) {
 template <>
 JobMessage decode(const Frame& frame) {
   return decoded<JobMessage>(frame, [&](const json& h, JobMessage& m) {
-    m.job = h.at("job").get<std::int64_t>();
+    m.job = integer_at<std::int64_t>(h, "job");
     m.hash = h.at("hash").get<std::string>();
     m.spec = job_spec_from_json(h.at("settings"));
     if (!h.contains("bundle")) return;
@@ -215,9 +227,9 @@ Frame encode(const UnitMessage& m) {
 template <>
 UnitMessage decode(const Frame& frame) {
   return decoded<UnitMessage>(frame, [](const json& h, UnitMessage& m) {
-    m.job = h.at("job").get<std::int64_t>();
-    m.unit = h.at("unit").get<std::int64_t>();
-    m.pass = h.at("pass").get<int>();
+    m.job = integer_at<std::int64_t>(h, "job");
+    m.unit = integer_at<std::int64_t>(h, "unit");
+    m.pass = integer_at<int>(h, "pass");
     m.pixels = pixels_from_json(h.at("pixels"));
   });
 }
@@ -234,8 +246,8 @@ Frame encode(const ResultMessage& m) {
 template <>
 ResultMessage decode(const Frame& frame) {
   return decoded<ResultMessage>(frame, [&](const json& h, ResultMessage& m) {
-    m.job = h.at("job").get<std::int64_t>();
-    m.unit = h.at("unit").get<std::int64_t>();
+    m.job = integer_at<std::int64_t>(h, "job");
+    m.unit = integer_at<std::int64_t>(h, "unit");
     m.values = unpack_rgb(frame.payload);
     // Optional, as from the first workers; compared as JSON, so 16.0 counts as 16.
     if (h.contains("count") && h["count"] != m.values.size() / 3)
@@ -254,7 +266,7 @@ Frame encode(const JobFailedMessage& m) {
 template <>
 JobFailedMessage decode(const Frame& frame) {
   return decoded<JobFailedMessage>(frame, [](const json& h, JobFailedMessage& m) {
-    m.job = h.at("job").get<std::int64_t>();
+    m.job = integer_at<std::int64_t>(h, "job");
     m.error = h.value("error", std::string()).substr(0, kMaxWorkerError);
     m.missing_bundle = h.value("missing_bundle", false);
   });
@@ -265,7 +277,7 @@ Frame encode(const CancelMessage& m) { return frame_of(CancelMessage::kType, {{"
 template <>
 CancelMessage decode(const Frame& frame) {
   return decoded<CancelMessage>(
-      frame, [](const json& h, CancelMessage& m) { m.job = h.at("job").get<std::int64_t>(); });
+      frame, [](const json& h, CancelMessage& m) { m.job = integer_at<std::int64_t>(h, "job"); });
 }
 
 }  // namespace tessera

@@ -162,6 +162,24 @@ TEST(Messages, MissingOrMistypedFieldsAreProtocolErrors) {
   EXPECT_THROW(decode<JobFailedMessage>(failed), ProtocolError);
 }
 
+// A float or an integer too wide for the field is refused, not cast: 1e37 converted to an
+// integer is undefined behaviour (a worker's result with it was found by fuzz_worker_frames).
+TEST(Messages, IntegerFieldsMustBeIntegersInRange) {
+  for (const json& job :
+       {json(1.1e37), json(2.5), json(std::numeric_limits<std::uint64_t>::max())}) {
+    Frame f = encode(small_result());
+    f.header["job"] = job;
+    EXPECT_THROW(decode<ResultMessage>(f), ProtocolError) << job;
+  }
+  Frame unit =
+      encode(UnitMessage{.job = 1, .unit = 2, .pass = 0, .pixels = {.rect = {0, 0, 4, 4}}});
+  unit.header["pass"] = std::int64_t{1} << 40;  // an int64 that would be cut to an int's bits
+  EXPECT_THROW(decode<UnitMessage>(unit), ProtocolError);
+  Frame f = encode(small_result());
+  f.header["job"] = std::numeric_limits<std::int64_t>::max();
+  EXPECT_EQ(decode<ResultMessage>(f).job, std::numeric_limits<std::int64_t>::max());
+}
+
 TEST(Messages, AbsurdPixelSetsAreRefused) {
   const Frame good =
       encode(UnitMessage{.job = 1, .unit = 2, .pass = 0, .pixels = {.rect = {0, 0, 4, 4}}});
