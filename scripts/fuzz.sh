@@ -6,8 +6,8 @@
 # tests/fuzz/regressions. Past survival the targets check invariants (tests/fuzz/fuzz_checks.h:
 # finite pixels, bounds, the BVH against brute force; tests/fuzz/service_fuzz_checks.h: limits,
 # bundle paths, refusals, frame limits, accepted results).
-#   scripts/fuzz.sh [SECONDS]   run each target for SECONDS (default 20; scripts/test.sh uses
-#                               that); longer runs: scripts/fuzz.sh 3600, or in CPU time
+#   scripts/fuzz.sh [SECONDS]   run each target for SECONDS (default 20; scripts/test.sh runs 15
+#                               each); longer runs: scripts/fuzz.sh 3600, or in CPU time
 #                               on a shared machine: scripts/fuzz-cpu.sh
 # Crashes are written to build-fuzz/artifacts/; each one found becomes a file in
 # tests/fuzz/regressions/<target>/, which test_fuzz_regressions replays in every build through
