@@ -20,7 +20,6 @@ using nlohmann::json;
 
 ApiError bad_request(const std::string& detail) { return ApiError(400, "bad_request", detail); }
 
-
 // The most a job request may ask of a setting: its range, narrowed by this service's limits.
 double request_max(const SettingSpec& spec, const ServiceLimits& limits) {
   switch (spec.cap) {
@@ -141,6 +140,12 @@ void parse_settings(const json& s, const ServiceLimits& limits, JobRequest& out)
     spec->access.set(settings, *parsed);
   }
   const RenderSettings& r = settings.render;
+  // A side left out takes its default (640 x 480), which may be over a lowered --max-side
+  // (found by fuzz_job_request); a side given was checked above.
+  if (r.width > limits.max_side || r.height > limits.max_side)
+    throw bad_request("the image is " + std::to_string(r.width) + " x " + std::to_string(r.height) +
+                      " (a side not given takes its default), over " + "this service's limit of " +
+                      std::to_string(limits.max_side) + " a side");
   if (static_cast<long long>(r.width) * r.height > limits.max_pixels)
     throw bad_request("width x height is over this service's limit of " +
                       std::to_string(limits.max_pixels) + " pixels");
