@@ -140,7 +140,7 @@ void parse_settings(const json& s, const ServiceLimits& limits, JobRequest& out)
     spec->access.set(settings, *parsed);
   }
   const RenderSettings& r = settings.render;
-  // A side left out takes its default (640 x 480), which may be over a lowered --max-side
+  // A side left out takes its default (640 x 480), which may be over a lowered side limit
   // (found by fuzz_job_request); a side given was checked above.
   if (r.width > limits.max_side || r.height > limits.max_side)
     throw bad_request("the image is " + std::to_string(r.width) + " x " + std::to_string(r.height) +
