@@ -41,8 +41,8 @@ while [ ${#pids[@]} -gt 0 ]; do
       wait "$pid" || true  # libFuzzer exits with its interrupt code after the final stats
       echo "== fuzz_$target: ${seconds} s of CPU"
       log=build-fuzz/fuzz_"$target".cpu.log
-      grep -m1 -E '^#[0-9]+ +INITED' "$log" || true
-      grep -E '^#[0-9]+ .*cov:' "$log" | tail -1
+      grep -m1 -E '^#[0-9]+[[:space:]]+INITED' "$log" || true
+      { grep -E '^#[0-9]+[[:space:]].*cov:' "$log" || true; } | tail -1
       grep -E '^stat::' "$log" || true
       unset "pids[$target]"
     fi
