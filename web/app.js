@@ -1,7 +1,7 @@
 // The Tessera page: submits scenes, polls the job's small status JSON, and follows the units
 // it merges (GET /api/jobs/{id}/tiles, a long poll, docs/SERVICE.md): each unit's 8-bit values
-// are painted into a canvas per block side as they come, finer canvases stacked over coarser,
-// so every level shows at any image size. The whole PNG is loaded only by a page that joins a
+// are painted into a layer per block side as they come (a grid of canvases), finer layers
+// stacked over coarser, so every level shows at any image size. The whole PNG is loaded only by a page that joins a
 // job too late for the coordinator's log of recent units, and for normalized jobs.
 "use strict";
 
@@ -15,7 +15,7 @@ const PAINT_SLICE_MS = 8;     // script time painting tiles before the browser g
 const view = {
   job: null,          // id of the job shown
   width: 0, height: 0,
-  layers: new Map(),  // block side -> {canvas, ctx}: one pixel per block
+  layers: new Map(),  // block side -> {element, step, width, height, tiles}: one pixel per block
   tilesNext: 0,       // the sequence number of the next merged unit to ask for
   levelsPainted: new Set(),        // levels painted while the job was running
   pending: [],        // records held back until their stage is complete ("once per level")
@@ -247,12 +247,11 @@ function update(job) {
   if (["failed", "cancelled"].includes(job.state)) $("base-canvas").dataset.state = job.state;
 }
 
-// ---- The image: a canvas per block side, painted from the tile records ----
+// ---- The image: a layer per block side, painted from the tile records ----
 
 // A new job's image starts empty.
 function clearImage() {
-  for (const { canvas } of view.layers.values()) canvas.remove();
-  view.layers = new Map();
+  dropLayers();
   const base = $("base-canvas");
   base.width = base.height = 0;
   delete base.dataset.state;
@@ -263,37 +262,76 @@ function clearImage() {
 function sizeImage(width, height) {
   Object.assign(view, { width, height });
   $("stage").style.aspectRatio = `${width} / ${height}`;
-  for (const [step, layer] of view.layers) placeLayer(layer.canvas, step);
+  for (const layer of view.layers.values()) placeLayer(layer);
   resizeOverlay();
 }
 
 // A layer holds one pixel per block of side `step`; it is shown scaled up by `step` (pixelated),
 // so the last, clipped block column and row reach past the image and are cut off by #stage.
-function placeLayer(canvas, step) {
+function placeLayer(layer) {
   if (!view.width) return;
-  canvas.style.width = `${(100 * canvas.width * step) / view.width}%`;
-  canvas.style.height = `${(100 * canvas.height * step) / view.height}%`;
+  const { element, step } = layer;
+  element.style.width = `${(100 * layer.width * step) / view.width}%`;
+  element.style.height = `${(100 * layer.height * step) / view.height}%`;
   // A region's coarse blocks reach past it: only the region covers the image under it.
-  const [x0, y0, x1, y1] = view.region || [0, 0, canvas.width * step, canvas.height * step];
-  const w = canvas.width * step, h = canvas.height * step;
-  canvas.style.clipPath = view.region ? `inset(${(100 * y0) / h}% ${100 - (100 * x1) / w}% ` +
+  const [x0, y0, x1, y1] = view.region || [0, 0, layer.width * step, layer.height * step];
+  const w = layer.width * step, h = layer.height * step;
+  element.style.clipPath = view.region ? `inset(${(100 * y0) / h}% ${100 - (100 * x1) / w}% ` +
     `${100 - (100 * y1) / h}% ${(100 * x0) / w}%)` : "";
 }
 
 function layerFor(step) {
   let layer = view.layers.get(step);
   if (layer) return layer;
-  const canvas = document.createElement("canvas");
-  canvas.className = "layer";
-  canvas.width = Math.ceil(view.width / step);
-  canvas.height = Math.ceil(view.height / step);
-  canvas.dataset.step = step;
-  canvas.style.zIndex = String(40 - Math.log2(step));  // finer over coarser
-  placeLayer(canvas, step);
-  $("stage").insertBefore(canvas, $("overlay-canvas"));
-  layer = { canvas, ctx: canvas.getContext("2d") };
+  const element = document.createElement("div");
+  element.className = "layer";
+  element.dataset.step = step;
+  element.style.zIndex = String(40 - Math.log2(step));  // finer over coarser
+  layer = { element, step, width: Math.ceil(view.width / step), height: Math.ceil(view.height / step),
+            tiles: new Map() };
+  placeLayer(layer);
+  $("stage").insertBefore(element, $("overlay-canvas"));
   view.layers.set(step, layer);
   return layer;
+}
+
+function dropLayers() {
+  for (const { element } of view.layers.values()) element.remove();
+  view.layers = new Map();
+}
+
+// A layer is a grid of canvases of at most LAYER_TILE pixels a side, made as units reach them:
+// the browser re-uploads a painted canvas whole at its next frame, which for one 3840x2160
+// canvas took Chromium 30 ms of the page's thread every frame while the finest level refined.
+const LAYER_TILE = 512;
+
+function layerTile(layer, column, row) {
+  const key = row * 65536 + column;
+  let tile = layer.tiles.get(key);
+  if (tile) return tile;
+  const canvas = document.createElement("canvas");
+  const x = column * LAYER_TILE, y = row * LAYER_TILE;
+  canvas.width = Math.min(LAYER_TILE, layer.width - x);
+  canvas.height = Math.min(LAYER_TILE, layer.height - y);
+  Object.assign(canvas.style, {
+    left: `${(100 * x) / layer.width}%`, top: `${(100 * y) / layer.height}%`,
+    width: `${(100 * canvas.width) / layer.width}%`, height: `${(100 * canvas.height) / layer.height}%`,
+  });
+  layer.element.append(canvas);
+  tile = { canvas, ctx: canvas.getContext("2d"), x, y };
+  layer.tiles.set(key, tile);
+  return tile;
+}
+
+// Puts an image whose top left is the layer's pixel (x0, y0) into the tiles it covers.
+function putIntoLayer(layer, image, x0, y0) {
+  const x1 = x0 + image.width, y1 = y0 + image.height;
+  for (let row = Math.floor(y0 / LAYER_TILE); row * LAYER_TILE < y1; ++row) {
+    for (let column = Math.floor(x0 / LAYER_TILE); column * LAYER_TILE < x1; ++column) {
+      const { ctx, x, y } = layerTile(layer, column, row);
+      ctx.putImageData(image, x0 - x, y0 - y, Math.max(0, x - x0), Math.max(0, y - y0), LAYER_TILE, LAYER_TILE);
+    }
+  }
 }
 
 // Parses a /tiles answer (coordinator/http/tile_deltas.h): header, then records with their
@@ -324,13 +362,13 @@ function parseTiles(buffer) {
 function paintRecord(r) {
   if (view.clearOnPaint) clearImage();
   view.clearOnPaint = false;
-  const { ctx } = layerFor(r.step);
+  const layer = layerFor(r.step);
   // A region's units may start between anchors: their first cell is the first anchor inside.
   const x0 = Math.ceil(r.x0 / r.step), y0 = Math.ceil(r.y0 / r.step);
   const cols = Math.ceil(r.x1 / r.step) - x0, rows = Math.ceil(r.y1 / r.step) - y0;
   const skips = (r.flags & 1) !== 0;
   // Skipped cells stay transparent: no record of this layer paints them.
-  const image = ctx.createImageData(cols, rows);
+  const image = new ImageData(cols, rows);
   const out = image.data, d = r.pixels;
   let red = 0, green = 0, blue = 0, i = 0;
   for (let y = 0; y < rows; ++y) {
@@ -343,7 +381,7 @@ function paintRecord(r) {
       out[o] = red; out[o + 1] = green; out[o + 2] = blue; out[o + 3] = 255;
     }
   }
-  ctx.putImageData(image, x0, y0);
+  putIntoLayer(layer, image, x0, y0);
 }
 
 // Follows a job's merged units: asks for those since the last, the coordinator holding the
@@ -435,8 +473,7 @@ async function loadWhole(id, finished) {
     const bitmap = await createImageBitmap(await response.blob());
     if (view.job !== id) return;
     sizeImage(bitmap.width, bitmap.height);
-    for (const { canvas } of view.layers.values()) canvas.remove();
-    view.layers = new Map();
+    dropLayers();
     view.pending = [];
     view.clearOnPaint = false;
     const base = $("base-canvas");
@@ -466,8 +503,10 @@ function composite() {
     ctx.rect(x0, y0, x1 - x0, y1 - y0);
     ctx.clip();
   }
-  for (const [step, { canvas: layer }] of [...view.layers].sort((a, b) => b[0] - a[0]))
-    ctx.drawImage(layer, 0, 0, layer.width * step, layer.height * step);
+  for (const [step, layer] of [...view.layers].sort((a, b) => b[0] - a[0])) {
+    for (const { canvas, x, y } of layer.tiles.values())
+      ctx.drawImage(canvas, x * step, y * step, canvas.width * step, canvas.height * step);
+  }
   return canvas;
 }
 window.tessera = {
@@ -582,10 +621,12 @@ async function refreshJobs() {
   } catch (e) { /* shown again on the next tick */ }
 }
 
+// The overlay is as large as the image only while it is shown: Chromium uploads a canvas that
+// changed at the next frame, and a cleared 3840x2160 one takes it 30 ms.
 function resizeOverlay() {
   const canvas = $("overlay-canvas");
-  canvas.width = view.width;
-  canvas.height = view.height;
+  const [width, height] = $("overlay").checked ? [view.width, view.height] : [0, 0];
+  if (canvas.width !== width || canvas.height !== height) Object.assign(canvas, { width, height });
   drawOverlay();
 }
 
@@ -612,7 +653,7 @@ $("submit-form").addEventListener("change", schedulePrediction);
 $("cancel").addEventListener("click", async () => {
   if (view.job !== null) await fetchWithToken(`/api/jobs/${view.job}`, { method: "DELETE" });
 });
-$("overlay").addEventListener("change", drawOverlay);
+$("overlay").addEventListener("change", resizeOverlay);
 $("jobs").addEventListener("click", (e) => {
   const li = e.target.closest("li");
   if (li) show(+li.dataset.id);

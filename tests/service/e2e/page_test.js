@@ -126,6 +126,19 @@ async function main() {
     const inked = await page.$eval("#level-chart", (c) =>
       c.getContext("2d").getImageData(0, 0, c.width, c.height).data.some((v, i) => i % 4 === 3 && v > 0));
     if (!inked) throw new Error("the chart of time per level is empty");
+    // The overlay of which worker rendered each unit: drawn over the image while it is shown,
+    // and then only (a hidden image-sized canvas would cost every frame an upload).
+    const overlay = () => page.$eval("#overlay-canvas", (c) => ({
+      size: [c.width, c.height],
+      inked: c.width > 0 &&
+        c.getContext("2d").getImageData(0, 0, c.width, c.height).data.some((v, i) => i % 4 === 3 && v > 0),
+    }));
+    await page.check("#overlay");
+    const overlayShown = await overlay();
+    await page.uncheck("#overlay");
+    const overlayHidden = await overlay();
+    if (overlayShown.size.join("x") !== "1920x1080" || !overlayShown.inked || overlayHidden.size[0] !== 0)
+      throw new Error(`the worker overlay: ${JSON.stringify({ overlayShown, overlayHidden })}`);
 
     // 2. A gzip'd VRML world with an Inline and a texture, as three files.
     const world = path.join(profile, "world.wrl.gz");
@@ -228,7 +241,7 @@ async function main() {
     const fresh = await page.evaluate((id) => new Promise((resolve) => {
       window.addEventListener("hashchange", () => resolve({
         title: document.getElementById("job-title").textContent,
-        layers: document.querySelectorAll("#stage canvas[data-step]").length,
+        layers: document.querySelectorAll("#stage [data-step]").length,
         base: document.getElementById("base-canvas").width,
       }), { once: true });
       location.hash = `#job=${id}`;
