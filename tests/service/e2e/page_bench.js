@@ -2,8 +2,9 @@
 // each size, in headless Chromium with one local worker, the delay from a unit's merge to its
 // pixels painted (median and 90th percentile over every unit), the bytes the page received for
 // the image (/tiles answers and any PNG, as sent: gzip'd) against the final PNG, and the longest
-// task on the page's main thread (Chromium's long tasks: 50 ms and over; 0 when none) while the
-// form is filled and sent, and while the job refines. With
+// task on the page's main thread (Chromium's long tasks: 50 ms and over; 0 when none) and the
+// most script in one frame (Chromium's long animation frames: 50 ms and over; 0 when none),
+// while the form is filled and sent, and while the job refines. With
 // --moves N, then N examine drags on the last size's finished image (issue 21 §3): the time
 // from releasing the mouse to the new job's first pixels painted (the old job cancelled, the
 // same scene resubmitted with the new camera, its first level rendered and polled).
@@ -38,21 +39,28 @@ async function measure(page, service, scene, width, height) {
     imageBytes += (await request.sizes()).responseBodySize;
   };
   page.on("requestfinished", counting);
-  await page.evaluate(() => { window.longestTask = 0; });
+  const takeLongest = () => page.evaluate(() => {
+    const taken = { ...window.longest };
+    window.longest = { task: 0, frameScript: 0 };
+    return { task: Math.round(taken.task), frameScript: Math.round(taken.frameScript) };
+  });
+  await takeLongest();
   const id = await submitScene(page, service.api, scene, width, height, aa);
   // Long tasks from here on are the refinement's (before: the form being filled and sent).
-  const submitting = await page.evaluate(() => { const t = window.longestTask; window.longestTask = 0; return t; });
+  const submitting = await takeLongest();
   await page.waitForSelector("#base-canvas[data-state=done]", { timeout: 600000 });
   page.off("requestfinished", counting);
   const stats = await page.evaluate(() => window.tessera.stats());
-  const longestTask = await page.evaluate(() => window.longestTask);
+  const refining = await takeLongest();
   const job = await service.api(`/api/jobs/${id}`);
   const png = (await (await fetch(`${service.base}/api/jobs/${id}/image`)).arrayBuffer()).byteLength;
   return {
     size: `${width}x${height}`, units: job.tiles, seconds: +job.elapsed_seconds.toFixed(1),
     delay_median_ms: quantile(stats.latencies, 0.5), delay_p90_ms: quantile(stats.latencies, 0.9),
     image_bytes: imageBytes, final_png_bytes: png, ratio: +(imageBytes / png).toFixed(2),
-    longest_task_submitting_ms: submitting, longest_task_refining_ms: longestTask,
+    longest_task_submitting_ms: submitting.task, longest_task_refining_ms: refining.task,
+    longest_frame_script_submitting_ms: submitting.frameScript,
+    longest_frame_script_refining_ms: refining.frameScript,
     longest_paint_ms: +stats.longestPaintMs.toFixed(1),
     levels_painted: stats.levelsPainted.length, whole_png_loaded: stats.usedWhole,
   };
@@ -90,10 +98,18 @@ async function main() {
     context = await launchChromium(profile);
     const page = context.pages()[0] || await context.newPage();
     await page.addInitScript(() => {
-      window.longestTask = 0;
+      window.longest = { task: 0, frameScript: 0 };
       new PerformanceObserver((list) => {
-        for (const e of list.getEntries()) window.longestTask = Math.max(window.longestTask, e.duration);
+        for (const e of list.getEntries()) window.longest.task = Math.max(window.longest.task, e.duration);
       }).observe({ type: "longtask", buffered: true });
+      // A long animation frame's script: the scripts Chromium attributes to it (each of 5 ms
+      // and over), added up.
+      new PerformanceObserver((list) => {
+        for (const e of list.getEntries()) {
+          const script = e.scripts.reduce((sum, s) => sum + s.duration, 0);
+          window.longest.frameScript = Math.max(window.longest.frameScript, script);
+        }
+      }).observe({ type: "long-animation-frame", buffered: true });
     });
     await page.goto(service.base + "/");
     const scene = fs.readFileSync(path.join(sourceDir, "scenes", "demo.sdl"), "utf8");
