@@ -33,12 +33,14 @@ struct Image {
   friend bool operator==(const Image&, const Image&) = default;
 };
 
-// Image files, through OpenImageIO (common/image/oiio/). Every program has them but the worker
-// (its target sets TESSERA_WITHOUT_OPENIMAGEIO, common/CMakeLists.txt), whose decode_image and
-// image_channels refuse: it gets textures decoded by the coordinator (decoded_texture.h).
+// Image files, through OpenImageIO (common/image/oiio/), linked in or, for tessera-render,
+// loaded on first use while PNG is written with libpng (common/image/lazy/). The worker has none
+// (its target sets TESSERA_IMAGE_FILES to `none`, common/CMakeLists.txt): its decode_image and
+// image_channels refuse, for it gets textures decoded by the coordinator (decoded_texture.h).
 
-// Writes by extension with OpenImageIO: .exr as 32-bit float, anything else as 8-bit.
-// Throws std::runtime_error with OpenImageIO's message on failure.
+// Writes by extension: .exr as 32-bit float, anything else as 8-bit (clamped to [0, 1],
+// to_8bit.h).
+// Throws std::runtime_error naming the file, with the library's message, on failure.
 void write_image(const Image& image, const std::string& path);
 // Reads any format OpenImageIO reads into RGB float (alpha dropped, gray expanded).
 Image read_image(const std::string& path);

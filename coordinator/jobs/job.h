@@ -15,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include "common/image/to_8bit.h"  // the tile records' values
 #include "common/progressive/plan.h"
 #include "common/protocol/bundle.h"
 #include "common/protocol/job_spec.h"
@@ -59,16 +60,6 @@ struct TileRecord {
 // images (half of one pass), which keeps a running job within 15.5 bytes a pixel.
 inline constexpr std::size_t kDeltaLogBytes = 8u << 20;
 inline constexpr double kDeltaLogBytesPerPixel = 1.5;
-
-// The 8-bit value a PNG stores for an intensity: clamped to [0, 1] and rounded, exactly as
-// OpenImageIO converts float to 8 bits (so the page's deltas and the PNG agree bit for bit).
-inline std::uint8_t to_8bit(float v) {
-  float s = v * 255.0f;
-  s += s < 0 ? -0.5f : 0.5f;
-  if (!(s >= 0.0f)) s = 0.0f;  // NaN too
-  if (s > 255.0f) s = 255.0f;
-  return static_cast<std::uint8_t>(s);
-}
 
 struct Job {
   Job(std::int64_t id, Bundle bundle, JobSpec spec, PlanOptions plan_options, int priority);
