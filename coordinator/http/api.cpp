@@ -323,17 +323,17 @@ void Api::job_image(const HttpRequest& request, Job& job, const Query& query,
   if (auto it = query.find("format"); it != query.end()) format = it->second;
   if (format != "png" && format != "exr")
     throw ApiError(400, "bad_request", "format must be png or exr");
-  if (job.state == JobState::Cancelled || job.state == JobState::Failed)
+  if (job.state() == JobState::Cancelled || job.state() == JobState::Failed)
     throw ApiError(404, "no_image",
-                   "job " + std::to_string(job.id) + " is " + to_string(job.state) +
+                   "job " + std::to_string(job.id) + " is " + to_string(job.state()) +
                        ": its image is not kept");
   // The version changes with every merged unit: an unchanged image is answered with 304.
   const auto etag_of = [id = job.id, format](std::uint64_t version) {
     return "\"" + std::to_string(id) + "-" + std::to_string(version) + "-" + format + "\"";
   };
-  if (request[http::field::if_none_match] == etag_of(job.version)) {
+  if (request[http::field::if_none_match] == etag_of(job.version())) {
     HttpResponse res{http::status::not_modified, request.version()};
-    res.set(http::field::etag, etag_of(job.version));
+    res.set(http::field::etag, etag_of(job.version()));
     return respond(std::move(res));
   }
   const auto reply = [etag_of, format, id = job.id](std::shared_ptr<const std::string> bytes,
@@ -352,22 +352,22 @@ void Api::job_image(const HttpRequest& request, Job& job, const Query& query,
     res.body() = bytes;  // shared with the job, not copied
     return res;
   };
-  if (auto it = job.final_encoded.find(format); it != job.final_encoded.end())
-    return respond(reply(it->second, job.version));
+  if (auto it = job.final_encoded().find(format); it != job.final_encoded().end())
+    return respond(reply(it->second, job.version()));
   const std::pair key{job.id, format};
   Encoding& cached = encoded_[key];
-  if (cached.version == job.version && cached.bytes)
-    return respond(reply(cached.bytes, job.version));
+  if (cached.version == job.version() && cached.bytes)
+    return respond(reply(cached.bytes, job.version()));
   auto waiter = [respond, reply](std::shared_ptr<const std::string> bytes, std::uint64_t version) {
     respond(reply(std::move(bytes), version));
   };
   const bool encoding = !cached.waiting.empty();
-  if (encoding && cached.version == job.version) return cached.waiting.push_back(waiter);
+  if (encoding && cached.version == job.version()) return cached.waiting.push_back(waiter);
   // A new version: snapshot it here (a copy), encode it on the pool. Requests waiting for an
   // older version's encoding get this newer one.
   std::shared_ptr<const Image> snapshot =
-      job.final_image ? job.final_image : std::make_shared<const Image>(job.image());
-  const std::uint64_t version = job.version;
+      job.final_image() ? job.final_image() : std::make_shared<const Image>(job.image());
+  const std::uint64_t version = job.version();
   const bool queued = pool_.submit([this, key, version, snapshot] {
     std::shared_ptr<const std::string> bytes;
     try {
@@ -485,7 +485,7 @@ void Api::answer_tile_waiters(std::int64_t job_id) {
 
 void Api::on_released(Job& job) {
   const std::int64_t id = job.id;
-  if (!job.final_image) {
+  if (!job.final_image()) {
     // Cancelled or failed: its cached encodings go, and requests waiting for one get a 404.
     for (auto it = encoded_.begin(); it != encoded_.end();) {
       if (it->first.first != id) {
@@ -506,13 +506,12 @@ void Api::on_released(Job& job) {
   });
   // Encoded on the pool even when it is full: the service owes every done job its image.
   pool_.submit(
-      [this, id, image = job.final_image] {
+      [this, id, image = job.final_image()] {
         auto png = std::make_shared<const std::string>(encode_image(*image, "png"));
         auto exr = std::make_shared<const std::string>(encode_image(*image, "exr"));
         return std::function<void()>([this, id, png, exr] {
           if (Job* done = jobs_.find(id)) {
-            done->final_encoded = {{"png", png}, {"exr", exr}};
-            done->final_image.reset();
+            done->keep_encodings({{"png", png}, {"exr", exr}});
             if (config_.persistence) config_.persistence->store_images(*done);
           }
           std::erase_if(encoded_, [id](const auto& entry) {
