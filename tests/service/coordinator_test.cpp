@@ -11,6 +11,7 @@
 #include "coordinator/http/api.h"
 #include "coordinator/http/job_json.h"
 #include "coordinator/http/multipart.h"
+#include "coordinator/http/refusal_status.h"
 #include "coordinator/http/submission.h"
 #include "coordinator/http/submit_policy.h"
 #include "coordinator/jobs/api_error.h"
@@ -116,7 +117,7 @@ TEST(ParseSettings, ARegionSetsThePlansAreaInsideTheImage) {
                    ServiceLimits{}, r);
     FAIL() << "expected a region outside the image to be refused";
   } catch (const ApiError& e) {
-    EXPECT_EQ(e.status(), 400);
+    EXPECT_EQ(http_status(e.refusal()), 400);
     EXPECT_EQ(e.body()["detail"],
               "settings.region [0, 0, 65, 8] must lie inside the 64x48 image (x1 <= width, y1 <= "
               "height)");
@@ -132,7 +133,7 @@ TEST(ParseJobRequest, SceneErrorsNameLineAndColumn) {
     parse_job_request({body, "application/json", {}}, ServiceLimits{}, std::nullopt);
     FAIL() << "expected a scene error";
   } catch (const ApiError& e) {
-    EXPECT_EQ(e.status(), 400);
+    EXPECT_EQ(http_status(e.refusal()), 400);
     EXPECT_EQ(e.body()["error"], "scene_error");
     EXPECT_EQ(e.body()["line"], 2);
     EXPECT_EQ(e.body()["column"], 3);
@@ -170,7 +171,7 @@ TEST(ParseJobRequest, StrictTurnsLoadWarningsIntoSceneErrors) {
         ServiceLimits{}, std::nullopt);
     FAIL() << "expected a scene error";
   } catch (const ApiError& e) {
-    EXPECT_EQ(e.status(), 400);
+    EXPECT_EQ(http_status(e.refusal()), 400);
     EXPECT_EQ(e.body()["error"], "scene_error");
     EXPECT_EQ(e.body()["line"], 2);
   }
@@ -195,7 +196,7 @@ TEST(ParseJobRequest, TheBundleHoldsTheImageTexture) {
     parse_job_request({broken, "application/json", {}}, ServiceLimits{}, std::nullopt);
     FAIL() << "expected a scene error";
   } catch (const ApiError& e) {
-    EXPECT_EQ(e.status(), 400);
+    EXPECT_EQ(http_status(e.refusal()), 400);
     EXPECT_EQ(e.body()["error"], "scene_error");
     EXPECT_EQ(e.body()["line"], 1);
     EXPECT_EQ(e.body()["column"], 14);
@@ -266,7 +267,7 @@ TEST(ReadRerender, TheBodysSettingsGoOverTheJobsBundleAndSettings) {
       read_rerender(bad, *job->bundle, job_settings_json(*job));
       FAIL() << "expected " << bad << " to be refused";
     } catch (const ApiError& e) {
-      EXPECT_EQ(e.status(), 400) << bad;
+      EXPECT_EQ(http_status(e.refusal()), 400) << bad;
     }
   }
 }
@@ -398,7 +399,7 @@ int refusal(const SubmitPolicy& policy, const HttpRequest& request, const std::s
     check_submitter(policy, request, boost::asio::ip::make_address(peer));
     return 0;
   } catch (const ApiError& e) {
-    return e.status();
+    return http_status(e.refusal());
   }
 }
 
