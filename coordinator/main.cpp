@@ -81,7 +81,7 @@ int main(int argc, char** argv) {
       for (JobState state : {JobState::Queued, JobState::Running, JobState::Done, JobState::Failed,
                              JobState::Cancelled})
         by_state[state] = 0;
-      for (const auto& [id, job] : jobs.all()) ++by_state[job->state];
+      for (const auto& [id, job] : jobs.all()) ++by_state[job->state()];
       for (const auto& [state, count] : by_state) metrics.jobs.with({to_string(state)}).set(count);
       const Scheduler::WorkerTotals totals = scheduler.worker_totals();
       metrics.workers.set(totals.workers);

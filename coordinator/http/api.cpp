@@ -12,6 +12,7 @@
 #include "coordinator/http/gzip.h"
 #include "coordinator/http/image_codec.h"
 #include "coordinator/http/job_json.h"
+#include "coordinator/http/refusal_status.h"
 #include "coordinator/http/submission.h"
 #include "coordinator/http/tile_deltas.h"
 #include "coordinator/http/worker_json.h"
@@ -44,10 +45,13 @@ std::string percent_decode(std::string_view s) {
   return out;
 }
 
-HttpResponse error_response(const ApiError& e) { return json_response(e.status(), e.body()); }
+HttpResponse error_response(const ApiError& e) {
+  return json_response(http_status(e.refusal()), e.body());
+}
 
 ApiError busy() {
-  return ApiError(503, "busy", "the coordinator is busy with other submissions; try again soon");
+  return ApiError(Refusal::busy, "busy",
+                  "the coordinator is busy with other submissions; try again soon");
 }
 
 // Parses "/api/jobs/{id}..." ids: digits only, so "/api/jobs/abc" is a 404 rather than a throw.
@@ -112,7 +116,8 @@ void Api::route(HttpRequest& request, const std::string& path, const Query& quer
   const auto method = request.method();
   const auto now = Clock::now();
   if (path == "/metrics") {
-    if (method != http::verb::get) throw ApiError(405, "method_not_allowed", "GET /metrics");
+    if (method != http::verb::get)
+      throw ApiError(Refusal::method_not_allowed, "method_not_allowed", "GET /metrics");
     HttpResponse res{http::status::ok, request.version()};
     res.set(http::field::content_type, "text/plain; version=0.0.4; charset=utf-8");
     res.set(http::field::cache_control, "no-store");
@@ -121,28 +126,31 @@ void Api::route(HttpRequest& request, const std::string& path, const Query& quer
   }
   if (!path.starts_with("/api/")) {
     if (method != http::verb::get && method != http::verb::head)
-      throw ApiError(405, "method_not_allowed", "the page only answers GET");
+      throw ApiError(Refusal::method_not_allowed, "method_not_allowed",
+                     "the page only answers GET");
     return respond(static_file(path == "/" ? "index.html" : path.substr(1)));
   }
   if (path == "/api/workers") {
-    if (method != http::verb::get) throw ApiError(405, "method_not_allowed", "GET /api/workers");
+    if (method != http::verb::get)
+      throw ApiError(Refusal::method_not_allowed, "method_not_allowed", "GET /api/workers");
     return respond(json_response(200, workers_json(scheduler_.workers())));
   }
   if (path == "/api/predict") {
-    if (method != http::verb::post) throw ApiError(405, "method_not_allowed", "POST /api/predict");
+    if (method != http::verb::post)
+      throw ApiError(Refusal::method_not_allowed, "method_not_allowed", "POST /api/predict");
     return predict(request, query, respond);
   }
   if (path == "/api/jobs") {
     if (method == http::verb::post) return create_job(request, query, client, respond);
     if (method != http::verb::get)
-      throw ApiError(405, "method_not_allowed", "GET or POST /api/jobs");
+      throw ApiError(Refusal::method_not_allowed, "method_not_allowed", "GET or POST /api/jobs");
     // Pages: ?limit=N (1..1000) jobs with ids above ?after=ID, by id.
     const auto number = [&](const char* name, long long lo, long long hi, long long fallback) {
       auto it = query.find(name);
       if (it == query.end()) return fallback;
       const auto value = parse_id(it->second);
       if (!value || *value < lo || *value > hi)
-        throw ApiError(400, "bad_query",
+        throw ApiError(Refusal::bad_request, "bad_query",
                        std::string(name) + " takes a number in [" + std::to_string(lo) + ", " +
                            std::to_string(hi) + "]");
       return static_cast<long long>(*value);
@@ -161,7 +169,7 @@ void Api::route(HttpRequest& request, const std::string& path, const Query& quer
     const auto slash = rest.find('/');
     const auto id = parse_id(rest.substr(0, slash));
     Job* job = id ? jobs_.find(*id) : nullptr;
-    if (!job) throw ApiError(404, "not_found", "no job " + rest.substr(0, slash));
+    if (!job) throw ApiError(Refusal::not_found, "not_found", "no job " + rest.substr(0, slash));
     const std::string sub = slash == std::string::npos ? "" : rest.substr(slash + 1);
     if (sub.empty() && method == http::verb::get)
       return respond(json_response(200, job_status_json(*job, now)));
@@ -176,9 +184,10 @@ void Api::route(HttpRequest& request, const std::string& path, const Query& quer
     if (sub == "rerender" && method == http::verb::post)
       return rerender(request, *job, client, respond);
     if (sub.empty() || sub == "image" || sub == "tiles" || sub == "rerender")
-      throw ApiError(405, "method_not_allowed", std::string(request.method_string()) + " " + path);
+      throw ApiError(Refusal::method_not_allowed, "method_not_allowed",
+                     std::string(request.method_string()) + " " + path);
   }
-  throw ApiError(404, "not_found", "no route " + path);
+  throw ApiError(Refusal::not_found, "not_found", "no route " + path);
 }
 
 void Api::offload(HttpRespond respond, std::function<Finish(const IntakeBudget&)> work) {
@@ -254,7 +263,7 @@ void Api::submit_job(const std::string& client, HttpRespond& respond,
     return jobs_.unfinished_of(client) >= config_.max_jobs_per_client;
   };
   const ApiError too_many(
-      429, "too_many_jobs",
+      Refusal::too_many_jobs, "too_many_jobs",
       "this client has " + std::to_string(config_.max_jobs_per_client) +
           " unfinished jobs, the limit; cancel some or wait",
       {{"limit", "max_jobs_per_client"}, {"value", config_.max_jobs_per_client}});
@@ -272,12 +281,14 @@ void Api::submit_job(const std::string& client, HttpRespond& respond,
                   try {
                     return p->admit(r);
                   } catch (const StoreError& e) {
-                    throw ApiError(507, "store_failed", "the job cannot be stored: " + e.cause());
+                    throw ApiError(Refusal::cannot_store, "store_failed",
+                                   "the job cannot be stored: " + e.cause());
                   }
                 };
               Job* job = jobs_.create(std::move(*parsed), client, store);
               if (!job)
-                throw ApiError(503, "busy", "too many unfinished jobs; cancel some or wait");
+                throw ApiError(Refusal::busy, "busy",
+                               "too many unfinished jobs; cancel some or wait");
               watch(*job);
               const Prediction prediction =
                   scheduler_.predict(job->seconds_per_pixel_pass, job->plan.total_cost);
@@ -322,18 +333,18 @@ void Api::job_image(const HttpRequest& request, Job& job, const Query& query,
   std::string format = "png";
   if (auto it = query.find("format"); it != query.end()) format = it->second;
   if (format != "png" && format != "exr")
-    throw ApiError(400, "bad_request", "format must be png or exr");
-  if (job.state == JobState::Cancelled || job.state == JobState::Failed)
-    throw ApiError(404, "no_image",
-                   "job " + std::to_string(job.id) + " is " + to_string(job.state) +
+    throw ApiError(Refusal::bad_request, "bad_request", "format must be png or exr");
+  if (job.state() == JobState::Cancelled || job.state() == JobState::Failed)
+    throw ApiError(Refusal::not_found, "no_image",
+                   "job " + std::to_string(job.id) + " is " + to_string(job.state()) +
                        ": its image is not kept");
   // The version changes with every merged unit: an unchanged image is answered with 304.
   const auto etag_of = [id = job.id, format](std::uint64_t version) {
     return "\"" + std::to_string(id) + "-" + std::to_string(version) + "-" + format + "\"";
   };
-  if (request[http::field::if_none_match] == etag_of(job.version)) {
+  if (request[http::field::if_none_match] == etag_of(job.version())) {
     HttpResponse res{http::status::not_modified, request.version()};
-    res.set(http::field::etag, etag_of(job.version));
+    res.set(http::field::etag, etag_of(job.version()));
     return respond(std::move(res));
   }
   const auto reply = [etag_of, format, id = job.id](std::shared_ptr<const std::string> bytes,
@@ -352,22 +363,22 @@ void Api::job_image(const HttpRequest& request, Job& job, const Query& query,
     res.body() = bytes;  // shared with the job, not copied
     return res;
   };
-  if (auto it = job.final_encoded.find(format); it != job.final_encoded.end())
-    return respond(reply(it->second, job.version));
+  if (auto it = job.final_encoded().find(format); it != job.final_encoded().end())
+    return respond(reply(it->second, job.version()));
   const std::pair key{job.id, format};
   Encoding& cached = encoded_[key];
-  if (cached.version == job.version && cached.bytes)
-    return respond(reply(cached.bytes, job.version));
+  if (cached.version == job.version() && cached.bytes)
+    return respond(reply(cached.bytes, job.version()));
   auto waiter = [respond, reply](std::shared_ptr<const std::string> bytes, std::uint64_t version) {
     respond(reply(std::move(bytes), version));
   };
   const bool encoding = !cached.waiting.empty();
-  if (encoding && cached.version == job.version) return cached.waiting.push_back(waiter);
+  if (encoding && cached.version == job.version()) return cached.waiting.push_back(waiter);
   // A new version: snapshot it here (a copy), encode it on the pool. Requests waiting for an
   // older version's encoding get this newer one.
   std::shared_ptr<const Image> snapshot =
-      job.final_image ? job.final_image : std::make_shared<const Image>(job.image());
-  const std::uint64_t version = job.version;
+      job.final_image() ? job.final_image() : std::make_shared<const Image>(job.image());
+  const std::uint64_t version = job.version();
   const bool queued = pool_.submit([this, key, version, snapshot] {
     std::shared_ptr<const std::string> bytes;
     try {
@@ -428,7 +439,7 @@ void Api::job_tiles(const HttpRequest& request, Job& job, const Query& query,
     if (it == query.end()) return 0;
     const auto n = parse_id(it->second);
     if (!n || *n > most)
-      throw ApiError(400, "bad_request",
+      throw ApiError(Refusal::bad_request, "bad_request",
                      std::string(name) + " must be a count up to " + std::to_string(most));
     return *n;
   };
@@ -485,7 +496,7 @@ void Api::answer_tile_waiters(std::int64_t job_id) {
 
 void Api::on_released(Job& job) {
   const std::int64_t id = job.id;
-  if (!job.final_image) {
+  if (!job.final_image()) {
     // Cancelled or failed: its cached encodings go, and requests waiting for one get a 404.
     for (auto it = encoded_.begin(); it != encoded_.end();) {
       if (it->first.first != id) {
@@ -506,13 +517,12 @@ void Api::on_released(Job& job) {
   });
   // Encoded on the pool even when it is full: the service owes every done job its image.
   pool_.submit(
-      [this, id, image = job.final_image] {
+      [this, id, image = job.final_image()] {
         auto png = std::make_shared<const std::string>(encode_image(*image, "png"));
         auto exr = std::make_shared<const std::string>(encode_image(*image, "exr"));
         return std::function<void()>([this, id, png, exr] {
           if (Job* done = jobs_.find(id)) {
-            done->final_encoded = {{"png", png}, {"exr", exr}};
-            done->final_image.reset();
+            done->keep_encodings({{"png", png}, {"exr", exr}});
             if (config_.persistence) config_.persistence->store_images(*done);
           }
           std::erase_if(encoded_, [id](const auto& entry) {
@@ -529,9 +539,9 @@ HttpResponse Api::static_file(const std::string& name) {
   if (name.empty() || name.front() == '.' ||
       name.find_first_not_of("abcdefghijklmnopqrstuvwxyzABCDEFGHIJKLMNOPQRSTUVWXYZ0123456789._-") !=
           std::string::npos)
-    throw ApiError(404, "not_found", "no page " + name);
+    throw ApiError(Refusal::not_found, "not_found", "no page " + name);
   std::ifstream in(config_.web_dir / name, std::ios::binary);
-  if (!in) throw ApiError(404, "not_found", "no page " + name);
+  if (!in) throw ApiError(Refusal::not_found, "not_found", "no page " + name);
   std::ostringstream bytes;
   bytes << in.rdbuf();
   HttpResponse res{http::status::ok, 11};

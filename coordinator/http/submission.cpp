@@ -13,7 +13,9 @@ namespace {
 
 using nlohmann::json;
 
-ApiError bad_request(const std::string& detail) { return ApiError(400, "bad_request", detail); }
+ApiError bad_request(const std::string& detail) {
+  return ApiError(Refusal::bad_request, "bad_request", detail);
+}
 
 std::string get_string(const json& s, const char* key, const std::string& fallback) {
   if (!s.contains(key)) return fallback;
@@ -40,7 +42,8 @@ std::string default_main(const std::string& format) {
 Submission read_json_submission(std::string_view body,
                                 const std::optional<std::filesystem::path>& scenes_dir) {
   const json j = json::parse(body, nullptr, false);
-  if (!j.is_object()) throw ApiError(400, "bad_json", "the body is not a JSON object");
+  if (!j.is_object())
+    throw ApiError(Refusal::bad_request, "bad_json", "the body is not a JSON object");
   static const std::set<std::string> known = {"scene", "scene_file", "format",
                                               "files", "main",       "settings"};
   for (const auto& [key, value] : j.items())
@@ -78,7 +81,7 @@ Submission read_tar_submission(std::string_view body,
   try {
     sub.files = read_tar(body);
   } catch (const std::exception& e) {
-    throw ApiError(400, "bad_bundle", e.what());
+    throw ApiError(Refusal::bad_request, "bad_bundle", e.what());
   }
   if (auto it = query.find("format"); it != query.end()) sub.format = it->second;
   if (auto it = query.find("main"); it != query.end()) {
@@ -106,7 +109,7 @@ Submission read_multipart_submission(std::string_view body, const std::string& b
   try {
     parts = parse_multipart(body, boundary);
   } catch (const std::exception& e) {
-    throw ApiError(400, "bad_bundle", e.what());
+    throw ApiError(Refusal::bad_request, "bad_bundle", e.what());
   }
   Submission sub;
   std::optional<std::string> scene, main;
@@ -116,7 +119,7 @@ Submission read_multipart_submission(std::string_view body, const std::string& b
     } else if (part.name == "settings") {
       sub.settings = json::parse(part.data, nullptr, false);
       if (!sub.settings.is_object())
-        throw ApiError(400, "bad_json", "settings is not a JSON object");
+        throw ApiError(Refusal::bad_request, "bad_json", "settings is not a JSON object");
     } else if (part.name == "main") {
       main = part.data;
     } else if (part.name == "format") {
@@ -137,7 +140,8 @@ Submission read_multipart_submission(std::string_view body, const std::string& b
 
 Submission read_rerender(std::string_view body, const Bundle& bundle, json settings) {
   const json j = body.empty() ? json::object() : json::parse(body, nullptr, false);
-  if (!j.is_object()) throw ApiError(400, "bad_json", "the body is not a JSON object");
+  if (!j.is_object())
+    throw ApiError(Refusal::bad_request, "bad_json", "the body is not a JSON object");
   for (const auto& [key, value] : j.items())
     if (key != "settings") throw bad_request("unknown field \"" + key + "\"");
   if (j.contains("settings")) {
@@ -165,7 +169,7 @@ Submission read_submission(const JobUpload& upload,
   if (type.starts_with("application/json")) return read_json_submission(upload.body, scenes_dir);
   if (const auto boundary = multipart_boundary(type))
     return read_multipart_submission(upload.body, *boundary);
-  throw ApiError(415, "unsupported_media_type",
+  throw ApiError(Refusal::unsupported_media_type, "unsupported_media_type",
                  "POST JSON (application/json), a tar bundle (application/x-tar) or a form "
                  "(multipart/form-data)");
 }

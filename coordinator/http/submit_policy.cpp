@@ -49,7 +49,7 @@ void check_submitter(const SubmitPolicy& policy, const HttpRequest& request,
                          std::ranges::find(policy.allowed_origins, std::string(origin)) !=
                              policy.allowed_origins.end();
     if (!allowed)
-      throw ApiError(403, "cross_origin",
+      throw ApiError(Refusal::forbidden, "cross_origin",
                      "requests from " + std::string(origin) +
                          " may not change state here (start the coordinator with --allow-origin " +
                          std::string(origin) + " to allow it)");
@@ -60,12 +60,12 @@ void check_submitter(const SubmitPolicy& policy, const HttpRequest& request,
     constexpr std::string_view kBearer = "Bearer ";
     if (!given.starts_with(kBearer) ||
         !token_matches(given.substr(kBearer.size()), policy.api_token))
-      throw ApiError(401, "unauthorized",
+      throw ApiError(Refusal::unauthorized, "unauthorized",
                      "this coordinator needs its API token: Authorization: Bearer TOKEN");
     return;
   }
   if (!policy.open_submit && !is_loopback(peer))
-    throw ApiError(403, "forbidden",
+    throw ApiError(Refusal::forbidden, "forbidden",
                    "only this machine may submit or cancel; start the coordinator with "
                    "--api-token TOKEN (or --open-submit on a trusted network)");
 }

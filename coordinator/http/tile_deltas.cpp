@@ -24,15 +24,15 @@ std::string encode_tiles(const Job& job, std::size_t since) {
   const std::size_t next = job.tiles_next();
   since = std::min(since, next);
   // Behind the log, or a normalized job (whose shown values change with every merge).
-  const bool whole = since < job.delta_first || job.spec.settings.normalize_colors;
-  const std::size_t first = std::max(since, job.tiles_first);
+  const bool whole = since < job.delta_first() || job.spec.settings.normalize_colors;
+  const std::size_t first = std::max(since, job.tiles_first());
   std::string out = "TSD1";
   put<std::uint32_t>(out, 0);  // next and count, once known
   put<std::uint32_t>(out, 0);
   put<std::uint32_t>(out, (whole ? 1u : 0u) | (job.finished_state() ? 2u : 0u));
   std::size_t end = first, pixel_bytes = 0;
   for (; end < next && (pixel_bytes < kTilesAnswerBytes || end == first); ++end) {
-    const TileRecord& t = job.tiles[end - job.tiles_first];
+    const TileRecord& t = job.tiles()[end - job.tiles_first()];
     const WorkUnit& unit = job.plan.units.at(static_cast<std::size_t>(
         job.plan.stages[t.stage].first_unit));  // any unit of the stage: same step and pattern
     const Stage& stage = job.plan.stages[t.stage];

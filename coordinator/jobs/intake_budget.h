@@ -1,7 +1,7 @@
 // What one heavy request (POST /api/jobs, POST /api/predict) may spend off the io thread: a
 // wall deadline (--max-intake-seconds), checked between the stages of intake and handed to
-// the loader and the probe. Every limit is reported the same way: 422 over_budget naming the
-// limit and its value (413 for memory).
+// the loader and the probe. Every limit is reported the same way: over_budget naming the limit
+// and its value, refused as unprocessable (too large for a limit on bytes).
 #pragma once
 
 #include <chrono>
@@ -26,7 +26,7 @@ struct IntakeBudget {
     if (Clock::now() >= deadline) throw over_time(stage);
   }
   ApiError over_time(const std::string& stage) const {
-    return ApiError(422, "over_budget",
+    return ApiError(Refusal::unprocessable, "over_budget",
                     "the request took longer than --max-intake-seconds " + format_seconds() +
                         " (at " + stage + ")",
                     {{"limit", "max_intake_seconds"}, {"value", seconds}});

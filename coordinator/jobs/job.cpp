@@ -33,11 +33,11 @@ Job::Job(std::int64_t id_, Bundle bundle_, JobSpec spec_, PlanOptions plan_optio
       plan_options(plan_options_),
       priority(priority_),
       plan(make_plan(plan_options)),
-      stage_timing(plan.stages.size()),
       delta_log_bytes(std::max(
           kDeltaLogBytes, static_cast<std::size_t>(kDeltaLogBytesPerPixel * spec.settings.width *
                                                    static_cast<double>(spec.settings.height)))),
-      frame_buffer(spec.settings.width, spec.settings.height) {}
+      stage_timing_(plan.stages.size()),
+      frame_buffer_(spec.settings.width, spec.settings.height) {}
 
 namespace {
 
@@ -60,43 +60,101 @@ void append_difference(std::string& out, std::uint8_t previous[3], const Rgb& va
 
 }  // namespace
 
-void Job::apply_result(int unit_index, std::span<const float> values, std::int64_t worker) {
+bool Job::record_dispatch(int stage, Clock::time_point now) {
+  StageTiming& timing = stage_timing_[stage];
+  if (!timing.first_dispatch) timing.first_dispatch = now;
+  if (!started_) started_ = now;
+  if (state_ == JobState::Running) return false;
+  state_ = JobState::Running;
+  return true;
+}
+
+void Job::apply_result(int unit_index, std::span<const float> values, const RenderStats& stats,
+                       const std::optional<ResultSource>& from) {
   const WorkUnit& unit = plan.units[unit_index];
   const Stage& stage = plan.stages[unit.stage];
   const std::vector<PixelCoord> pixels = expand(unit.pixels);
   // Normalized jobs' values change with the whole image's highest one: the page loads the PNG.
   const bool log_pixels = !spec.settings.normalize_colors;
-  TileRecord record{unit.pixels.rect, unit.stage, worker, wall_clock_ms(), {}};
+  TileRecord record{unit.pixels.rect, unit.stage, from ? from->worker : 0, wall_clock_ms(), {}};
   if (log_pixels) record.pixels.reserve(3 * pixels.size());
   std::uint8_t previous[3] = {0, 0, 0};
   for (std::size_t i = 0; i < pixels.size(); ++i) {
     const PixelCoord p = pixels[i];
     const float* rgb = values.data() + 3 * i;
-    if (!stage.preview_only) frame_buffer.add_pass(p.x, p.y, rgb);
+    if (!stage.preview_only) frame_buffer_.add_pass(p.x, p.y, rgb);
     if (!log_pixels) continue;
     // A level's value stands for its block; a later pass shows the pixel's mean so far.
     append_difference(record.pixels, previous,
-                      stage.level > 0 ? Rgb{rgb[0], rgb[1], rgb[2]} : frame_buffer.mean(p.x, p.y));
+                      stage.level > 0 ? Rgb{rgb[0], rgb[1], rgb[2]} : frame_buffer_.mean(p.x, p.y));
   }
-  delta_bytes += record.pixels.size();
-  tiles.push_back(std::move(record));
+  delta_bytes_ += record.pixels.size();
+  tiles_.push_back(std::move(record));
   trim_delta_log(delta_log_bytes);
-  done_cost += unit.cost;
-  ++version;
+  done_cost_ += unit.cost;
+  stats_ += stats;
+  StageTiming& timing = stage_timing_[unit.stage];
+  timing.units_done += 1;
+  if (from) {
+    WorkerShare& share = shares_[from->worker];
+    share.name = from->name;
+    share.units += 1;
+    share.pixels += unit.cost;
+    share.seconds += stats.seconds;
+    timing.last_result = from->at;
+  }
+  ++version_;
   if (on_changed) on_changed(*this);
 }
 
+void Job::finish(JobState state, std::string error, Clock::time_point now) {
+  state_ = state;
+  error_ = std::move(error);
+  finished_ = now;
+  ++version_;
+  release_buffers();
+}
+
+void Job::keep_encodings(Encodings encoded) {
+  final_encoded_ = std::move(encoded);
+  final_image_.reset();
+}
+
+void Job::fail_unstored(std::string error) {
+  state_ = JobState::Failed;
+  error_ = std::move(error);
+  final_encoded_.clear();
+  ++version_;
+}
+
+void Job::restore_finished(Clock::time_point created, JobState state, std::string error,
+                           Clock::time_point finished, Encodings encoded) {
+  created_ = created;
+  state_ = state;
+  error_ = std::move(error);
+  started_ = created;
+  finished_ = finished;
+  free_buffers();
+  final_encoded_ = std::move(encoded);
+}
+
+void Job::restore_unfinished(Clock::time_point created, std::optional<Clock::time_point> started) {
+  created_ = created;
+  started_ = started;
+  state_ = started ? JobState::Running : JobState::Queued;
+}
+
 void Job::trim_delta_log(std::size_t max_bytes) {
-  while (delta_bytes > max_bytes && delta_first < tiles_next()) {
-    std::string& dropped = tiles[delta_first - tiles_first].pixels;
-    delta_bytes -= dropped.size();
+  while (delta_bytes_ > max_bytes && delta_first_ < tiles_next()) {
+    std::string& dropped = tiles_[delta_first_ - tiles_first_].pixels;
+    delta_bytes_ -= dropped.size();
     dropped = std::string();
-    ++delta_first;
+    ++delta_first_;
   }
 }
 
 Image Job::image() const {
-  Image image = state == JobState::Done ? frame_buffer.resolve() : known_so_far();
+  Image image = state_ == JobState::Done ? frame_buffer_.resolve() : known_so_far();
   // Post-normalization needs the whole image (§4.6): applied here, never to units.
   const RenderSettings& s = spec.settings;
   if (s.normalize_colors) post_normalize(image, s.normalize_brightness);
@@ -104,7 +162,7 @@ Image Job::image() const {
 }
 
 Image Job::known_so_far() const {
-  const int w = frame_buffer.width(), h = frame_buffer.height();
+  const int w = frame_buffer_.width(), h = frame_buffer_.height();
   Image image(w, h);
   for (int y = 0; y < h; ++y)
     for (int x = 0; x < w; ++x) {
@@ -113,8 +171,8 @@ Image Job::known_so_far() const {
       for (int level = std::max(plan.levels, 1); level >= 1; --level) {
         const int side = plan.levels > 0 ? block_side(plan.levels, level) : 1;
         const PixelCoord a = block_of({x, y}, side);
-        if (frame_buffer.passes_at(a.x, a.y) == 0) continue;
-        image.set(x, y, frame_buffer.mean(a.x, a.y));
+        if (frame_buffer_.passes_at(a.x, a.y) == 0) continue;
+        image.set(x, y, frame_buffer_.mean(a.x, a.y));
         break;
       }
     }
@@ -122,15 +180,15 @@ Image Job::known_so_far() const {
 }
 
 void Job::release_buffers() {
-  if (state == JobState::Done) {
-    final_image = std::make_shared<const Image>(image());
+  if (state_ == JobState::Done) {
+    final_image_ = std::make_shared<const Image>(image());
     // Pages still polling get the last merges; later ones load the final image.
-    const std::size_t keep = tiles_next() - delta_first;
-    std::deque<TileRecord> tail(tiles.end() - static_cast<std::ptrdiff_t>(keep), tiles.end());
+    const std::size_t keep = tiles_next() - delta_first_;
+    std::deque<TileRecord> tail(tiles_.end() - static_cast<std::ptrdiff_t>(keep), tiles_.end());
     const std::size_t next = tiles_next();
-    frame_buffer = FrameBuffer(0, 0);
-    tiles = std::move(tail);
-    tiles_first = next - keep;
+    frame_buffer_ = FrameBuffer(0, 0);
+    tiles_ = std::move(tail);
+    tiles_first_ = next - keep;
     malloc_trim(0);
   } else {
     free_buffers();
@@ -141,29 +199,29 @@ void Job::release_buffers() {
 
 void Job::free_buffers() {
   // Assigning empty containers frees their storage (clear() would keep the capacity).
-  frame_buffer = FrameBuffer(0, 0);
-  tiles_first = delta_first = tiles_next();
-  tiles = std::deque<TileRecord>();
-  delta_bytes = 0;
+  frame_buffer_ = FrameBuffer(0, 0);
+  tiles_first_ = delta_first_ = tiles_next();
+  tiles_ = std::deque<TileRecord>();
+  delta_bytes_ = 0;
   malloc_trim(0);  // large frees go back to the system only when trimmed (glibc)
 }
 
 double Job::elapsed_seconds(Clock::time_point now) const {
-  if (!started) return 0;
-  return std::chrono::duration<double>(finished.value_or(now) - *started).count();
+  if (!started_) return 0;
+  return std::chrono::duration<double>(finished_.value_or(now) - *started_).count();
 }
 
 std::optional<double> Job::eta_seconds(Clock::time_point now) const {
-  if (state == JobState::Done) return 0.0;
-  if (state != JobState::Running || done_cost == 0) return std::nullopt;
+  if (state_ == JobState::Done) return 0.0;
+  if (state_ != JobState::Running || done_cost_ == 0) return std::nullopt;
   // The seeds' running estimate, over the whole job: remaining work at the rate so far.
-  const double rate = elapsed_seconds(now) / static_cast<double>(done_cost);
-  return rate * static_cast<double>(plan.total_cost - done_cost);
+  const double rate = elapsed_seconds(now) / static_cast<double>(done_cost_);
+  return rate * static_cast<double>(plan.total_cost - done_cost_);
 }
 
 int Job::current_stage() const {
   for (std::size_t s = 0; s < plan.stages.size(); ++s)
-    if (stage_timing[s].units_done < plan.stages[s].unit_count) return static_cast<int>(s);
+    if (stage_timing_[s].units_done < plan.stages[s].unit_count) return static_cast<int>(s);
   return static_cast<int>(plan.stages.size()) - 1;
 }
 

@@ -1,7 +1,12 @@
 // A job in the coordinator: what was asked (bundle, settings, plan), and what has come back
 // (frame buffer, the log of merged units the page paints, per-stage timings, statistics,
-// per-worker shares). Plain data plus the merge of one unit's result; the scheduler decides
-// what runs where.
+// per-worker shares). What was asked is fixed before the job is queued; what has come back
+// changes only through the job's methods, each called by one owner: the scheduler records
+// dispatches and results and ends the job (record_dispatch, apply_result, finish), the API
+// keeps the encoded final image and frees the last tile records (keep_encodings,
+// free_buffers), and persistence restores jobs after a restart (apply_result replays,
+// restore_finished, restore_unfinished) and fails those whose results it cannot store
+// (fail_unstored). The scheduler decides what runs where.
 #pragma once
 
 #include <chrono>
@@ -61,9 +66,15 @@ struct TileRecord {
 inline constexpr std::size_t kDeltaLogBytes = 8u << 20;
 inline constexpr double kDeltaLogBytesPerPixel = 1.5;
 
-struct Job {
+class Job {
+ public:
+  // The final image's encodings by format ("png", "exr").
+  using Encodings = std::map<std::string, std::shared_ptr<const std::string>>;
+
   Job(std::int64_t id, Bundle bundle, JobSpec spec, PlanOptions plan_options, int priority);
 
+  // What was asked: set at construction, or by JobStore::create and at admission (the
+  // prediction) before the job is queued, and never changed after.
   std::int64_t id;
   // Shared and never changed: a rerender (POST /api/jobs/{id}/rerender) reads it on an intake
   // thread without copying it on the io thread, even if the job is evicted meanwhile.
@@ -74,7 +85,7 @@ struct Job {
   int priority;
   std::string client;  // the submitter's address, for the per-client cap on unfinished jobs
   Plan plan;
-  std::vector<std::string> effects, warnings;
+  std::vector<std::string> effects;
   std::optional<Camera> camera;  // JobRequest::camera
   std::vector<NamedCamera> viewpoints;
   // The prediction made at submission from the probe and the worker threads then connected
@@ -82,66 +93,122 @@ struct Job {
   double seconds_per_pixel_pass = 0;
   std::optional<double> uncalibrated_prediction, predicted_seconds;
   int prediction_threads = 0;  // the worker threads the prediction was made for
-  bool ran_alone = true;       // no other job ran beside it: its time can calibrate predictions
+  // The tile log's bound in bytes (kDeltaLogBytes; tests make it small).
+  std::size_t delta_log_bytes;
 
-  JobState state = JobState::Queued;
-  std::string error;
-  Clock::time_point created = Clock::now();
-  std::optional<Clock::time_point> started, finished;
-
-  std::vector<StageTiming> stage_timing;
-  long long done_cost = 0;
-  RenderStats stats;
-  std::map<std::int64_t, WorkerShare> shares;  // by worker id
-  // Merged units from sequence number tiles_first on (tiles[i] is number tiles_first + i); the
-  // pixels of those before delta_first are dropped (kDeltaLogBytes).
-  std::deque<TileRecord> tiles;
-  std::size_t tiles_first = 0, delta_first = 0, delta_bytes = 0;
-  std::size_t delta_log_bytes;  // the log's bound (tests make it small)
-  std::size_t tiles_next() const { return tiles_first + tiles.size(); }
-
-  // 14 bytes a pixel: the whole of a running job's memory per pixel. What the page shows is
-  // painted by the page itself from the tile records; image() derives it when asked.
-  FrameBuffer frame_buffer;
-  std::uint64_t version = 0;  // bumps with every merged unit and state change
-
-  // Once finished the buffers above are freed (release_buffers): a done job keeps only its
-  // final image, as pixels until the coordinator has encoded it, then only encoded; a
-  // cancelled or failed job keeps no image. So memory is bounded by the running jobs.
-  std::shared_ptr<const Image> final_image;
-  std::map<std::string, std::shared_ptr<const std::string>> final_encoded;  // "png", "exr"
   // Called by release_buffers, on the io thread: the coordinator encodes the final image.
   std::function<void(Job&)> on_released;
   // Called after every merge and when the job finishes, on the io thread: answers the long
   // polls waiting for this job's tiles.
   std::function<void(Job&)> on_changed;
 
+  // What has come back. Changed only through the methods below, each one step of a job's life.
+
+  // The scheduler sent a unit of `stage`: times the stage and the job from their first
+  // dispatch. Returns true when this started the job (queued -> running).
+  bool record_dispatch(int stage, Clock::time_point now);
+  // Another job ran beside this one: its time no longer calibrates predictions (Scheduler).
+  void mark_ran_beside_another() { ran_alone_ = false; }
+  // A worker's failure report the job survives (the scheduler lets another worker try).
+  void add_warning(std::string warning) { warnings_.push_back(std::move(warning)); }
+  // Merges one unit's values (3 floats per pixel of expand(unit), in that order), logs it as a
+  // tile record and counts it in the job's progress and statistics; `from` says which worker
+  // sent it and when, for the tile record, the per-worker shares and the stage's timing (none
+  // for results replayed from the store). The scheduler and JobPersistence::restore call it.
+  struct ResultSource {
+    std::int64_t worker = 0;
+    std::string name;
+    Clock::time_point at;
+  };
+  void apply_result(int unit, std::span<const float> values, const RenderStats& stats,
+                    const std::optional<ResultSource>& from = std::nullopt);
+  // The job ends (Scheduler::finish): done, failed or cancelled at `now`, with the error for
+  // the page; then release_buffers.
+  void finish(JobState state, std::string error, Clock::time_point now);
+  // The coordinator encoded the final image (after release_buffers): only the encodings stay.
+  void keep_encodings(Encodings encoded);
+  // A done job whose results cannot be stored fails after all, keeping no image
+  // (JobPersistence::store_images).
+  void fail_unstored(std::string error);
+  // A job restored from the store (JobPersistence::restore), created at `created`: finished as
+  // the store says, with its stored encodings and no buffers...
+  void restore_finished(Clock::time_point created, JobState state, std::string error,
+                        Clock::time_point finished, Encodings encoded);
+  // ... or unfinished, after its stored results were replayed: running again since `started`
+  // if the store held results of it, else queued.
+  void restore_unfinished(Clock::time_point created, std::optional<Clock::time_point> started);
+  // Frees the frame buffer and the tile records: the coordinator does once a done job's last
+  // pages had time to catch up (a job restored finished has none).
+  void free_buffers();
+
+  JobState state() const { return state_; }
   bool finished_state() const {
-    return state == JobState::Done || state == JobState::Failed || state == JobState::Cancelled;
+    return state_ == JobState::Done || state_ == JobState::Failed || state_ == JobState::Cancelled;
   }
-  // Merges one unit's values (3 floats per pixel of expand(unit), in that order) rendered by
-  // `worker`, and logs it as a tile record.
-  void apply_result(int unit, std::span<const float> values, std::int64_t worker = 0);
+  const std::string& error() const { return error_; }
+  const std::vector<std::string>& warnings() const { return warnings_; }
+  bool ran_alone() const { return ran_alone_; }  // its time can calibrate predictions
+  Clock::time_point created() const { return created_; }
+  std::optional<Clock::time_point> started() const { return started_; }
+  std::optional<Clock::time_point> finished() const { return finished_; }
+  const std::vector<StageTiming>& stage_timing() const { return stage_timing_; }
+  long long done_cost() const { return done_cost_; }
+  const RenderStats& stats() const { return stats_; }
+  const std::map<std::int64_t, WorkerShare>& shares() const { return shares_; }  // by worker id
+  // Merged units from sequence number tiles_first on (tiles()[i] is number tiles_first + i);
+  // the pixels of those before delta_first are dropped (kDeltaLogBytes).
+  const std::deque<TileRecord>& tiles() const { return tiles_; }
+  std::size_t tiles_first() const { return tiles_first_; }
+  std::size_t delta_first() const { return delta_first_; }
+  std::size_t delta_bytes() const { return delta_bytes_; }
+  std::size_t tiles_next() const { return tiles_first_ + tiles_.size(); }
+  const FrameBuffer& frame_buffer() const { return frame_buffer_; }
+  // Bumps with every merged unit and when the job ends: what its image depends on (ETags).
+  std::uint64_t version() const { return version_; }
+  // A done job's final image until the coordinator has encoded it (release_buffers).
+  const std::shared_ptr<const Image>& final_image() const { return final_image_; }
+  const Encodings& final_encoded() const { return final_encoded_; }
+
   // The final image once done (bit-identical to tessera-render), else what is known so far:
   // each pixel shows the finest anchor merged over it (area previews are only in the tile
   // records); post-normalized when the settings ask for it. Only before release_buffers.
   Image image() const;
-  // Called once the state is final (Scheduler::finish): keeps the final image of a done job
-  // and the tile records that still have pixels (for pages catching up with the last merges;
-  // the coordinator frees them a little later with free_buffers), frees the frame buffer and
-  // the rest, and returns the memory to the system (malloc_trim).
-  void release_buffers();
-  // Frees the frame buffer and the tile records (a job restored finished never needs them).
-  void free_buffers();
   double elapsed_seconds(Clock::time_point now) const;
   std::optional<double> eta_seconds(Clock::time_point now) const;
   // The first stage not finished: the level or pass being refined now.
   int current_stage() const;
 
  private:
+  // Once the state is final (finish): keeps the final image of a done job and the tile records
+  // that still have pixels (for pages catching up with the last merges; the coordinator frees
+  // them a little later with free_buffers), frees the frame buffer and the rest, and returns
+  // the memory to the system (malloc_trim).
+  void release_buffers();
   // Drops the pixels of the oldest tile records until those kept hold at most max_bytes.
   void trim_delta_log(std::size_t max_bytes);
   Image known_so_far() const;
+
+  std::vector<std::string> warnings_;
+  bool ran_alone_ = true;  // no other job ran beside it
+  JobState state_ = JobState::Queued;
+  std::string error_;
+  Clock::time_point created_ = Clock::now();
+  std::optional<Clock::time_point> started_, finished_;
+  std::vector<StageTiming> stage_timing_;
+  long long done_cost_ = 0;
+  RenderStats stats_;
+  std::map<std::int64_t, WorkerShare> shares_;
+  std::deque<TileRecord> tiles_;
+  std::size_t tiles_first_ = 0, delta_first_ = 0, delta_bytes_ = 0;
+  // 14 bytes a pixel: the whole of a running job's memory per pixel. What the page shows is
+  // painted by the page itself from the tile records; image() derives it when asked.
+  FrameBuffer frame_buffer_;
+  std::uint64_t version_ = 0;
+  // Once finished the buffers above are freed (release_buffers): a done job keeps only its
+  // final image, as pixels until the coordinator has encoded it, then only encoded; a
+  // cancelled or failed job keeps no image. So memory is bounded by the running jobs.
+  std::shared_ptr<const Image> final_image_;
+  Encodings final_encoded_;
 };
 
 }  // namespace tessera

@@ -64,12 +64,12 @@ void JobPersistence::merged(const Job& job, int unit, std::span<const float> val
 void JobPersistence::state_changed(const Job& job) {
   // A done job is stored as done with its images once they are encoded (store_images); until
   // then it stays "running" with all its results, and a restart finishes it again.
-  if (job.state == JobState::Done) return;
+  if (job.state() == JobState::Done) return;
   try {
     if (job.finished_state())
-      db_.finish_job(job.id, to_string(job.state), job.error, to_wall(*job.finished), {});
+      db_.finish_job(job.id, to_string(job.state()), job.error(), to_wall(*job.finished()), {});
     else
-      db_.set_state(job.id, to_string(job.state));
+      db_.set_state(job.id, to_string(job.state()));
   } catch (const StoreError& e) {
     note_failure(e);
   }
@@ -77,21 +77,18 @@ void JobPersistence::state_changed(const Job& job) {
 
 void JobPersistence::store_images(Job& job) {
   std::vector<StoredImage> images;
-  for (const auto& [format, bytes] : job.final_encoded)
+  for (const auto& [format, bytes] : job.final_encoded())
     if (bytes) images.push_back({"image." + format, *bytes});
-  const WallClock::time_point finished = to_wall(job.finished.value_or(Clock::now()));
+  const WallClock::time_point finished = to_wall(job.finished().value_or(Clock::now()));
   try {
-    db_.finish_job(job.id, to_string(job.state), job.error, finished, images);
+    db_.finish_job(job.id, to_string(job.state()), job.error(), finished, images);
   } catch (const StoreError& e) {
     // Kept only in memory, the job would come back after a restart as what the store holds
     // of it: it fails now, and that (a small write, after the failed one rolled back) is kept.
-    job.state = JobState::Failed;
-    job.error = "cannot store the job's results: " + e.cause();
-    job.final_encoded.clear();
-    ++job.version;
+    job.fail_unstored("cannot store the job's results: " + e.cause());
     spdlog::error("job {} failed: its results cannot be stored: {}", job.id, e.cause());
     try {
-      db_.finish_job(job.id, to_string(job.state), job.error, finished, {});
+      db_.finish_job(job.id, to_string(job.state()), job.error(), finished, {});
     } catch (const StoreError& again) {
       spdlog::error("job {}: its failure cannot be stored either: {}", job.id, again.cause());
     }
@@ -144,18 +141,15 @@ void JobPersistence::restore(JobStore& jobs, Scheduler& scheduler,
     job->uncalibrated_prediction = r.uncalibrated_prediction;
     job->predicted_seconds = r.predicted_seconds;
     job->prediction_threads = r.prediction_threads;
-    job->created = to_steady(stored.created);
+    const Clock::time_point created = to_steady(stored.created);
     prepare(*job);
-    const JobState state = state_of(stored.state);
     if (stored.finished) {
-      job->state = state;
-      job->error = stored.error;
-      job->started = job->created;
-      job->finished = to_steady(*stored.finished);
-      job->free_buffers();
+      Job::Encodings encoded;
       for (const std::string& name : stored.images)
         if (auto bytes = read_file(db_.image_path(stored.id, name)))
-          job->final_encoded[name.substr(name.find('.') + 1)] = std::move(bytes);
+          encoded[name.substr(name.find('.') + 1)] = std::move(bytes);
+      job->restore_finished(created, state_of(stored.state), stored.error,
+                            to_steady(*stored.finished), std::move(encoded));
       ++kept;
       continue;
     }
@@ -165,12 +159,11 @@ void JobPersistence::restore(JobStore& jobs, Scheduler& scheduler,
       if (result.unit < 0 || result.unit >= static_cast<int>(done.size()) || done[result.unit])
         continue;  // a store written by this code holds neither; never trusted blindly
       done[result.unit] = true;
-      job->apply_result(result.unit, result.values);
-      job->stats += result.stats;
-      job->stage_timing[job->plan.units[result.unit].stage].units_done += 1;
+      job->apply_result(result.unit, result.values, result.stats);
     }
-    if (!stored.results.empty()) job->started = Clock::now();
-    job->state = stored.results.empty() ? JobState::Queued : JobState::Running;
+    std::optional<Clock::time_point> running_since;
+    if (!stored.results.empty()) running_since = Clock::now();
+    job->restore_unfinished(created, running_since);
     scheduler.add_job(*job, done);
     ++resumed;
   }

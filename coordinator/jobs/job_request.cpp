@@ -18,7 +18,9 @@ namespace {
 
 using nlohmann::json;
 
-ApiError bad_request(const std::string& detail) { return ApiError(400, "bad_request", detail); }
+ApiError bad_request(const std::string& detail) {
+  return ApiError(Refusal::bad_request, "bad_request", detail);
+}
 
 // The most a job request may ask of a setting: its range, narrowed by this service's limits.
 double request_max(const SettingSpec& spec, const ServiceLimits& limits) {
@@ -37,13 +39,14 @@ double request_max(const SettingSpec& spec, const ServiceLimits& limits) {
   return spec.max;
 }
 
-// A scene that produces more than the load budget allows: 413 when it is a limit on bytes
-// (what the request would make the coordinator hold), else 422; located where it was passed.
+// A scene that produces more than the load budget allows: too large when it is a limit on
+// bytes (what the request would make the coordinator hold), else unprocessable; located where
+// it was passed.
 ApiError over_load_budget(const LoadBudgetExceeded& e) {
   const LoadLimit limit = e.limit();
   const bool bytes = limit == LoadLimit::BytesRead || limit == LoadLimit::BytesProduced ||
                      limit == LoadLimit::FileBytes;
-  return ApiError(bytes ? 413 : 422, "over_budget", e.what(),
+  return ApiError(bytes ? Refusal::too_large : Refusal::unprocessable, "over_budget", e.what(),
                   {{"limit", e.limit_name()},
                    {"value", e.limit_value()},
                    {"file", e.where().file},
@@ -72,9 +75,11 @@ void check_scene(const Submission& sub, const std::optional<std::filesystem::pat
                  const ServiceLimits& limits, const IntakeBudget& budget, JobRequest& out) {
   for (const auto& [path, bytes] : sub.files)
     if (!is_plain_relative_path(path))
-      throw ApiError(400, "bad_bundle", "file path \"" + path + "\" leaves the bundle");
+      throw ApiError(Refusal::bad_request, "bad_bundle",
+                     "file path \"" + path + "\" leaves the bundle");
   if (!is_plain_relative_path(sub.main))
-    throw ApiError(400, "bad_bundle", "scene path \"" + sub.main + "\" leaves the bundle");
+    throw ApiError(Refusal::bad_request, "bad_bundle",
+                   "scene path \"" + sub.main + "\" leaves the bundle");
   const MemorySource submitted(sub.files);
   std::optional<DirectorySource> folder;
   if (scenes_dir) folder.emplace(*scenes_dir);
@@ -112,7 +117,7 @@ void check_scene(const Submission& sub, const std::optional<std::filesystem::pat
     if (e.limit() == LoadLimit::Deadline) throw budget.over_time("loading the scene");
     throw over_load_budget(e);
   } catch (const SceneError& e) {
-    throw ApiError(400, "scene_error", e.what(),
+    throw ApiError(Refusal::bad_request, "scene_error", e.what(),
                    {{"file", e.where().file},
                     {"line", e.where().line},
                     {"column", e.where().column},

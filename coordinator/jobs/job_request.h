@@ -1,7 +1,8 @@
 // Admission of a job: turns a submission (its files and settings, decoded from the request by
 // coordinator/http/submission.h) into a validated job request, or an ApiError with the right
-// status (422/413 over its IntakeBudget). The scene is parsed and prepared here, so a bad scene
-// is a 400 that never reaches a worker; the bundle keeps exactly the files the scene read.
+// refusal (unprocessable or too large over its IntakeBudget). The scene is parsed and prepared
+// here, so a bad scene is a bad request that never reaches a worker; the bundle keeps exactly
+// the files the scene read.
 #pragma once
 
 #include <filesystem>
@@ -28,7 +29,7 @@ struct JobRequest {
   std::vector<std::string> effects, warnings;
   double seconds_per_pixel_pass = 0;  // measured by a probe on the coordinator (issue 5)
   bool probe_cut_short = false;       // the probe hit its deadline: the cost is a lower bound
-  bool strict = false;  // settings.strict: what loading warns about is a 400 (LoadBudget::strict)
+  bool strict = false;  // settings.strict: what loading warns about is refused (LoadBudget::strict)
   // The loaded scene's camera (the camera setting's when given) and VRML's Viewpoints, for the
   // page's navigation; kept in the store with the job (a job stored by schema version 1 has
   // neither, and shows its camera setting if any).

@@ -14,7 +14,7 @@ Job* JobStore::create(JobRequest request, std::string client,
   auto job = std::make_unique<Job>(id, std::move(request.bundle), request.spec, request.plan,
                                    request.priority);
   job->effects = std::move(request.effects);
-  job->warnings = std::move(request.warnings);
+  for (std::string& warning : request.warnings) job->add_warning(std::move(warning));
   job->camera = request.camera ? request.camera : request.spec.overrides.camera;
   job->viewpoints = std::move(request.viewpoints);
   job->seconds_per_pixel_pass = request.seconds_per_pixel_pass;

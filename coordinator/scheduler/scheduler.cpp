@@ -79,14 +79,15 @@ void Scheduler::add_job(Job& job, const std::vector<bool>& done) {
       run.units[u].state = UnitState::Done;
     else
       run.pending.push_back(u);
-  if (job.done_cost == job.plan.total_cost) return finish(run, JobState::Done);
+  if (job.done_cost() == job.plan.total_cost) return finish(run, JobState::Done);
   // Start level with the others, so a new job neither waits for nor starves the running ones.
   double least = 0;
   bool any = false;
   for (auto& [id, other] : runs_)
     if (id != job.id) {
       least = any ? std::min(least, other.virtual_time) : other.virtual_time, any = true;
-      other.job->ran_alone = job.ran_alone = false;
+      other.job->mark_ran_beside_another();
+      job.mark_ran_beside_another();
     }
   run.virtual_time = least;
   fill_slots();
@@ -110,7 +111,7 @@ void Scheduler::tick() {
   const auto now = options_.clock();
   std::vector<std::int64_t> expired;
   for (const auto& [id, run] : runs_)
-    if (run.job->started && seconds_since(*run.job->started, now) > options_.max_job_seconds)
+    if (run.job->started() && seconds_since(*run.job->started(), now) > options_.max_job_seconds)
       expired.push_back(id);
   const std::string limit =
       "time limit of " + std::to_string(static_cast<int>(options_.max_job_seconds)) + " s";
@@ -133,7 +134,7 @@ bool Scheduler::dispatchable(const JobRun& run) const {
   if (job.plan.stages[stage].pass == 0) return true;
   // A later pass waits until every earlier stage is complete (pass order in the frame buffer).
   for (int s = 0; s < stage; ++s)
-    if (job.stage_timing[s].units_done < job.plan.stages[s].unit_count) return false;
+    if (job.stage_timing()[s].units_done < job.plan.stages[s].unit_count) return false;
   return true;
 }
 
@@ -198,8 +199,9 @@ bool Scheduler::dispatch_one(WorkerSlot& w) {
 
 double Scheduler::speculation_wait(const JobRun& run) const {
   long long units_done = 0;
-  for (const auto& t : run.job->stage_timing) units_done += t.units_done;
-  const double mean = units_done > 0 ? run.job->stats.seconds / static_cast<double>(units_done) : 0;
+  for (const auto& t : run.job->stage_timing()) units_done += t.units_done;
+  const double mean =
+      units_done > 0 ? run.job->stats().seconds / static_cast<double>(units_done) : 0;
   return std::max(options_.speculation_factor * mean,
                   std::chrono::duration<double>(options_.min_speculation).count());
 }
@@ -258,11 +260,7 @@ void Scheduler::send_unit(WorkerSlot& w, JobRun& run, int unit) {
   update_straggler(run, unit);
   w.in_flight.emplace(std::pair{job.id, unit}, now);
   update_load(w);
-  StageTiming& timing = job.stage_timing[wu.stage];
-  if (!timing.first_dispatch) timing.first_dispatch = now;
-  if (!job.started) job.started = now;
-  if (job.state == JobState::Running) return;
-  job.state = JobState::Running;
+  if (!job.record_dispatch(wu.stage, now)) return;
   spdlog::info("job {} running", job.id);
   if (observer_) observer_->state_changed(job);
 }
@@ -312,9 +310,8 @@ void Scheduler::on_result(std::int64_t worker, const ResultMessage& result) {
   }
   run.stragglers.erase({r.dispatched, unit});
   r.state = UnitState::Done;
-  job.apply_result(unit, values, worker);
+  job.apply_result(unit, values, stats, Job::ResultSource{worker, w.hello.name, now});
   if (observer_) observer_->merged(job, unit, values, stats, w.hello.name);
-  job.stats += stats;
   if (ServiceMetrics* m = options_.metrics) {
     m->units_finished.add();
     m->unit_latency.observe(seconds_since(sent_at, now));
@@ -323,18 +320,10 @@ void Scheduler::on_result(std::int64_t worker, const ResultMessage& result) {
     m->rays.add(static_cast<double>(stats.camera_rays + stats.shadow_rays + stats.reflection_rays +
                                     stats.refraction_rays));
   }
-  WorkerShare& share = job.shares[worker];
-  share.name = w.hello.name;
-  share.units += 1;
-  share.pixels += wu.cost;
-  share.seconds += stats.seconds;
   w.units_done += 1;
   w.pixels_done += wu.cost;
   w.busy_seconds += stats.seconds;
-  StageTiming& timing = job.stage_timing[wu.stage];
-  timing.units_done += 1;
-  timing.last_result = now;
-  if (job.done_cost == job.plan.total_cost) finish(run, JobState::Done);
+  if (job.done_cost() == job.plan.total_cost) finish(run, JobState::Done);
   fill_slots();
 }
 
@@ -362,7 +351,7 @@ void Scheduler::on_job_failed(std::int64_t worker, const JobFailedMessage& repor
   if (run.failed_on.size() == 1) {
     // A scene that crashes one worker is not one worker's word: let another try.
     run.first_failure = failure;
-    run.job->warnings.push_back(failure + " (the job goes on with the other workers)");
+    run.job->add_warning(failure + " (the job goes on with the other workers)");
     spdlog::warn("job {}: {}; its units go to other workers", job_id, failure);
     withdraw(w, run);
     return fill_slots();
@@ -378,10 +367,6 @@ void Scheduler::withdraw(WorkerSlot& w, JobRun& run) {
 
 void Scheduler::finish(JobRun& run, JobState state, const std::string& error) {
   Job& job = *run.job;
-  job.state = state;
-  job.error = error;
-  job.finished = options_.clock();
-  ++job.version;
   // Free the workers at once: they drop the job's queued units and its prepared scene.
   for (auto& [id, w] : workers_) {
     if (!w.open_jobs.erase(job.id)) continue;
@@ -390,11 +375,11 @@ void Scheduler::finish(JobRun& run, JobState state, const std::string& error) {
     update_load(w);
   }
   spdlog::info("job {} {}{}{}", job.id, to_string(state), error.empty() ? "" : ": ", error);
-  if (state == JobState::Done && job.ran_alone && job.uncalibrated_prediction &&
+  job.finish(state, error, options_.clock());
+  if (state == JobState::Done && job.ran_alone() && job.uncalibrated_prediction &&
       job.prediction_threads > 0)
-    calibration_.observe(*job.uncalibrated_prediction, job.stats.seconds / job.prediction_threads,
-                         job.elapsed_seconds(*job.finished));
-  job.release_buffers();
+    calibration_.observe(*job.uncalibrated_prediction, job.stats().seconds / job.prediction_threads,
+                         job.elapsed_seconds(*job.finished()));
   if (observer_) observer_->state_changed(job);
   runs_.erase(job.id);  // `run` and `job` references end here
   fill_slots();

@@ -21,6 +21,7 @@
 #include "common/protocol/bundle.h"
 #include "common/protocol/frame.h"
 #include "common/protocol/messages.h"
+#include "coordinator/http/refusal_status.h"
 #include "coordinator/http/submission.h"
 #include "coordinator/jobs/api_error.h"
 #include "coordinator/jobs/intake_budget.h"
@@ -72,7 +73,8 @@ inline void check_accepted_request(const JobRequest& request, const ServiceLimit
 }
 
 inline void check_refusal(const ApiError& e) {
-  require(e.status() >= 400 && e.status() <= 599, "a refusal's status is outside 400..599");
+  const int status = http_status(e.refusal());
+  require(status >= 400 && status <= 599, "a refusal's status is outside 400..599");
   const nlohmann::json body = e.body();
   const auto non_empty_string = [&](const char* key) {
     return body.contains(key) && body.at(key).is_string() &&

@@ -11,6 +11,7 @@
 #include "coordinator/http/api.h"
 #include "coordinator/http/job_json.h"
 #include "coordinator/http/multipart.h"
+#include "coordinator/http/refusal_status.h"
 #include "coordinator/http/submission.h"
 #include "coordinator/http/submit_policy.h"
 #include "coordinator/jobs/api_error.h"
@@ -116,7 +117,7 @@ TEST(ParseSettings, ARegionSetsThePlansAreaInsideTheImage) {
                    ServiceLimits{}, r);
     FAIL() << "expected a region outside the image to be refused";
   } catch (const ApiError& e) {
-    EXPECT_EQ(e.status(), 400);
+    EXPECT_EQ(http_status(e.refusal()), 400);
     EXPECT_EQ(e.body()["detail"],
               "settings.region [0, 0, 65, 8] must lie inside the 64x48 image (x1 <= width, y1 <= "
               "height)");
@@ -132,7 +133,7 @@ TEST(ParseJobRequest, SceneErrorsNameLineAndColumn) {
     parse_job_request({body, "application/json", {}}, ServiceLimits{}, std::nullopt);
     FAIL() << "expected a scene error";
   } catch (const ApiError& e) {
-    EXPECT_EQ(e.status(), 400);
+    EXPECT_EQ(http_status(e.refusal()), 400);
     EXPECT_EQ(e.body()["error"], "scene_error");
     EXPECT_EQ(e.body()["line"], 2);
     EXPECT_EQ(e.body()["column"], 3);
@@ -170,7 +171,7 @@ TEST(ParseJobRequest, StrictTurnsLoadWarningsIntoSceneErrors) {
         ServiceLimits{}, std::nullopt);
     FAIL() << "expected a scene error";
   } catch (const ApiError& e) {
-    EXPECT_EQ(e.status(), 400);
+    EXPECT_EQ(http_status(e.refusal()), 400);
     EXPECT_EQ(e.body()["error"], "scene_error");
     EXPECT_EQ(e.body()["line"], 2);
   }
@@ -195,7 +196,7 @@ TEST(ParseJobRequest, TheBundleHoldsTheImageTexture) {
     parse_job_request({broken, "application/json", {}}, ServiceLimits{}, std::nullopt);
     FAIL() << "expected a scene error";
   } catch (const ApiError& e) {
-    EXPECT_EQ(e.status(), 400);
+    EXPECT_EQ(http_status(e.refusal()), 400);
     EXPECT_EQ(e.body()["error"], "scene_error");
     EXPECT_EQ(e.body()["line"], 1);
     EXPECT_EQ(e.body()["column"], 14);
@@ -266,7 +267,7 @@ TEST(ReadRerender, TheBodysSettingsGoOverTheJobsBundleAndSettings) {
       read_rerender(bad, *job->bundle, job_settings_json(*job));
       FAIL() << "expected " << bad << " to be refused";
     } catch (const ApiError& e) {
-      EXPECT_EQ(e.status(), 400) << bad;
+      EXPECT_EQ(http_status(e.refusal()), 400) << bad;
     }
   }
 }
@@ -312,56 +313,56 @@ std::vector<float> values_for(const Job& job, int unit) {
 
 TEST(JobMerge, CoarseBlocksShowTheirAnchorUntilFinerLevelsArrive) {
   Job job = make_job(5, 3, 1);  // levels of side 4, 2, 1
-  job.state = JobState::Running;
-  job.apply_result(0, values_for(job, 0));
+  job.record_dispatch(0, Clock::now());
+  job.apply_result(0, values_for(job, 0), RenderStats{});
   EXPECT_EQ(job.image().get(3, 2).r, 0.0f);  // block of anchor (0, 0)
   EXPECT_EQ(job.image().get(4, 1).r, 4.0f);  // block of anchor (4, 0)
   // Finer results win regardless of arrival order.
   for (int u = static_cast<int>(job.plan.units.size()) - 1; u >= 1; --u)
-    job.apply_result(u, values_for(job, u));
+    job.apply_result(u, values_for(job, u), RenderStats{});
   const Image shown = job.image();
   for (int y = 0; y < 3; ++y)
     for (int x = 0; x < 5; ++x) EXPECT_EQ(shown.get(x, y).r, x + 100.0 * y) << x << "," << y;
-  EXPECT_EQ(job.done_cost, job.plan.total_cost);
+  EXPECT_EQ(job.done_cost(), job.plan.total_cost);
 }
 
 TEST(JobMerge, FinalImageIsTheFrameBufferMean) {
   Job job = make_job(6, 4, 3);
   for (int u = 0; u < static_cast<int>(job.plan.units.size()); ++u)
-    job.apply_result(u, values_for(job, u));
-  job.state = JobState::Done;
-  const Image final_image = job.image();
+    job.apply_result(u, values_for(job, u), RenderStats{});
+  const Image shown = job.image();  // what is shown once every unit merged
+  job.finish(JobState::Done, "", Clock::now());
+  ASSERT_TRUE(job.final_image());
+  const Image& final_image = *job.final_image();
   // Pass p returned x + 100 y + 0.25 p + c for channel c: the mean of passes 0..2 adds 0.25.
   for (int y = 0; y < 4; ++y)
     for (int x = 0; x < 6; ++x) {
       const Rgb expected{x + 100.0 * y + 0.25, x + 100.0 * y + 1.25, x + 100.0 * y + 2.25};
       EXPECT_EQ(final_image.get(x, y), expected) << x << "," << y;
     }
-  job.state = JobState::Running;
-  EXPECT_EQ(final_image, job.image());  // what is shown once every unit merged
+  EXPECT_EQ(final_image, shown);
 }
 
 void fill(Job& job) {
   for (int u = 0; u < static_cast<int>(job.plan.units.size()); ++u)
-    job.apply_result(u, values_for(job, u));
+    job.apply_result(u, values_for(job, u), RenderStats{});
 }
 
 void expect_buffers_freed(const Job& job) {
-  EXPECT_EQ(job.frame_buffer.width(), 0);
-  EXPECT_EQ(job.frame_buffer.height(), 0);
+  EXPECT_EQ(job.frame_buffer().width(), 0);
+  EXPECT_EQ(job.frame_buffer().height(), 0);
 }
 
 TEST(JobMemory, ADoneJobKeepsOnlyItsFinalImage) {
   Job job = make_job(6, 4, 3);
   fill(job);
-  job.state = JobState::Done;
-  const Image final_image = job.image();
+  const Image final_image = job.frame_buffer().resolve();
   int released = 0;
   job.on_released = [&](Job&) { ++released; };
-  job.release_buffers();
+  job.finish(JobState::Done, "", Clock::now());
   expect_buffers_freed(job);
-  ASSERT_TRUE(job.final_image);
-  EXPECT_EQ(*job.final_image, final_image);
+  ASSERT_TRUE(job.final_image());
+  EXPECT_EQ(*job.final_image(), final_image);
   EXPECT_EQ(released, 1);
 }
 
@@ -374,13 +375,13 @@ TEST(JobMemory, CancellingThroughTheSchedulerFreesEverything) {
   r.spec.settings.height = r.plan.height = 32;
   Job* job = store.create(std::move(r), "10.0.0.7");
   scheduler.add_job(*job);
-  EXPECT_EQ(job->frame_buffer.width(), 64);
+  EXPECT_EQ(job->frame_buffer().width(), 64);
   EXPECT_EQ(store.unfinished_of("10.0.0.7"), 1);
   EXPECT_TRUE(scheduler.cancel(job->id));
-  EXPECT_EQ(job->state, JobState::Cancelled);
+  EXPECT_EQ(job->state(), JobState::Cancelled);
   expect_buffers_freed(*job);
-  EXPECT_FALSE(job->final_image);
-  EXPECT_TRUE(job->tiles.empty());
+  EXPECT_FALSE(job->final_image());
+  EXPECT_TRUE(job->tiles().empty());
   EXPECT_EQ(store.unfinished_of("10.0.0.7"), 0);
 }
 
@@ -398,7 +399,7 @@ int refusal(const SubmitPolicy& policy, const HttpRequest& request, const std::s
     check_submitter(policy, request, boost::asio::ip::make_address(peer));
     return 0;
   } catch (const ApiError& e) {
-    return e.status();
+    return http_status(e.refusal());
   }
 }
 

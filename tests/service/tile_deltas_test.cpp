@@ -119,7 +119,7 @@ void expect_shows_the_image(const Layers& layers, const Job& job) {
 
 TEST(TileDeltas, PaintedAsThePageDoesTheyShowTheImageAtEveryStep) {
   Job job = make_job(13, 9, 3);  // levels of side 8, 4, 2, 1, then passes 1 and 2
-  job.state = JobState::Running;
+  job.record_dispatch(0, Clock::now());
   // Levels overlap across workers: merge pass 0's units in a shuffled order, then the passes.
   std::vector<int> order;
   for (int u = 0; u < static_cast<int>(job.plan.units.size()); ++u) order.push_back(u);
@@ -130,7 +130,7 @@ TEST(TileDeltas, PaintedAsThePageDoesTheyShowTheImageAtEveryStep) {
   Layers layers{13, 9, {}};
   std::size_t since = 0;
   for (int u : order) {
-    job.apply_result(u, values_for(job, u), 4);
+    job.apply_result(u, values_for(job, u), RenderStats{}, Job::ResultSource{4, "w", Clock::now()});
     const Answer a = layers.paint(encode_tiles(job, since));
     EXPECT_EQ(a.count, 1u);
     EXPECT_EQ(a.flags, 0u);
@@ -142,42 +142,41 @@ TEST(TileDeltas, PaintedAsThePageDoesTheyShowTheImageAtEveryStep) {
 
 TEST(TileDeltas, APageBehindTheLogLoadsTheWholeImage) {
   Job job = make_job(16, 16, 1);
-  job.state = JobState::Running;
+  job.record_dispatch(0, Clock::now());
   job.delta_log_bytes = 3 * 64;  // the newest units' 64 pixels
   for (int u = 0; u < static_cast<int>(job.plan.units.size()); ++u)
-    job.apply_result(u, values_for(job, u));
-  ASSERT_GT(job.delta_first, 0u);
-  EXPECT_LE(job.delta_bytes, job.delta_log_bytes);
+    job.apply_result(u, values_for(job, u), RenderStats{});
+  ASSERT_GT(job.delta_first(), 0u);
+  EXPECT_LE(job.delta_bytes(), job.delta_log_bytes);
   Layers layers{16, 16, {}};
   const Answer behind = layers.paint(encode_tiles(job, 0));
   EXPECT_EQ(behind.flags & 1, 1u);  // whole
   EXPECT_EQ(behind.pixels, 0u);     // the records' places, for the worker overlay, no pixels
   EXPECT_EQ(behind.count, job.tiles_next());
-  const Answer recent = layers.paint(encode_tiles(job, job.delta_first));
+  const Answer recent = layers.paint(encode_tiles(job, job.delta_first()));
   EXPECT_EQ(recent.flags & 1, 0u);
-  EXPECT_EQ(recent.pixels * 3, job.delta_bytes);
+  EXPECT_EQ(recent.pixels * 3, job.delta_bytes());
 }
 
 TEST(TileDeltas, AFinishedJobKeepsOnlyItsNewestDeltas) {
   Job job = make_job(16, 16, 2);
-  job.state = JobState::Running;
+  job.record_dispatch(0, Clock::now());
   job.delta_log_bytes = 3 * 64;
   for (int u = 0; u < static_cast<int>(job.plan.units.size()); ++u)
-    job.apply_result(u, values_for(job, u));
+    job.apply_result(u, values_for(job, u), RenderStats{});
   const std::size_t next = job.tiles_next();
-  job.state = JobState::Done;
-  job.release_buffers();
-  EXPECT_EQ(job.frame_buffer.width(), 0);
+  job.finish(JobState::Done, "", Clock::now());
+  EXPECT_EQ(job.frame_buffer().width(), 0);
   EXPECT_EQ(job.tiles_next(), next);
-  EXPECT_LT(job.tiles.size(), next);  // only the records that have pixels stay
-  for (const TileRecord& t : job.tiles) EXPECT_FALSE(t.pixels.empty());
+  EXPECT_LT(job.tiles().size(), next);  // only the records that have pixels stay
+  for (const TileRecord& t : job.tiles()) EXPECT_FALSE(t.pixels.empty());
   Layers layers{16, 16, {}};
   const Answer last = layers.paint(encode_tiles(job, next - 1));
   EXPECT_EQ(last.flags, 2u);  // finished, not whole
   EXPECT_EQ(last.count, 1u);
   EXPECT_EQ(layers.paint(encode_tiles(job, 0)).flags, 3u);  // too far behind: the PNG
   job.free_buffers();                                       // what the coordinator does 30 s later
-  EXPECT_TRUE(job.tiles.empty());
+  EXPECT_TRUE(job.tiles().empty());
   EXPECT_EQ(job.tiles_next(), next);
 }
 
