@@ -9,7 +9,7 @@ packages=(
   # fuzzing (scripts/fuzz.sh): clang and its libFuzzer runtime
   clang libclang-rt-14-dev
   # libraries (docs/ARCHITECTURE.md, "Dependencies")
-  libboost-dev nlohmann-json3-dev libopenimageio-dev libspdlog-dev zlib1g-dev libpng-dev
+  libboost-dev nlohmann-json3-dev libopenimageio-dev libspdlog-dev zlib1g-dev libpng-dev libopenexr-dev
   libssl-dev        # SHA-256, HMAC (libcrypto)
   libarchive-dev    # tar bundles
   libcli11-dev      # command lines

@@ -42,6 +42,10 @@ struct Image {
 // to_8bit.h).
 // Throws std::runtime_error naming the file, with the library's message, on failure.
 void write_image(const Image& image, const std::string& path);
+// Encodes in memory as `format`, "png" (8-bit as above, zlib level 3: speed over size, for
+// pages that poll) or "exr" (32-bit float, zip: lossless, about half the raw floats). Throws
+// std::runtime_error on failure.
+std::string encode_image(const Image& image, const std::string& format);
 // Reads any format OpenImageIO reads into RGB float (alpha dropped, gray expanded).
 Image read_image(const std::string& path);
 // Decodes a file held in memory (`name` for its format and messages), with at most

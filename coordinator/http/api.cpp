@@ -9,8 +9,8 @@
 #include <boost/asio/post.hpp>
 #include <boost/asio/steady_timer.hpp>
 
+#include "common/image/image.h"
 #include "coordinator/http/gzip.h"
-#include "coordinator/http/image_codec.h"
 #include "coordinator/http/job_json.h"
 #include "coordinator/http/refusal_status.h"
 #include "coordinator/http/submission.h"

@@ -14,7 +14,7 @@
 #include <optional>
 #include <random>
 
-#include "coordinator/http/image_codec.h"
+#include "common/image/image.h"
 #include "coordinator/http/tile_deltas.h"
 #include "coordinator/jobs/job.h"
 

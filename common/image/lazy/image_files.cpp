@@ -1,28 +1,37 @@
-// The image-file functions of image.h for tessera-render: PNG is written with libpng
-// (png/write_png.h), so that a render that reads no texture and writes a PNG starts in
-// milliseconds; anything else goes to OpenImageIO, loaded on first use (oiio/module.h).
+// The image-file functions of image.h for tessera-render and the coordinator: PNG and EXR are
+// written with libpng and OpenEXR (png/, exr/), a few small libraries, so that both programs
+// start in milliseconds and load OpenImageIO's ~250 only for what else it does: decoding image
+// textures, other formats (oiio/module.h).
 #include <dlfcn.h>
 
 #include <algorithm>
 #include <cctype>
 #include <filesystem>
+#include <fstream>
 #include <stdexcept>
 
+#include "common/image/exr/encode_exr.h"
 #include "common/image/image.h"
 #include "common/image/oiio/module.h"
-#include "common/image/png/write_png.h"
+#include "common/image/png/encode_png.h"
 
 namespace tessera {
 
 namespace {
 
-// The module beside the running program (the build puts it there).
+// The module from the lib/ folder beside the program's folder (the build's, and an install's
+// bin/ and lib/), else from the program's own folder.
 const ImageFileFunctions& openimageio() {
   static const ImageFileFunctions* functions = [] {
     std::error_code error;
-    const auto program = std::filesystem::read_symlink("/proc/self/exe", error);
-    const auto path = (program.parent_path() / kImageModuleFile).string();
-    void* module = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL);
+    const auto folder = std::filesystem::read_symlink("/proc/self/exe", error).parent_path();
+    std::string path;
+    void* module = nullptr;
+    for (const auto& candidate :
+         {folder.parent_path() / "lib" / kImageModuleFile, folder / kImageModuleFile}) {
+      path = candidate.string();
+      if ((module = dlopen(path.c_str(), RTLD_NOW | RTLD_LOCAL))) break;
+    }
     if (!module)
       throw std::runtime_error(std::string("cannot load OpenImageIO for image files: ") +
                                dlerror());
@@ -34,18 +43,34 @@ const ImageFileFunctions& openimageio() {
   return *functions;
 }
 
-bool is_png(const std::string& path) {
+std::string lowercase_extension(const std::string& path) {
   std::string ext = path.substr(path.find_last_of('.') + 1);
   std::transform(ext.begin(), ext.end(), ext.begin(),
                  [](unsigned char c) { return std::tolower(c); });
-  return ext == "png";
+  return ext;
+}
+
+void write_file(const std::string& path, const std::string& bytes) {
+  std::ofstream file(path, std::ios::binary);
+  if (!file) throw std::runtime_error("cannot write " + path + ": cannot open it");
+  file.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+  file.close();
+  if (!file) throw std::runtime_error("cannot write " + path + ": the disk refused it");
 }
 
 }  // namespace
 
 void write_image(const Image& image, const std::string& path) {
-  if (is_png(path)) return write_png(image, path);
+  const std::string ext = lowercase_extension(path);
+  if (ext == "png") return write_file(path, encode_png(image, 6));
+  if (ext == "exr") return write_file(path, encode_exr(image));
   openimageio().write_image(image, path);
+}
+
+std::string encode_image(const Image& image, const std::string& format) {
+  if (format == "png") return encode_png(image, 3);
+  if (format == "exr") return encode_exr(image);
+  return openimageio().encode_image(image, format);
 }
 
 Image read_image(const std::string& path) { return openimageio().read_image(path); }

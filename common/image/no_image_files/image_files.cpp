@@ -18,6 +18,10 @@ namespace {
 
 Image decode_image(std::string_view, const std::string& name, std::size_t) { refuse(name); }
 
+std::string encode_image(const Image&, const std::string& format) {
+  throw std::runtime_error("cannot encode " + format + ": this program has no image library");
+}
+
 int image_channels(std::string_view, const std::string& name) { refuse(name); }
 std::size_t image_pixels(std::string_view, const std::string& name) { refuse(name); }
 

@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <cmath>
 #include <stdexcept>
+#include <vector>
 
 #include "common/image/image.h"
 
@@ -32,6 +33,22 @@ void write_image(const Image& image, const std::string& path) {
   if (!out->open(path, spec) || !out->write_image(OIIO::TypeDesc::FLOAT, data.data()) ||
       !out->close())
     throw std::runtime_error("cannot write " + path + ": " + out->geterror());
+}
+
+std::string encode_image(const Image& image, const std::string& format) {
+  std::vector<unsigned char> bytes;
+  OIIO::Filesystem::IOVecOutput memory(bytes);
+  const std::string name = "image." + format;
+  auto out = OIIO::ImageOutput::create(name, &memory);
+  if (!out) throw std::runtime_error("no image writer for " + format);
+  OIIO::ImageSpec spec(image.width, image.height, 3,
+                       format == "exr" ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
+  if (format == "png") spec.attribute("png:compressionLevel", 3);
+  if (format == "exr") spec.attribute("compression", "zip");
+  if (!out->open(name, spec) || !out->write_image(OIIO::TypeDesc::FLOAT, image.rgb.data()) ||
+      !out->close())
+    throw std::runtime_error("encoding " + format + ": " + out->geterror());
+  return std::string(bytes.begin(), bytes.end());
 }
 
 namespace {

@@ -1,7 +1,7 @@
 // OpenImageIO as a module loaded on first use (lazy/image_files.cpp): its ~250 shared libraries
 // take a program 0.25 s and more to load, which tessera-render spends only on a texture or an
-// image format other than PNG. The module (libtessera_image_oiio.so, beside the program)
-// exports one C function that hands out the functions of oiio/image_io.cpp.
+// image format other than PNG. The module (libtessera_image_oiio.so, which the build puts in
+// its lib/ folder) exports one C function that hands out the functions of oiio/image_io.cpp.
 #pragma once
 
 #include <cstddef>
@@ -14,6 +14,7 @@ namespace tessera {
 
 struct ImageFileFunctions {
   void (*write_image)(const Image&, const std::string&);
+  std::string (*encode_image)(const Image&, const std::string&);
   Image (*read_image)(const std::string&);
   Image (*decode_image)(std::string_view, const std::string&, std::size_t);
   int (*image_channels)(std::string_view, const std::string&);

@@ -81,7 +81,7 @@ async function measureMoves(page, count) {
     await page.mouse.up();
     const painted = await page.waitForFunction((old) => {
       const v = window.tessera.view;
-      return v.job !== old && (v.levelsPainted.size > 0 || v.usedWhole) && performance.now();
+      return v.job !== old && (v.latencies.length > 0 || v.usedWhole) && performance.now();
     }, before, { polling: "raf", timeout: 60000 });
     delays.push(+((await painted.jsonValue()) - released).toFixed(1));
     await page.waitForSelector("#base-canvas[data-state=done]", { timeout: 600000 });
