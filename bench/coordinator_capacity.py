@@ -81,14 +81,14 @@ def pixel_count(p):
 
 
 class Synthetic:
-    """One synthetic worker. `fault` ("crash" or "hang") strikes at its first unit of job
-    `fault_job`; `fault_at` is then the time of its last message."""
+    """One synthetic worker. `fault` ("crash" or "hang") strikes at its first unit of a job
+    after job `fault_after`; `fault_at` is then the time of its last message."""
 
     def __init__(self, index, threads):
         self.name = "synthetic-%d" % index
         self.threads = threads
         self.received = self.sent = 0
-        self.fault = self.fault_job = self.fault_at = self.last_sent = self.writer = None
+        self.fault = self.fault_after = self.fault_at = self.last_sent = self.writer = None
         self.error = None
 
     def send(self, writer, data):
@@ -131,7 +131,7 @@ class Synthetic:
     async def serve(self, reader, writer):
         while True:
             kind, header = await self.read_frame(reader)
-            if kind == UNIT and self.fault and header["job"] == self.fault_job:
+            if kind == UNIT and self.fault and header["job"] > self.fault_after:
                 self.fault_at = time.time()
                 if self.fault == "crash":
                     writer.close()
@@ -349,9 +349,11 @@ async def measure(args, coordinator, report):
         crash, hang = names[0], names[1]
         requeued0 = await coordinator.metric("tessera_units_requeued_total")
         if synthetic:
-            job = await coordinator.submit(args.size, args.passes)
+            # Armed before the job exists: its first units may reach a worker while the
+            # submission's answer is still on its way here.
             for w, fault in ((synthetic[0], "crash"), (synthetic[1], "hang")):
-                w.fault, w.fault_job = fault, job
+                w.fault, w.fault_after = fault, job
+            job = await coordinator.submit(args.size, args.passes)
             async def struck():
                 return all(w.fault_at for w in synthetic[:2])
             await coordinator.wait_until("the faults", struck, 60)

@@ -100,7 +100,9 @@ def texture_tar(count, side):
 def case_use_chain(service, smoke):
     status, reply, seconds = post_json(service, "/api/jobs", {
         "scene": hostile_test.def_use_bomb(), "format": "vrml", "settings": SMALL})
-    assert status == 422 and reply["limit"] == "use_replays", (status, reply)
+    # The smoke run's 2 s intake deadline may come first on a loaded machine.
+    limits = ("use_replays", "max_intake_seconds") if smoke else ("use_replays",)
+    assert status == 422 and reply["limit"] in limits, (status, reply)
     return "%d %s" % (status, reply["limit"]), seconds
 
 
