@@ -24,6 +24,11 @@ from service_test import (CAMERA_SDL, CAMERA_VRML, SECRET, assert_identical, dem
 # Several levels and three passes, long enough on two threads for ten kills spread over it.
 # Long enough (about 5 s of one core) that 0.3 s after a kill point the job is still running.
 SETTINGS = {"width": 480, "height": 360, "aa": 9, "stochastic": True, "passes": 4, "seed": 11}
+# The crashed job: each kill cycle lets it run a store tick and more (0.3 s, then a restart),
+# which must stay under the 1/15 of the job between kill points, or a fast machine finishes the
+# job before the last kill (480x360 took under 3 s of rendering once the coordinator started
+# in milliseconds).
+CRASHED = dict(SETTINGS, width=960, height=720)
 SMALL = {"width": 24, "height": 18, "aa": 1, "passes": 1, "seed": 3}
 KILLS = 10
 
@@ -112,7 +117,7 @@ def case_crash_resume():
             first = c.submit(SMALL)
             assert c.finished(first)["state"] == "done"
             first_exr = c.image(first)
-            job = c.submit(SETTINGS)
+            job = c.submit(CRASHED)
             assert job == first + 1
             # The demo scene's own camera: a resumed job shows it again.
             job_views = c.views(job)
@@ -143,7 +148,7 @@ def case_crash_resume():
             assert len(seen) >= 3, "kills hit only %s" % seen
             with open(os.path.join(tmp, "resumed.exr"), "wb") as f:
                 f.write(c.image(job))
-            render_cli(demo_scene(), SETTINGS, os.path.join(tmp, "cli.exr"))
+            render_cli(demo_scene(), CRASHED, os.path.join(tmp, "cli.exr"))
             assert_identical(os.path.join(tmp, "resumed.exr"), os.path.join(tmp, "cli.exr"))
             # Finished jobs from before the crashes: same ids, same images; ids go on.
             assert [j["id"] for j in c.get("/api/jobs")] == [first, job]
