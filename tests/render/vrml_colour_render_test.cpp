@@ -5,9 +5,6 @@
 // (i, j) of a w-pixel image looks at x = 2 (i + 1/2) / w - 1, y = 1 - 2 (j + 1/2) / w.
 #include <gtest/gtest.h>
 
-#include <filesystem>
-#include <fstream>
-#include <sstream>
 
 #include "common/image/image.h"
 #include "common/loaders/scene_source.h"
@@ -99,14 +96,8 @@ std::string quadrant_png() {
     for (int x = 0; x < 4; ++x)
       image.set(x, y,
                 y < 2 ? (x < 2 ? kTopLeft : kTopRight) : (x < 2 ? kBottomLeft : kBottomRight));
-  const std::filesystem::path path =
-      std::filesystem::temp_directory_path() / "tessera_vrml_quadrants.png";
-  write_image(image, path.string());
-  std::ifstream in(path, std::ios::binary);
-  std::ostringstream bytes;
-  bytes << in.rdbuf();
-  std::filesystem::remove(path);
-  return bytes.str();
+  // In memory: a file of one name shared by the tests that run side by side raced.
+  return encode_image(image, "png");
 }
 
 // The quad with the quadrant image, lit head-on by the headlight (so a texel shows as it is).
