@@ -5,7 +5,6 @@
 // (i, j) of a w-pixel image looks at x = 2 (i + 1/2) / w - 1, y = 1 - 2 (j + 1/2) / w.
 #include <gtest/gtest.h>
 
-
 #include "common/image/image.h"
 #include "common/loaders/scene_source.h"
 #include "common/loaders/vrml_loader.h"
