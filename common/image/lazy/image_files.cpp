@@ -62,13 +62,13 @@ void write_file(const std::string& path, const std::string& bytes) {
 
 void write_image(const Image& image, const std::string& path) {
   const std::string ext = lowercase_extension(path);
-  if (ext == "png") return write_file(path, encode_png(image, 6));
+  if (ext == "png") return write_file(path, encode_png(image));
   if (ext == "exr") return write_file(path, encode_exr(image));
   openimageio().write_image(image, path);
 }
 
 std::string encode_image(const Image& image, const std::string& format) {
-  if (format == "png") return encode_png(image, 3);
+  if (format == "png") return encode_png(image);
   if (format == "exr") return encode_exr(image);
   return openimageio().encode_image(image, format);
 }

@@ -31,7 +31,7 @@ void append(png_structp png, png_bytep data, png_size_t length) {
 void flush(png_structp) {}
 
 // Encodes the rows into `out`; false with `error` filled on failure.
-bool encode_rows(std::string& out, int width, int height, int level, std::vector<png_bytep>& rows,
+bool encode_rows(std::string& out, int width, int height, std::vector<png_bytep>& rows,
                  char (&error)[256]) {
   png_structp png = png_create_write_struct(PNG_LIBPNG_VER_STRING, error, on_error, on_warning);
   png_infop info = png ? png_create_info_struct(png) : nullptr;
@@ -45,7 +45,8 @@ bool encode_rows(std::string& out, int width, int height, int level, std::vector
     return false;
   }
   png_set_write_fn(png, &out, append, flush);
-  png_set_compression_level(png, level);
+  png_set_compression_level(png, 3);
+  png_set_filter(png, PNG_FILTER_TYPE_BASE, PNG_FILTER_SUB);
   png_set_IHDR(png, info, static_cast<png_uint_32>(width), static_cast<png_uint_32>(height), 8,
                PNG_COLOR_TYPE_RGB, PNG_INTERLACE_NONE, PNG_COMPRESSION_TYPE_DEFAULT,
                PNG_FILTER_TYPE_DEFAULT);
@@ -58,7 +59,7 @@ bool encode_rows(std::string& out, int width, int height, int level, std::vector
 
 }  // namespace
 
-std::string encode_png(const Image& image, int level) {
+std::string encode_png(const Image& image) {
   std::vector<png_byte> bytes(image.rgb.size());
   // Infinities too become 0, as OpenImageIO's writer (oiio/image_io.cpp) makes them.
   for (std::size_t i = 0; i < bytes.size(); ++i)
@@ -69,7 +70,7 @@ std::string encode_png(const Image& image, int level) {
         bytes.data() + static_cast<std::size_t>(y) * static_cast<std::size_t>(image.width) * 3;
   std::string out;
   char error[256] = "";
-  if (!encode_rows(out, image.width, image.height, level, rows, error))
+  if (!encode_rows(out, image.width, image.height, rows, error))
     throw std::runtime_error(std::string("encoding png: ") + error);
   return out;
 }
