@@ -75,7 +75,10 @@ Tracer::Tracer(const PreparedScene& scene, const RenderSettings& settings, Rende
       cone_samples_(settings.cone_samples),
       shadow_cone_radius_(settings.shadow_jitter / 2),
       illuminate_(lighting_for(effects_)),
-      interrupt_(interrupt) {}
+      interrupt_(interrupt) {
+  for (const Light& light : scene.scene().lights)
+    cos_cutoff_.push_back(std::cos(light.spot.cutoff_degrees * std::numbers::pi / 180));
+}
 
 void Tracer::check_interrupt() {
   poll_countdown_ = kPollRays;
@@ -247,7 +250,8 @@ Rgb Tracer::local_illumination(const Hit& hit, const Material& m, const SurfaceC
   const double diffuse_scale = m.retain_diffuse_color ? 1 : opacity;
   const double specular_scale = m.retain_specular_reflection ? 1 : opacity;
   const bool has_specular = !m.specular.is_zero() && specular_scale > 0;
-  for (const Light& light : scene.lights) {
+  for (std::size_t index = 0; index < scene.lights.size(); ++index) {
+    const Light& light = scene.lights[index];
     const bool directional = kDirectionalLights && light.is_directional;
     if (directional && !light.lights(hit.world.object)) continue;
     Vec3 l;
@@ -257,7 +261,7 @@ Rgb Tracer::local_illumination(const Hit& hit, const Material& m, const SurfaceC
     double cone = 1;  // spotlight: zero outside the cut-off, cos^exponent inside (§4.1.3)
     if (light.is_spot) {
       const double cos_alpha = std::clamp(dot(-l, light.spot.direction), -1.0, 1.0);
-      if (cos_alpha < std::cos(light.spot.cutoff_degrees * std::numbers::pi / 180)) continue;
+      if (cos_alpha < cos_cutoff_[index]) continue;
       cone = light.spot.exponent == 0 ? 1 : std::pow(std::max(cos_alpha, 0.0), light.spot.exponent);
     }
 

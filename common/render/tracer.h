@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <vector>
 
 #include "common/render/interrupt.h"
 #include "common/render/media.h"
@@ -118,6 +119,9 @@ class Tracer {
   int cone_samples_;
   double shadow_cone_radius_;  // r_c of eq. 4.25
   Illumination illuminate_;    // local_illumination for the render's effects (lighting_for)
+  // The cosine of each light's cut-off angle (used for spotlights), per Scene::lights: worked out
+  // once here rather than at every hit a spotlight lights.
+  std::vector<double> cos_cutoff_;
   RenderInterrupt interrupt_;
   int poll_countdown_ = kPollRays;
   static constexpr std::uint64_t kNone = ~std::uint64_t{0};
