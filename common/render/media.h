@@ -5,25 +5,40 @@
 // (Schmidt and Budge, "Simple nested dielectrics in ray traced images", 2002).
 #pragma once
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 
 namespace tessera {
 
+// Trivially constructible, so that a stack's unused entries cost nothing: a MediumStack is made
+// or copied for every ray traced. Air is Medium::air().
 struct Medium {
-  std::uint32_t instance = kAir;
-  int priority = 0;
-  double speed_of_light = 1;
+  std::uint32_t instance;
+  int priority;
+  double speed_of_light;
   static constexpr std::uint32_t kAir = 0xffffffffu;
+  static constexpr Medium air() { return {kAir, 0, 1}; }
 };
 
 class MediumStack {
  public:
   static constexpr int kCapacity = 16;
 
+  MediumStack() = default;
+  // Only the entries in use are copied (and ever read): the rest stay uninitialized.
+  MediumStack(const MediumStack& other) : size_(other.size_) {
+    std::copy_n(other.entries_.begin(), size_, entries_.begin());
+  }
+  MediumStack& operator=(const MediumStack& other) {
+    size_ = other.size_;
+    std::copy_n(other.entries_.begin(), size_, entries_.begin());
+    return *this;
+  }
+
   // The medium that governs refraction: highest priority, latest entered among equals.
   Medium top() const {
-    Medium best;
+    Medium best = Medium::air();
     for (int i = 0; i < size_; ++i)
       if (entries_[i].priority >= best.priority) best = entries_[i];
     return best;
@@ -47,7 +62,7 @@ class MediumStack {
   }
 
  private:
-  std::array<Medium, kCapacity> entries_{};
+  std::array<Medium, kCapacity> entries_;
   int size_ = 0;
 };
 
