@@ -18,9 +18,10 @@ struct Word {
 
 bool is_space(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }
 
-// The whitespace-separated words of one line, up to a '#' comment.
-std::vector<Word> split_words(std::string_view line) {
-  std::vector<Word> words;
+// The whitespace-separated words of one line, up to a '#' comment, into `words` (reused from
+// line to line, so that a file of a million lines does not allocate a million vectors).
+void split_words(std::string_view line, std::vector<Word>& words) {
+  words.clear();
   std::size_t i = 0;
   while (i < line.size()) {
     if (is_space(line[i])) {
@@ -32,7 +33,6 @@ std::vector<Word> split_words(std::string_view line) {
     while (i < line.size() && !is_space(line[i]) && line[i] != '#') ++i;
     words.push_back({line.substr(begin, i - begin), static_cast<int>(begin) + 1});
   }
-  return words;
 }
 
 class ObjParser {
@@ -59,7 +59,7 @@ class ObjParser {
   }
 
   void parse_line(std::string_view line) {
-    words_ = split_words(line);
+    split_words(line, words_);
     if (words_.empty()) return;
     const std::string_view keyword = words_[0].text;
     if (keyword == "v") {
@@ -85,15 +85,16 @@ class ObjParser {
   }
 
   double number(std::size_t index, const char* param) const {
-    const std::string what =
-        std::string("a number for ") + param + " of '" + std::string(words_[0].text) + "'";
-    if (index >= words_.size()) fail(end_column(), "unexpected end of line, expected " + what);
+    const auto what = [&] {
+      return std::string("a number for ") + param + " of '" + std::string(words_[0].text) + "'";
+    };
+    if (index >= words_.size()) fail(end_column(), "unexpected end of line, expected " + what());
     const DecimalResult result = parse_decimal(words_[index].text);
     if (result.status == DecimalStatus::OutOfRange) {
       fail(words_[index].column, "number " + in_quotes(words_[index].text) + " is out of range");
     }
     if (result.status != DecimalStatus::Ok) {
-      fail(words_[index].column, "expected " + what + ", found " + in_quotes(words_[index].text));
+      fail(words_[index].column, "expected " + what() + ", found " + in_quotes(words_[index].text));
     }
     return result.value;
   }
@@ -189,8 +190,8 @@ class ObjParser {
       fail(words_[0].column,
            "a face needs at least 3 corners, found " + std::to_string(words_.size() - 1));
     }
-    std::vector<Corner> corners;
-    corners.reserve(words_.size() - 1);
+    std::vector<Corner>& corners = corners_;
+    corners.clear();
     for (std::size_t i = 1; i < words_.size(); ++i) corners.push_back(corner(words_[i]));
     // Fan triangulation around the first corner.
     for (std::size_t i = 1; i + 1 < corners.size(); ++i) {
@@ -223,7 +224,8 @@ class ObjParser {
   std::string_view text_;
   const std::string& file_;
   int line_ = 0;
-  std::vector<Word> words_;
+  std::vector<Word> words_;      // the line's, reused
+  std::vector<Corner> corners_;  // the face's, reused
   std::size_t texcoord_count_ = 0;
   Mesh mesh_;
 };

@@ -1,7 +1,6 @@
 #include "common/loaders/scene_source.h"
 
 #include <fstream>
-#include <iterator>
 #include <system_error>
 #include <vector>
 
@@ -90,7 +89,13 @@ std::optional<std::string> DirectorySource::read(const std::string& path) const 
   if (!fs::is_regular_file(full, ec) || ec) return std::nullopt;
   std::ifstream in(full, std::ios::binary);
   if (!in) return std::nullopt;
-  std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  // In blocks, not a character at a time through istreambuf_iterator (a 10 MB mesh took 120 M
+  // instructions to read that way).
+  std::string bytes;
+  bytes.reserve(static_cast<std::size_t>(fs::file_size(full, ec)));
+  char block[1 << 16];
+  while (in.read(block, sizeof block) || in.gcount() > 0)
+    bytes.append(block, static_cast<std::size_t>(in.gcount()));
   if (in.bad()) return std::nullopt;
   return bytes;
 }
