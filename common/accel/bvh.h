@@ -1,6 +1,7 @@
 // A bounding volume hierarchy over anything with bounds, built with the surface area heuristic
 // (binned, as in pbrt-v3 §4.3) or, for comparison, not at all (BvhMode::None: one leaf holding
-// every primitive, the seeds' "acceleration off").
+// every primitive, the seeds' "acceleration off"). The tree is built binary in double and
+// traversed as a 4-wide tree in float (BvhWideNode; conservative, see child_boxes.h).
 #pragma once
 
 #include <cstdint>
