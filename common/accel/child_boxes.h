@@ -106,11 +106,14 @@ inline void set_child_box(ChildBoxes& boxes, int c, const Bounds3& box) {
   }
 }
 
-// The per-ray constants of the test.
+// The per-ray constants of the test, each repeated four times (one per child) so that a step
+// loads them instead of broadcasting them again.
 struct BoxRay {
-  float origin_near[3];  // subtracted from the near plane: the origin rounded towards it
-  float origin_far[3];   // subtracted from the far plane: the origin rounded away from it
-  float inv_dir[3];
+  // Subtracted from the near plane: the origin rounded towards it; from the far plane: rounded
+  // away from it.
+  alignas(16) float origin_near[3][4];
+  alignas(16) float origin_far[3][4];
+  alignas(16) float inv_dir[3][4];
   int near_side[3];  // 0 (lo) where the direction is forward (1 / d >= 0), else 1 (hi)
 
   explicit BoxRay(const Ray& ray) {
@@ -119,12 +122,14 @@ struct BoxRay {
       const bool forward = inv >= 0;
       const float down = round_down_to_float(ray.origin[a]);
       const float up = round_up_to_float(ray.origin[a]);
-      inv_dir[a] = static_cast<float>(inv);
       near_side[a] = forward ? 0 : 1;
-      // Forward, the near plane is lo and (lo - origin) is smaller with the origin rounded
-      // up; backward, it is hi and (hi - origin) * inv is smaller with (hi - origin) larger.
-      origin_near[a] = forward ? up : down;
-      origin_far[a] = forward ? down : up;
+      for (int c = 0; c < 4; ++c) {
+        inv_dir[a][c] = static_cast<float>(inv);
+        // Forward, the near plane is lo and (lo - origin) is smaller with the origin rounded
+        // up; backward, it is hi and (hi - origin) * inv is smaller with (hi - origin) larger.
+        origin_near[a][c] = forward ? up : down;
+        origin_far[a][c] = forward ? down : up;
+      }
     }
   }
 };
@@ -141,9 +146,9 @@ inline unsigned intersect_child_boxes_scalar(const ChildBoxes& boxes, const BoxR
     float t0 = 0, t1 = far_limit;
     for (int a = 0; a < 3; ++a) {
       const int near = ray.near_side[a];
-      const float t_near = (boxes.bound[a][near][c] - ray.origin_near[a]) * ray.inv_dir[a];
+      const float t_near = (boxes.bound[a][near][c] - ray.origin_near[a][c]) * ray.inv_dir[a][c];
       const float t_far =
-          (boxes.bound[a][1 - near][c] - ray.origin_far[a]) * ray.inv_dir[a] * kFloatFarScale;
+          (boxes.bound[a][1 - near][c] - ray.origin_far[a][c]) * ray.inv_dir[a][c] * kFloatFarScale;
       t0 = t_near > t0 ? t_near : t0;
       t1 = t_far < t1 ? t_far : t1;
     }
@@ -160,15 +165,17 @@ inline unsigned intersect_child_boxes_scalar(const ChildBoxes& boxes, const BoxR
                                                              float entry[4]) {
 #if defined(__SSE__)
   __m128 t0 = _mm_setzero_ps(), t1 = _mm_set1_ps(far_limit);
+  const __m128 far_scale = _mm_set1_ps(kFloatFarScale);
+#pragma GCC unroll 3
   for (int a = 0; a < 3; ++a) {
-    const __m128 inv = _mm_set1_ps(ray.inv_dir[a]);
+    const __m128 inv = _mm_load_ps(ray.inv_dir[a]);
     const int near = ray.near_side[a];
     const __m128 t_near = _mm_mul_ps(
-        _mm_sub_ps(_mm_load_ps(boxes.bound[a][near]), _mm_set1_ps(ray.origin_near[a])), inv);
+        _mm_sub_ps(_mm_load_ps(boxes.bound[a][near]), _mm_load_ps(ray.origin_near[a])), inv);
     const __m128 t_far = _mm_mul_ps(
         _mm_mul_ps(
-            _mm_sub_ps(_mm_load_ps(boxes.bound[a][1 - near]), _mm_set1_ps(ray.origin_far[a])), inv),
-        _mm_set1_ps(kFloatFarScale));
+            _mm_sub_ps(_mm_load_ps(boxes.bound[a][1 - near]), _mm_load_ps(ray.origin_far[a])), inv),
+        far_scale);
     t0 = _mm_max_ps(t_near, t0);  // t_near > t0 ? t_near : t0
     t1 = _mm_min_ps(t_far, t1);   // t_far < t1 ? t_far : t1
   }
