@@ -7,6 +7,7 @@
 // do not depend on it.
 #pragma once
 
+#include <bit>
 #include <cstdint>
 
 #include "common/accel/bvh.h"
@@ -57,13 +58,18 @@ void traverse_bvh_leaves(const Bvh& bvh, const Ray& ray, double t_max, std::uint
       const BvhWideNode& node = wide[current.index];
       alignas(16) float entry[4];
       nodes_visited += 4;
-      unsigned hits = intersect_child_boxes(node.boxes, box_ray, far_limit, entry);
+      const unsigned hits = intersect_child_boxes(node.boxes, box_ray, far_limit, entry);
       if (hits != 0) {
+        if ((hits & (hits - 1)) == 0) {  // one child: nothing to order
+          const int c = std::countr_zero(hits);
+          current = {node.child[c], node.count[c], entry[c]};
+          continue;
+        }
         // The children hit, nearest first (the lower slot on a tie): an insertion sort of at
         // most four.
         int order[4], n = 0;
-        for (int c = 0; hits != 0; ++c, hits >>= 1) {
-          if ((hits & 1u) == 0) continue;
+        for (unsigned rest = hits; rest != 0; rest &= rest - 1) {
+          const int c = std::countr_zero(rest);
           int i = n++;
           for (; i > 0 && entry[order[i - 1]] > entry[c]; --i) order[i] = order[i - 1];
           order[i] = c;
