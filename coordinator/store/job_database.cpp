@@ -11,6 +11,7 @@
 
 #include "coordinator/store/content_files.h"
 #include "coordinator/store/sqlite.h"
+#include "coordinator/store/wal_checkpointer.h"
 
 namespace tessera {
 
@@ -206,6 +207,9 @@ void JobDatabase::open() {
     // In WAL mode NORMAL loses no committed transaction when the process dies, only at a
     // power cut (the last commits before it).
     db_->exec("PRAGMA synchronous = NORMAL; PRAGMA foreign_keys = ON");
+    // Checkpoints run on the checkpointer's thread (wal_checkpointer.h); the writer's own,
+    // inside a commit on the io thread, only when the log has grown past this many pages.
+    db_->exec("PRAGMA wal_autocheckpoint = " + std::to_string(kBackstopCheckpointPages));
 
     std::int64_t application = db_->query_int("PRAGMA application_id");
     std::int64_t version = db_->query_int("PRAGMA user_version");
@@ -241,6 +245,7 @@ void JobDatabase::open() {
                 std::to_string(std::max<std::int64_t>(max_disk_bytes_ / page, 1)));
     }
     sweep_orphans();
+    checkpointer_ = std::make_unique<WalCheckpointer>(dir_ / "tessera.db");
   });
 }
 
@@ -398,6 +403,8 @@ std::size_t JobDatabase::queued() const {
   return queue_.size();
 }
 
+long long JobDatabase::checkpoints() const { return checkpointer_->completed(); }
+
 void JobDatabase::flush() {
   std::lock_guard lock(mutex_);
   flush_locked();
@@ -428,6 +435,7 @@ void JobDatabase::flush_locked() {
       check_budget(jobs);
       transaction.commit();
     });
+    checkpointer_->request();
   } catch (const StoreError&) {
     // The dropped results leave gaps in the sequence: start again after what is stored.
     for (std::int64_t job : jobs) next_sequence_.erase(job);

@@ -5,8 +5,9 @@
 // as it was before it; a crash loses only results not yet flushed.
 //
 // Results are batched: append_result queues in memory, flush writes the queue in one
-// transaction (the coordinator calls it every tick). Destroying the store without flush drops
-// the queue, exactly as a crash would. All members are safe to call from several threads.
+// transaction (the coordinator calls it every tick) and a thread of the store's own copies the
+// log into the database file after it (wal_checkpointer.h). Destroying the store without flush
+// drops the queue, exactly as a crash would. All members are safe to call from several threads.
 #pragma once
 
 #include <chrono>
@@ -28,6 +29,7 @@ namespace tessera {
 namespace sqlite {
 class Connection;
 }
+class WalCheckpointer;
 
 // A store that cannot be opened or written. `jobs` names the jobs whose write failed (empty
 // when the failure is the store's own, e.g. at open); `cause` says why.
@@ -47,6 +49,9 @@ class JobDatabase {
   // 2: jobs keep their scene's camera and Viewpoints.
   static constexpr std::int64_t kSchemaVersion = 2;
   static constexpr std::int64_t kUnlimited = std::numeric_limits<std::int64_t>::max();
+  // The log grows past this many pages (16 MB of 4 kB pages) only when the checkpointer's
+  // thread falls behind; the commit that passes it checkpoints on the caller's thread.
+  static constexpr int kBackstopCheckpointPages = 4000;
 
   // Opens DIR (created if missing) and its database, migrating a store of an older schema
   // version (a crash mid-way leaves it at a whole version); refuses a newer schema version or
@@ -68,6 +73,8 @@ class JobDatabase {
   // keeps each job's results up to its last successful flush, and StoreError names the jobs.
   void flush();
   std::size_t queued() const;
+  // Checkpoints the store's thread has completed since open.
+  long long checkpoints() const;
   // Flushes, then records the final state, finish time and images (written as files).
   void finish_job(std::int64_t job, const std::string& state, const std::string& error,
                   WallClock::time_point finished, const std::vector<StoredImage>& images);
@@ -104,6 +111,8 @@ class JobDatabase {
   std::filesystem::path dir_;
   std::int64_t max_disk_bytes_;
   std::unique_ptr<sqlite::Connection> db_;
+  // After db_: closed first, so that db_, the last connection, removes the log at close.
+  std::unique_ptr<WalCheckpointer> checkpointer_;
   mutable std::mutex mutex_;
   std::vector<QueuedResult> queue_;
   std::map<std::int64_t, std::int64_t> next_sequence_;  // by job, once known

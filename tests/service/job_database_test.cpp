@@ -11,6 +11,7 @@
 #include <cstring>
 #include <filesystem>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "coordinator/store/content_files.h"
@@ -482,6 +483,24 @@ TEST_F(JobDatabaseTest, FlushOfAHundredUnitResultsFitsATick) {
       seconds[2] * 1e3, slowest * 1e3, per_result);
   EXPECT_LT(slowest, 0.25);
   EXPECT_LT(per_result, 1.1 * 12288);
+}
+
+// A flush's results reach the database file through the store's own thread: the writer's
+// automatic checkpoint, on the io thread, waits for a log of kBackstopCheckpointPages.
+TEST_F(JobDatabaseTest, TheLogIsCopiedIntoTheDatabaseOffTheWritersThread) {
+  JobDatabase db(dir_);
+  std::int64_t id = db.add_job(make_request(), at_seconds(0));
+  const std::uintmax_t before = fs::file_size(dir_ / "tessera.db");
+  std::vector<float> values = awkward_values(0, 3 * 16384);  // 196 kB, a large unit's
+  for (int i = 0; i < 10; ++i) db.append_result(id, i, values, stats_with(16384, 0.02), "w");
+  const long long checkpoints = db.checkpoints();
+  db.flush();
+  const auto deadline = std::chrono::steady_clock::now() + 20s;
+  while (db.checkpoints() == checkpoints && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(5ms);
+  ASSERT_GT(db.checkpoints(), checkpoints);
+  static_assert(10 * 196608 < JobDatabase::kBackstopCheckpointPages * 4096);
+  EXPECT_GE(fs::file_size(dir_ / "tessera.db"), before + 10 * 196608);
 }
 
 }  // namespace
