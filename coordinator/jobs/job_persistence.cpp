@@ -156,8 +156,9 @@ void JobPersistence::restore(JobStore& jobs, Scheduler& scheduler,
     // Replayed in merge order, the frame buffer is bit-identical to the one before the crash.
     std::vector<bool> done(job->plan.units.size(), false);
     for (const StoredResult& result : stored.results) {
-      if (result.unit < 0 || result.unit >= static_cast<int>(done.size()) || done[result.unit])
-        continue;  // a store written by this code holds neither; never trusted blindly
+      if (result.unit < 0 || result.unit >= static_cast<int>(done.size()) || done[result.unit] ||
+          result.values.size() != 3 * static_cast<std::size_t>(job->plan.units[result.unit].cost))
+        continue;  // a store written by this code holds none of these; never trusted blindly
       done[result.unit] = true;
       job->apply_result(result.unit, result.values, result.stats);
     }
