@@ -101,11 +101,8 @@ void JobPersistence::note_failure(const StoreError& e) {
 }
 
 void JobPersistence::tick(JobStore& jobs, Scheduler& scheduler) {
-  try {
-    db_.flush();
-  } catch (const StoreError& e) {
-    note_failure(e);
-  }
+  db_.flush_soon();
+  for (const StoreError& e : db_.take_failures()) note_failure(e);
   for (const auto& [job, cause] : failed_)
     if (scheduler.fail(job, "cannot store the job's results: " + cause))
       spdlog::error("job {} failed: its progress cannot be stored: {}", job, cause);
@@ -115,6 +112,14 @@ void JobPersistence::tick(JobStore& jobs, Scheduler& scheduler) {
       jobs.forget(gone);
   } catch (const StoreError& e) {
     spdlog::error("job store retention: {}", e.cause());
+  }
+}
+
+void JobPersistence::write_out() {
+  try {
+    db_.flush();
+  } catch (const StoreError& e) {
+    spdlog::error("job store: the last results cannot be stored: {}", e.cause());
   }
 }
 

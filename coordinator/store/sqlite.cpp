@@ -37,12 +37,6 @@ std::int64_t Connection::last_insert_rowid() const { return sqlite3_last_insert_
 
 std::int64_t Connection::changes() const { return sqlite3_changes64(db_); }
 
-void Connection::checkpoint_passive() {
-  const int rc =
-      sqlite3_wal_checkpoint_v2(db_, nullptr, SQLITE_CHECKPOINT_PASSIVE, nullptr, nullptr);
-  if (rc != SQLITE_OK && rc != SQLITE_BUSY) fail(db_, rc);
-}
-
 bool Connection::read_only() const { return sqlite3_db_readonly(db_, "main") == 1; }
 
 Statement::Statement(Connection& connection, std::string_view sql) : db_(connection.handle()) {

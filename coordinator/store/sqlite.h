@@ -37,9 +37,6 @@ class Connection {
   std::int64_t query_int(const std::string& sql);
   std::int64_t last_insert_rowid() const;
   std::int64_t changes() const;  // rows changed by the last statement
-  // Copies what it can of the write-ahead log into the database without waiting for other
-  // connections; returns at once if another connection is checkpointing.
-  void checkpoint_passive();
   // Whether SQLite opened the file read-only (it does so silently for a write-protected file).
   bool read_only() const;
   sqlite3* handle() const { return db_; }
