@@ -101,7 +101,6 @@ void JobPersistence::note_failure(const StoreError& e) {
 }
 
 void JobPersistence::tick(JobStore& jobs, Scheduler& scheduler) {
-  db_.flush_soon();
   for (const StoreError& e : db_.take_failures()) note_failure(e);
   for (const auto& [job, cause] : failed_)
     if (scheduler.fail(job, "cannot store the job's results: " + cause))
@@ -113,6 +112,8 @@ void JobPersistence::tick(JobStore& jobs, Scheduler& scheduler) {
   } catch (const StoreError& e) {
     spdlog::error("job store retention: {}", e.cause());
   }
+  // Last: retention above takes the store's connection, and would wait for this write.
+  db_.flush_soon();
 }
 
 void JobPersistence::write_out() {

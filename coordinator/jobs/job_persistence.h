@@ -35,9 +35,9 @@ class JobPersistence : public JobObserver {
   // A done job's final images are encoded (Job::final_encoded): stores them with its state.
   // When that write fails the job fails (its images dropped) with the store's error.
   void store_images(Job& job);
-  // Every tick: has the store's thread write the queued results, then applies retention.
-  // Jobs whose write failed (in the last ticks' writes) are failed in the scheduler; jobs
-  // retention deleted leave `jobs`.
+  // Every tick: fails in the scheduler the jobs whose write failed (in earlier ticks' writes),
+  // applies retention (jobs it deleted leave `jobs`), then has the store's thread write the
+  // queued results.
   void tick(JobStore& jobs, Scheduler& scheduler);
   // At a graceful stop: writes the queued results before returning.
   void write_out();
