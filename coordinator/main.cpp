@@ -139,7 +139,7 @@ int main(int argc, char** argv) {
     tick_every(timer, scheduler, jobs, persistence);
     io.run();
     // A graceful stop writes what merged since the last tick: only a crash loses it.
-    persistence.tick(jobs, scheduler);
+    persistence.write_out();
     if (intake.pending() > 0) {
       // A runaway scene would hold the exit until its budget stops it: leave without it
       // (local workers get SIGTERM from the kernel as we exit, PR_SET_PDEATHSIG).

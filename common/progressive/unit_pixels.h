@@ -2,6 +2,7 @@
 // both the coordinator and the worker expand it to the same list in the same order.
 #pragma once
 
+#include <algorithm>
 #include <vector>
 
 #include "common/math/pixel_rect.h"
@@ -23,7 +24,28 @@ struct UnitPixels {
   friend bool operator==(const UnitPixels&, const UnitPixels&) = default;
 };
 
-// The unit's pixels in scanline order; results travel in this order.
+inline int first_multiple_at_or_after(int v, int step) { return (v + step - 1) / step * step; }
+
+// Calls visit(PixelCoord) for each of the unit's pixels in scanline order, the order results
+// travel in. Inline, so that the coordinator merges a result without a list of its pixels.
+template <typename Visit>
+void for_each_pixel(const UnitPixels& u, Visit&& visit) {
+  const PixelRect& r = u.rect;
+  if (u.step <= 0 || r.width() <= 0 || r.height() <= 0) return;
+  const int x_start = first_multiple_at_or_after(r.x0, u.step);
+  const int y_start = first_multiple_at_or_after(r.y0, u.step);
+  for (int by = y_start; by < r.y1; by += u.step) {
+    for (int bx = x_start; bx < r.x1; bx += u.step) {
+      if (u.pattern == PixelPattern::Centres) {
+        visit(PixelCoord{std::min(bx + u.step / 2, r.x1 - 1), std::min(by + u.step / 2, r.y1 - 1)});
+      } else if (u.exclude <= 0 || bx % u.exclude != 0 || by % u.exclude != 0) {
+        visit(PixelCoord{bx, by});
+      }
+    }
+  }
+}
+
+// The unit's pixels in for_each_pixel's order.
 std::vector<PixelCoord> expand(const UnitPixels& unit);
 long long pixel_count(const UnitPixels& unit);
 

@@ -47,14 +47,13 @@ double wall_clock_ms() {
       .count();
 }
 
-// Appends one pixel's 8-bit values as differences from the previous pixel's (TileRecord).
-void append_difference(std::string& out, std::uint8_t previous[3], const Rgb& value) {
-  const std::uint8_t now[3] = {to_8bit(static_cast<float>(value.r)),
-                               to_8bit(static_cast<float>(value.g)),
-                               to_8bit(static_cast<float>(value.b))};
+// Writes one pixel's 8-bit values as differences from the previous pixel's (TileRecord) at
+// `out`, which has room for them.
+void put_difference(char* out, std::uint8_t previous[3], const float value[3]) {
   for (int c = 0; c < 3; ++c) {
-    out.push_back(static_cast<char>(static_cast<std::uint8_t>(now[c] - previous[c])));
-    previous[c] = now[c];
+    const std::uint8_t now = to_8bit(value[c]);
+    out[c] = static_cast<char>(static_cast<std::uint8_t>(now - previous[c]));
+    previous[c] = now;
   }
 }
 
@@ -73,21 +72,31 @@ void Job::apply_result(int unit_index, std::span<const float> values, const Rend
                        const std::optional<ResultSource>& from) {
   const WorkUnit& unit = plan.units[unit_index];
   const Stage& stage = plan.stages[unit.stage];
-  const std::vector<PixelCoord> pixels = expand(unit.pixels);
   // Normalized jobs' values change with the whole image's highest one: the page loads the PNG.
   const bool log_pixels = !spec.settings.normalize_colors;
   TileRecord record{unit.pixels.rect, unit.stage, from ? from->worker : 0, wall_clock_ms(), {}};
-  if (log_pixels) record.pixels.reserve(3 * pixels.size());
+  // Sized once and written through a pointer, not a push_back per byte: this loop runs for
+  // every pixel pass the coordinator merges.
+  if (log_pixels) record.pixels.resize(3 * static_cast<std::size_t>(unit.cost));
+  char* delta = record.pixels.data();
+  const float* rgb = values.data();
   std::uint8_t previous[3] = {0, 0, 0};
-  for (std::size_t i = 0; i < pixels.size(); ++i) {
-    const PixelCoord p = pixels[i];
-    const float* rgb = values.data() + 3 * i;
+  for_each_pixel(unit.pixels, [&](PixelCoord p) {
     if (!stage.preview_only) frame_buffer_.add_pass(p.x, p.y, rgb);
-    if (!log_pixels) continue;
-    // A level's value stands for its block; a later pass shows the pixel's mean so far.
-    append_difference(record.pixels, previous,
-                      stage.level > 0 ? Rgb{rgb[0], rgb[1], rgb[2]} : frame_buffer_.mean(p.x, p.y));
-  }
+    if (log_pixels) {
+      // A level's value stands for its block; a later pass shows the pixel's mean so far.
+      if (stage.level > 0) {
+        put_difference(delta, previous, rgb);
+      } else {
+        const Rgb mean = frame_buffer_.mean(p.x, p.y);
+        const float mean_rgb[3] = {static_cast<float>(mean.r), static_cast<float>(mean.g),
+                                   static_cast<float>(mean.b)};
+        put_difference(delta, previous, mean_rgb);
+      }
+      delta += 3;
+    }
+    rgb += 3;
+  });
   delta_bytes_ += record.pixels.size();
   tiles_.push_back(std::move(record));
   trim_delta_log(delta_log_bytes);

@@ -111,7 +111,8 @@ class Job {
   void mark_ran_beside_another() { ran_alone_ = false; }
   // A worker's failure report the job survives (the scheduler lets another worker try).
   void add_warning(std::string warning) { warnings_.push_back(std::move(warning)); }
-  // Merges one unit's values (3 floats per pixel of expand(unit), in that order), logs it as a
+  // Merges one unit's values (3 floats per pixel of for_each_pixel(unit), in that order, exactly
+  // as many as the unit's cost in pixels: callers check), logs it as a
   // tile record and counts it in the job's progress and statistics; `from` says which worker
   // sent it and when, for the tile record, the per-worker shares and the stage's timing (none
   // for results replayed from the store). The scheduler and JobPersistence::restore call it.

@@ -101,11 +101,7 @@ void JobPersistence::note_failure(const StoreError& e) {
 }
 
 void JobPersistence::tick(JobStore& jobs, Scheduler& scheduler) {
-  try {
-    db_.flush();
-  } catch (const StoreError& e) {
-    note_failure(e);
-  }
+  for (const StoreError& e : db_.take_failures()) note_failure(e);
   for (const auto& [job, cause] : failed_)
     if (scheduler.fail(job, "cannot store the job's results: " + cause))
       spdlog::error("job {} failed: its progress cannot be stored: {}", job, cause);
@@ -115,6 +111,16 @@ void JobPersistence::tick(JobStore& jobs, Scheduler& scheduler) {
       jobs.forget(gone);
   } catch (const StoreError& e) {
     spdlog::error("job store retention: {}", e.cause());
+  }
+  // Last: retention above takes the store's connection, and would wait for this write.
+  db_.flush_soon();
+}
+
+void JobPersistence::write_out() {
+  try {
+    db_.flush();
+  } catch (const StoreError& e) {
+    spdlog::error("job store: the last results cannot be stored: {}", e.cause());
   }
 }
 
@@ -156,8 +162,9 @@ void JobPersistence::restore(JobStore& jobs, Scheduler& scheduler,
     // Replayed in merge order, the frame buffer is bit-identical to the one before the crash.
     std::vector<bool> done(job->plan.units.size(), false);
     for (const StoredResult& result : stored.results) {
-      if (result.unit < 0 || result.unit >= static_cast<int>(done.size()) || done[result.unit])
-        continue;  // a store written by this code holds neither; never trusted blindly
+      if (result.unit < 0 || result.unit >= static_cast<int>(done.size()) || done[result.unit] ||
+          result.values.size() != 3 * static_cast<std::size_t>(job->plan.units[result.unit].cost))
+        continue;  // a store written by this code holds none of these; never trusted blindly
       done[result.unit] = true;
       job->apply_result(result.unit, result.values, result.stats);
     }

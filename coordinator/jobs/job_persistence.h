@@ -1,7 +1,8 @@
 // The coordinator's jobs kept across restarts (issue 17 §1-2): converts between the in-memory
 // Job and the durable store's records (coordinator/store/job_record.h) in one place. A job is
-// stored at admission, each merged result is queued as it merges and written every tick, a
-// state change is stored, and a done job's encoded images are kept as files. At start,
+// stored at admission, each merged result is queued as it merges and written every tick (by
+// the store's thread), a state change is stored, and a done job's encoded images are kept as
+// files. At start,
 // restore() rebuilds every stored job under its old id: finished ones with their images,
 // unfinished ones by replaying their results into a fresh Job, which the scheduler resumes.
 // A write that fails fails the jobs it concerned; the coordinator goes on. On the io thread.
@@ -34,9 +35,12 @@ class JobPersistence : public JobObserver {
   // A done job's final images are encoded (Job::final_encoded): stores them with its state.
   // When that write fails the job fails (its images dropped) with the store's error.
   void store_images(Job& job);
-  // Every tick: writes the queued results, then applies retention. Jobs whose write failed
-  // are failed in the scheduler; jobs retention deleted leave `jobs`.
+  // Every tick: fails in the scheduler the jobs whose write failed (in earlier ticks' writes),
+  // applies retention (jobs it deleted leave `jobs`), then has the store's thread write the
+  // queued results.
   void tick(JobStore& jobs, Scheduler& scheduler);
+  // At a graceful stop: writes the queued results before returning.
+  void write_out();
   // At start: every stored job into `jobs` (`prepare` is called on each, e.g. to set its
   // on_released), unfinished ones handed to the scheduler to resume.
   void restore(JobStore& jobs, Scheduler& scheduler, const std::function<void(Job&)>& prepare);

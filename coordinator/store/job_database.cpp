@@ -6,10 +6,12 @@
 #include <cstring>
 #include <iterator>
 #include <system_error>
+#include <utility>
 
 #include <nlohmann/json.hpp>
 
 #include "coordinator/store/content_files.h"
+#include "coordinator/store/flush_thread.h"
 #include "coordinator/store/sqlite.h"
 
 namespace tessera {
@@ -242,6 +244,14 @@ void JobDatabase::open() {
     }
     sweep_orphans();
   });
+  flush_thread_ = std::make_unique<FlushThread>([this] {
+    try {
+      flush();
+    } catch (const StoreError& e) {
+      std::lock_guard queue(queue_mutex_);
+      failures_.push_back(e);
+    }
+  });
 }
 
 JobDatabase::~JobDatabase() = default;
@@ -348,6 +358,7 @@ std::int64_t JobDatabase::add_job(const StoredRequest& request, WallClock::time_
       std::int64_t id = db_->last_insert_rowid();
       check_budget({});
       transaction.commit();
+      std::lock_guard queue(queue_mutex_);
       next_sequence_[id] = 0;
       return id;
     });
@@ -372,29 +383,43 @@ void JobDatabase::set_state(std::int64_t job, const std::string& state, const st
 
 std::int64_t JobDatabase::append_result(std::int64_t job, int unit, std::span<const float> values,
                                         const RenderStats& stats, const std::string& worker) {
-  std::lock_guard lock(mutex_);
-  auto next = next_sequence_.find(job);
-  if (next == next_sequence_.end()) {
-    // First result since open or since a failed flush: continue after what is stored.
-    std::int64_t stored = guarded({job}, [&] {
-      sqlite::Statement statement(
-          *db_,
-          "SELECT (SELECT COUNT(*) FROM jobs WHERE id = ?1), "
-          "(SELECT COALESCE(MAX(sequence) + 1, 0) FROM results WHERE job_id = ?1)");
-      statement.bind(1, job).step();
-      if (statement.column_int(0) == 0) throw StoreError({job}, "no such job");
-      return statement.column_int(1);
-    });
-    next = next_sequence_.emplace(job, stored).first;
-  }
   // Copied as bytes, not zero-filled first: this runs for every merged unit.
-  std::string payload(reinterpret_cast<const char*>(values.data()), values.size_bytes());
-  queue_.push_back({job, next->second, unit, std::move(payload), to_json(stats).dump(), worker});
-  return next->second++;
+  QueuedResult result{
+      job,
+      0,
+      unit,
+      std::string(reinterpret_cast<const char*>(values.data()), values.size_bytes()),
+      to_json(stats).dump(),
+      worker};
+  {
+    std::lock_guard queue(queue_mutex_);
+    if (auto next = next_sequence_.find(job); next != next_sequence_.end()) {
+      const std::int64_t sequence = result.sequence = next->second++;
+      queue_.push_back(std::move(result));
+      return sequence;
+    }
+  }
+  // First result since open or since a failed flush: continue after what is stored, once a
+  // flush under way has stored what it writes.
+  std::lock_guard lock(mutex_);
+  std::int64_t stored = guarded({job}, [&] {
+    sqlite::Statement statement(
+        *db_,
+        "SELECT (SELECT COUNT(*) FROM jobs WHERE id = ?1), "
+        "(SELECT COALESCE(MAX(sequence) + 1, 0) FROM results WHERE job_id = ?1)");
+    statement.bind(1, job).step();
+    if (statement.column_int(0) == 0) throw StoreError({job}, "no such job");
+    return statement.column_int(1);
+  });
+  std::lock_guard queue(queue_mutex_);
+  const std::int64_t sequence = result.sequence =
+      next_sequence_.try_emplace(job, stored).first->second++;
+  queue_.push_back(std::move(result));
+  return sequence;
 }
 
 std::size_t JobDatabase::queued() const {
-  std::lock_guard lock(mutex_);
+  std::lock_guard queue(queue_mutex_);
   return queue_.size();
 }
 
@@ -403,13 +428,25 @@ void JobDatabase::flush() {
   flush_locked();
 }
 
+void JobDatabase::flush_soon() { flush_thread_->request(); }
+
+std::vector<StoreError> JobDatabase::take_failures() {
+  std::lock_guard queue(queue_mutex_);
+  return std::exchange(failures_, {});
+}
+
+long long JobDatabase::background_flushes() const { return flush_thread_->runs(); }
+
 void JobDatabase::flush_locked() {
-  if (queue_.empty()) return;
+  std::vector<QueuedResult> batch;
+  {
+    std::lock_guard queue(queue_mutex_);
+    batch.swap(queue_);
+  }
+  if (batch.empty()) return;
   std::vector<std::int64_t> jobs;
-  for (const QueuedResult& result : queue_)
+  for (const QueuedResult& result : batch)
     if (std::find(jobs.begin(), jobs.end(), result.job) == jobs.end()) jobs.push_back(result.job);
-  std::vector<QueuedResult> batch = std::move(queue_);
-  queue_.clear();
   try {
     guarded(jobs, [&] {
       sqlite::Transaction transaction(*db_);
@@ -429,8 +466,9 @@ void JobDatabase::flush_locked() {
       transaction.commit();
     });
   } catch (const StoreError&) {
-    // The dropped results leave gaps in the sequence: start again after what is stored.
-    for (std::int64_t job : jobs) next_sequence_.erase(job);
+    // The dropped results leave gaps in the sequence: start again after what is stored. What
+    // the jobs merged since the batch was taken goes too (they fail), so no sequence repeats.
+    for (std::int64_t job : jobs) drop_queued(job);
     throw;
   }
 }
@@ -442,6 +480,7 @@ void JobDatabase::finish_job(std::int64_t job, const std::string& state, const s
   for (const StoredImage& image : images)
     if (!is_plain_file_name(image.name))
       throw std::invalid_argument("not a plain image file name: " + image.name);
+  drop_queued(job);
   flush_locked();
   std::filesystem::path folder = dir_ / "images" / std::to_string(job);
   try {
@@ -476,7 +515,7 @@ void JobDatabase::finish_job(std::int64_t job, const std::string& state, const s
     std::filesystem::remove_all(folder, ignored);
     throw;
   }
-  next_sequence_.erase(job);
+  drop_queued(job);
 }
 
 std::vector<StoredJob> JobDatabase::load_all() {
@@ -604,6 +643,11 @@ void JobDatabase::delete_job_locked(std::int64_t job) {
   std::filesystem::remove_all(dir_ / "images" / std::to_string(job), ignored);
   for (const std::string& hash : unused_bundles)
     std::filesystem::remove(bundle_path(hash), ignored);
+  drop_queued(job);
+}
+
+void JobDatabase::drop_queued(std::int64_t job) {
+  std::lock_guard queue(queue_mutex_);
   next_sequence_.erase(job);
   std::erase_if(queue_, [&](const QueuedResult& result) { return result.job == job; });
 }

@@ -5,8 +5,10 @@
 // as it was before it; a crash loses only results not yet flushed.
 //
 // Results are batched: append_result queues in memory, flush writes the queue in one
-// transaction (the coordinator calls it every tick). Destroying the store without flush drops
-// the queue, exactly as a crash would. All members are safe to call from several threads.
+// transaction; flush_soon has the store's own thread do it (the coordinator asks every tick),
+// so that the writes do not hold up the caller. Destroying the store without flush drops the
+// queue, exactly as a crash would. All members are safe to call from several threads;
+// append_result waits for a flush under way only for a job's first result.
 #pragma once
 
 #include <chrono>
@@ -28,6 +30,7 @@ namespace tessera {
 namespace sqlite {
 class Connection;
 }
+class FlushThread;
 
 // A store that cannot be opened or written. `jobs` names the jobs whose write failed (empty
 // when the failure is the store's own, e.g. at open); `cause` says why.
@@ -64,11 +67,20 @@ class JobDatabase {
   // Queues a merged unit result; returns its sequence number within the job.
   std::int64_t append_result(std::int64_t job, int unit, std::span<const float> values,
                              const RenderStats& stats, const std::string& worker);
-  // Writes every queued result in one transaction. On failure the queue is dropped, the store
-  // keeps each job's results up to its last successful flush, and StoreError names the jobs.
+  // Writes every queued result in one transaction. On failure the failed jobs' queued results
+  // are dropped, the store keeps each job's results up to its last successful flush, and
+  // StoreError names the jobs.
   void flush();
+  // Has the store's thread flush soon; returns at once. Its failures wait in take_failures().
+  void flush_soon();
+  std::vector<StoreError> take_failures();
+  // Flushes the store's thread has finished since open (for tests).
+  long long background_flushes() const;
   std::size_t queued() const;
-  // Flushes, then records the final state, finish time and images (written as files).
+  // Drops the job's queued results (a finished job is restored from its state and images,
+  // never from its results; a job failed because its results could not be stored would fail
+  // again writing them), flushes the other jobs', then records the final state, finish time
+  // and images (written as files).
   void finish_job(std::int64_t job, const std::string& state, const std::string& error,
                   WallClock::time_point finished, const std::vector<StoredImage>& images);
 
@@ -97,16 +109,23 @@ class JobDatabase {
   std::int64_t size_locked();
   void check_budget(const std::vector<std::int64_t>& jobs);
   void flush_locked();
+  // Forgets the job's queued results and next sequence number.
+  void drop_queued(std::int64_t job);
   void delete_job_locked(std::int64_t job);
   void sweep_orphans();
   std::filesystem::path bundle_path(const std::string& hash) const;
 
   std::filesystem::path dir_;
   std::int64_t max_disk_bytes_;
+  // Whoever holds both takes mutex_ (the connection's) first.
   std::unique_ptr<sqlite::Connection> db_;
   mutable std::mutex mutex_;
+  mutable std::mutex queue_mutex_;  // the three below
   std::vector<QueuedResult> queue_;
   std::map<std::int64_t, std::int64_t> next_sequence_;  // by job, once known
+  std::vector<StoreError> failures_;                    // of background flushes
+  // Last: stopped (a flush under way finished) before anything it uses goes.
+  std::unique_ptr<FlushThread> flush_thread_;
 };
 
 }  // namespace tessera

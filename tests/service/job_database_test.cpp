@@ -11,6 +11,7 @@
 #include <cstring>
 #include <filesystem>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "coordinator/store/content_files.h"
@@ -482,6 +483,47 @@ TEST_F(JobDatabaseTest, FlushOfAHundredUnitResultsFitsATick) {
       seconds[2] * 1e3, slowest * 1e3, per_result);
   EXPECT_LT(slowest, 0.25);
   EXPECT_LT(per_result, 1.1 * 12288);
+}
+
+// Waits until the store's thread has finished a flush after `before` of them.
+void wait_for_background_flush(const JobDatabase& db, long long before) {
+  const auto deadline = std::chrono::steady_clock::now() + 20s;
+  while (db.background_flushes() == before && std::chrono::steady_clock::now() < deadline)
+    std::this_thread::sleep_for(5ms);
+  ASSERT_GT(db.background_flushes(), before);
+}
+
+// flush_soon writes on the store's own thread what flush() would write, and a failure there
+// waits in take_failures() for the coordinator's next tick.
+TEST_F(JobDatabaseTest, FlushSoonWritesOnTheStoresThreadAndKeepsItsFailures) {
+  std::int64_t job = 0, size = 0;
+  {
+    JobDatabase db(dir_);
+    job = db.add_job(make_request(), at_seconds(0));
+    for (int i = 0; i < 3; ++i) db.append_result(job, i, awkward_values(i, 3072), {}, "w");
+    const long long before = db.background_flushes();
+    db.flush_soon();
+    wait_for_background_flush(db, before);
+    EXPECT_EQ(db.queued(), 0u);
+    EXPECT_TRUE(db.take_failures().empty());
+    size = db.size_bytes();
+  }
+  {
+    JobDatabase db(dir_, size + 200'000);  // room for about 16 more results
+    for (int i = 0; i < 100; ++i) db.append_result(job, 3 + i, awkward_values(i, 3072), {}, "w");
+    const long long before = db.background_flushes();
+    db.flush_soon();
+    wait_for_background_flush(db, before);
+    const std::vector<StoreError> failures = db.take_failures();
+    ASSERT_EQ(failures.size(), 1u);
+    EXPECT_EQ(failures[0].jobs(), (std::vector<std::int64_t>{job}));
+    EXPECT_TRUE(db.take_failures().empty());
+  }
+  JobDatabase db(dir_);
+  std::vector<StoredJob> jobs = db.load_all();
+  ASSERT_EQ(jobs.size(), 1u);
+  ASSERT_EQ(jobs[0].results.size(), 3u);
+  EXPECT_TRUE(same_bytes(jobs[0].results[2].values, awkward_values(2, 3072)));
 }
 
 }  // namespace
