@@ -63,14 +63,24 @@ inline constexpr double float_gamma_bound(int n) {
 inline constexpr float kFloatFarScale = static_cast<float>(1 + 2 * float_gamma_bound(5));
 inline constexpr float kFloatTinyMargin = FLT_MIN;
 
+// The next float towards +inf (-inf) from f, for f not NaN and not already +inf (-inf): a step
+// of one in the bit pattern, away from zero or towards it by the sign (std::nextafter is a
+// library call, and these run for every ray).
+inline float float_step_up(float f) {
+  if (f == 0) return FLT_TRUE_MIN;
+  const auto bits = std::bit_cast<std::uint32_t>(f);
+  return std::bit_cast<float>(f > 0 ? bits + 1 : bits - 1);
+}
+inline float float_step_down(float f) { return -float_step_up(-f); }
+
 // The nearest float at or below (above) x; +-inf beyond float's range.
 inline float round_down_to_float(double x) {
   const float f = static_cast<float>(x);
-  return static_cast<double>(f) > x ? next_down(f) : f;
+  return static_cast<double>(f) > x ? float_step_down(f) : f;
 }
 inline float round_up_to_float(double x) {
   const float f = static_cast<float>(x);
-  return static_cast<double>(f) < x ? next_up(f) : f;
+  return static_cast<double>(f) < x ? float_step_up(f) : f;
 }
 
 // The float limit that stands for the double t_max in the test (see the argument above).

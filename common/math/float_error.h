@@ -7,10 +7,8 @@
 
 #include <bit>
 #include <cmath>
-#include <concepts>
 #include <cstdint>
 #include <limits>
-#include <type_traits>
 
 #include "common/math/vec3.h"
 
@@ -21,24 +19,18 @@ inline constexpr double kMachineEpsilon = std::numeric_limits<double>::epsilon()
 // gamma(n) bounds the relative error of n successive rounded operations.
 constexpr double gamma_bound(int n) { return (n * kMachineEpsilon) / (1 - n * kMachineEpsilon); }
 
-// The next float or double above x (std::nextafter(x, +infinity)), and below it, without the
-// library call: rays are spawned and BVH boxes rounded millions of times a second, and libm's
+// The next double above x (std::nextafter(x, +infinity)), and below it, without the library
+// call: rays are spawned millions of times a second, three components each, and libm's
 // nextafter cost 3 % of a render. The same value as std::nextafter for every input
-// (tests/math/float_error_test.cpp): the bit pattern of a finite non-zero number, read as an
+// (tests/math/float_error_test.cpp): the bit pattern of a finite non-zero double, read as an
 // integer, moves one step away from zero (or towards it) per representable value.
-template <std::floating_point T>
-inline T next_up(T x) {
-  using Bits = std::conditional_t<sizeof(T) == sizeof(std::uint64_t), std::uint64_t, std::uint32_t>;
-  static_assert(sizeof(T) == sizeof(Bits));
-  if (!(x < std::numeric_limits<T>::infinity())) return x;  // +infinity or NaN
-  if (x == 0) return std::numeric_limits<T>::denorm_min();
-  const auto bits = std::bit_cast<Bits>(x);
-  return std::bit_cast<T>(x > 0 ? bits + 1 : bits - 1);
+inline double next_up(double x) {
+  if (!(x < std::numeric_limits<double>::infinity())) return x;  // +infinity or NaN
+  if (x == 0) return std::numeric_limits<double>::denorm_min();
+  const auto bits = std::bit_cast<std::uint64_t>(x);
+  return std::bit_cast<double>(x > 0 ? bits + 1 : bits - 1);
 }
-template <std::floating_point T>
-inline T next_down(T x) {
-  return -next_up(-x);
-}
+inline double next_down(double x) { return -next_up(-x); }
 
 // Moves `p` (with per-component error bound `p_error`) off the surface with geometric normal
 // `n`, to the side that `direction` points into. The result is rounded away from the surface

@@ -222,6 +222,11 @@ TEST(ChildBoxes, RoundingToFloatIsOutward) {
     EXPECT_GE(round_up_to_float(x), x);
     EXPECT_LE(round_up_to_float(x), std::nextafter(round_down_to_float(x), INFINITY));
   }
+  for (const float f : {0.0f, -0.0f, 1.0f, -1.0f, FLT_TRUE_MIN, -FLT_TRUE_MIN, FLT_MAX, -FLT_MAX,
+                        -INFINITY, 3e-39f}) {
+    EXPECT_EQ(float_step_up(f), std::nextafter(f, INFINITY)) << f;
+    EXPECT_EQ(float_step_down(-f), std::nextafter(-f, -INFINITY)) << f;
+  }
   EXPECT_EQ(round_down_to_float(0.5), 0.5f);
   EXPECT_EQ(round_up_to_float(0.5), 0.5f);
 }

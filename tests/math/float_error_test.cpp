@@ -1,5 +1,4 @@
-// next_up / next_down (common/math/float_error.h) against std::nextafter, bit for bit, for
-// doubles and floats.
+// next_up / next_down (common/math/float_error.h) against std::nextafter, bit for bit.
 #include "common/math/float_error.h"
 
 #include <gtest/gtest.h>
@@ -17,13 +16,10 @@ namespace {
 using Limits = std::numeric_limits<double>;
 
 std::uint64_t bits(double x) { return std::bit_cast<std::uint64_t>(x); }
-std::uint32_t bits(float x) { return std::bit_cast<std::uint32_t>(x); }
 
-template <typename T>
-void expect_as_nextafter(T x) {
-  constexpr T kInf = std::numeric_limits<T>::infinity();
-  EXPECT_EQ(bits(next_up(x)), bits(std::nextafter(x, kInf))) << x;
-  EXPECT_EQ(bits(next_down(x)), bits(std::nextafter(x, -kInf))) << x;
+void expect_as_nextafter(double x) {
+  EXPECT_EQ(bits(next_up(x)), bits(std::nextafter(x, Limits::infinity()))) << x;
+  EXPECT_EQ(bits(next_down(x)), bits(std::nextafter(x, -Limits::infinity()))) << x;
 }
 
 TEST(NextUpDown, AgreeWithNextafterOnEveryKindOfDouble) {
@@ -51,13 +47,7 @@ TEST(NextUpDown, AgreeWithNextafterOnEveryKindOfDouble) {
   for (int i = 0; i < 100000; ++i) {
     const double x = std::bit_cast<double>(random());
     if (!std::isnan(x)) expect_as_nextafter(x);
-    const float f = std::bit_cast<float>(static_cast<std::uint32_t>(random()));
-    if (!std::isnan(f)) expect_as_nextafter(f);
   }
-  for (const float f :
-       {0.0f, -0.0f, 1.0f, std::numeric_limits<float>::denorm_min(),
-        std::numeric_limits<float>::max(), -std::numeric_limits<float>::infinity(), 3e-39f})
-    expect_as_nextafter(f);
 }
 
 }  // namespace
