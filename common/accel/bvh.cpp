@@ -9,7 +9,6 @@
 #include <array>
 #include <cmath>
 #include <limits>
-#include <utility>
 
 namespace tessera {
 
@@ -199,50 +198,28 @@ Bvh build_bvh(std::span<const Bounds3> primitive_bounds, BvhMode mode) {
     primitives.push_back({b, b.centroid(), static_cast<std::uint32_t>(i)});
   }
   Builder(std::move(primitives), bvh).build();
-  make_bvh_wide(bvh);
+  make_bvh_pairs(bvh);
   return bvh;
 }
 
-void make_bvh_wide(Bvh& bvh) {
-  bvh.wide.clear();
-  if (bvh.nodes.empty() || bvh.nodes[0].count > 0) return;
-  const auto second_child = [&](std::size_t n) { return bvh.nodes[n].first_or_second_child; };
-  // Wide nodes are made in the order they are reached (the root first); `pending` holds a
-  // wide node still to fill and the binary node it stands for.
-  std::vector<std::pair<std::uint32_t, std::size_t>> pending = {{0, 0}};
-  bvh.wide.emplace_back();
-  while (!pending.empty()) {
-    const auto [wide_index, binary] = pending.back();
-    pending.pop_back();
-    std::size_t children[4] = {binary + 1, second_child(binary), 0, 0};
-    int n = 2;
-    while (n < 4) {
-      int widest = -1;
-      double widest_area = -1;
-      for (int c = 0; c < n; ++c) {
-        const BvhNode& child = bvh.nodes[children[c]];
-        if (child.count == 0 && child.bounds.surface_area() > widest_area)
-          widest = c, widest_area = child.bounds.surface_area();
-      }
-      if (widest < 0) break;
-      const std::size_t opened = children[widest];
-      children[widest] = opened + 1;
-      children[n++] = second_child(opened);
-    }
-    BvhWideNode node;
-    for (int c = 0; c < n; ++c) {
+void make_bvh_pairs(Bvh& bvh) {
+  bvh.pairs.clear();
+  std::vector<std::uint32_t> pair_of(bvh.nodes.size());
+  std::uint32_t interior = 0;
+  for (std::size_t n = 0; n < bvh.nodes.size(); ++n)
+    if (bvh.nodes[n].count == 0) pair_of[n] = interior++;
+  bvh.pairs.reserve(interior);
+  for (std::size_t n = 0; n < bvh.nodes.size(); ++n) {
+    if (bvh.nodes[n].count > 0) continue;
+    const std::size_t children[2] = {n + 1, bvh.nodes[n].first_or_second_child};
+    BvhPair pair;
+    pair.boxes = make_child_boxes(bvh.nodes[children[0]].bounds, bvh.nodes[children[1]].bounds);
+    for (int c = 0; c < 2; ++c) {
       const BvhNode& child = bvh.nodes[children[c]];
-      set_child_box(node.boxes, c, child.bounds);
-      node.count[c] = child.count;
-      if (child.count > 0) {
-        node.child[c] = child.first_or_second_child;
-      } else {
-        node.child[c] = static_cast<std::uint32_t>(bvh.wide.size());
-        pending.emplace_back(node.child[c], children[c]);
-        bvh.wide.emplace_back();
-      }
+      pair.child[c] = child.count > 0 ? child.first_or_second_child : pair_of[children[c]];
+      pair.count[c] = child.count;
     }
-    bvh.wide[wide_index] = node;
+    bvh.pairs.push_back(pair);
   }
 }
 

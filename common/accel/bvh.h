@@ -1,7 +1,6 @@
 // A bounding volume hierarchy over anything with bounds, built with the surface area heuristic
 // (binned, as in pbrt-v3 §4.3) or, for comparison, not at all (BvhMode::None: one leaf holding
-// every primitive, the seeds' "acceleration off"). The tree is built binary in double and
-// traversed as a 4-wide tree in float (BvhWideNode; conservative, see child_boxes.h).
+// every primitive, the seeds' "acceleration off").
 #pragma once
 
 #include <cstdint>
@@ -23,28 +22,23 @@ struct BvhNode {
   std::uint8_t split_axis = 0;
 };
 
-// The form traversal reads: the binary tree collapsed into nodes of up to four children
-// (make_bvh_wide), their boxes side by side in float, rounded outward (child_boxes.h), so that
-// one step tests four boxes with SSE and the node fills two cache lines exactly.
-struct alignas(64) BvhWideNode {
-  ChildBoxes boxes = empty_child_boxes();
-  std::uint32_t child[4] = {0, 0, 0,
-                            0};  // wide index of an interior child; first primitive of a leaf
-  std::uint32_t count[4] = {0, 0, 0, 0};  // primitives of a leaf child; 0 for an interior one
+// The form traversal reads: one entry per interior node holding both children, their boxes
+// side by side (child_boxes.h), so that one step tests two boxes and loads one cache line pair.
+struct BvhPair {
+  ChildBoxes boxes;
+  std::uint32_t child[2] = {0, 0};  // pairs index of an interior child; first primitive of a leaf
+  std::uint32_t count[2] = {0, 0};  // primitives of a leaf child; 0 for an interior child
 };
-static_assert(sizeof(BvhWideNode) == 128);
 
 struct Bvh {
   std::vector<BvhNode> nodes;                  // depth-first; nodes[0] is the root when non-empty
   std::vector<std::uint32_t> primitive_order;  // leaf ranges index into this
-  std::vector<BvhWideNode> wide;  // from nodes (make_bvh_wide); wide[0] is the root's, if interior
+  std::vector<BvhPair> pairs;  // from nodes (make_bvh_pairs); pairs[0] is the root's, if interior
 };
 
 Bvh build_bvh(std::span<const Bounds3> primitive_bounds, BvhMode mode);
-// Fills bvh.wide from bvh.nodes (build_bvh does; for hand-made trees): each interior node
-// takes the children of its largest-area interior children until it has four (Embree's and
-// pbrt-v4's collapse of a binary SAH tree).
-void make_bvh_wide(Bvh& bvh);
+// Fills bvh.pairs from bvh.nodes (build_bvh does; for hand-made trees).
+void make_bvh_pairs(Bvh& bvh);
 // Traversal: common/accel/bvh_traverse.h.
 
 }  // namespace tessera

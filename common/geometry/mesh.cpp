@@ -1,6 +1,5 @@
 // Ray / triangle mesh intersection through the mesh's own BVH (shapes.h).
 #include <algorithm>
-#include <cmath>
 #include <utility>
 
 #include "common/accel/bvh_traverse.h"
@@ -15,28 +14,24 @@ bool intersect_mesh(const MeshAccel& accel, bool interpolate_normals, const Ray&
   const TriangleRay triangle_ray = prepare_triangle_ray(ray);
   const Vec3* corners = accel.leaf_corners.data();
   bool found = false;
-  std::uint32_t found_triangle = 0;
+  std::uint32_t found_position = 0;
   TriangleHit nearest;
-  // Hits at equal t go to the smaller triangle index, whichever the traversal meets first: once
-  // one is found, triangles are tested up to the next double above its t.
   traverse_bvh_leaves(accel.bvh, ray, t_max, counters.bvh_nodes,
                       [&](std::uint32_t first, std::uint32_t count, double t_limit) {
                         counters.triangle_tests += count;
                         for (std::uint32_t i = first; i < first + count; ++i) {
                           const Vec3* p = corners + 3 * static_cast<std::size_t>(i);
-                          const double limit = found ? std::nextafter(t_limit, kInfinity) : t_limit;
-                          TriangleHit h;
-                          if (!intersect_triangle(p[0], p[1], p[2], triangle_ray, limit, h))
+                          if (!intersect_triangle(p[0], p[1], p[2], triangle_ray, t_limit, nearest))
                             continue;
-                          const std::uint32_t triangle = accel.bvh.primitive_order[i];
-                          if (found && h.t == nearest.t && triangle > found_triangle) continue;
-                          nearest = h, found_triangle = triangle, found = true;
-                          t_limit = h.t;
+                          found_position = i;
+                          found = true;
+                          t_limit = nearest.t;
                         }
                         return t_limit;
                       });
   if (!found) return false;
-  hit = triangle_local_hit(*accel.mesh, found_triangle, interpolate_normals, nearest);
+  hit = triangle_local_hit(*accel.mesh, accel.bvh.primitive_order[found_position],
+                           interpolate_normals, nearest);
   return true;
 }
 

@@ -116,15 +116,11 @@ bool Tracer::closest_hit(const Ray& ray, Hit& hit) {
   const std::vector<Instance>& instances = scene_.instances();
   bool found = false;
   hit.time = ray.time;
-  // Hits at equal t go to the smaller instance index, whichever the traversal meets first: once
-  // one is found, instances are tested up to the next double above its t.
   traverse_bvh(scene_.bvh(), ray, kInfinity, stats_.intersections.bvh_nodes,
                [&](std::uint32_t index, double t_max) {
                  WorldHit h;
-                 const double limit = found ? std::nextafter(t_max, kInfinity) : t_max;
-                 if (!intersect_instance(instances[index], ray, limit, h, stats_.intersections))
+                 if (!intersect_instance(instances[index], ray, t_max, h, stats_.intersections))
                    return t_max;
-                 if (found && h.t == t_max && index > hit.instance) return t_max;
                  hit.world = h;
                  hit.instance = index;
                  found = true;
