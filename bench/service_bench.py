@@ -94,9 +94,12 @@ def main():
     print("%-24s %10s %10s %11s %15s" % ("", "service s", "CLI wall s", "CLI render s",
                                           "service/render"))
     for n in (1, 2):
-        print("%-24s %10.3f %10.3f %11.3f %15.3f" % (
+        render = med["render_%d" % n]
+        # The CLI reports milliseconds: a tiny smoke render may take "0.000 s".
+        ratio = "%15.3f" % (med["service_%d" % n] / render) if render > 0 else "%15s" % "-"
+        print("%-24s %10.3f %10.3f %11.3f %s" % (
             "%d worker(s) / %d thread(s)" % (n, n), med["service_%d" % n], med["cli_%d" % n],
-            med["render_%d" % n], med["service_%d" % n] / med["render_%d" % n]))
+            render, ratio))
 
 
 if __name__ == "__main__":
