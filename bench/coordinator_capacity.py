@@ -19,7 +19,7 @@ tessera-worker processes of one thread. In phases, it measures
   message) and its units re-queued.
 
 usage: coordinator_capacity.py --build BUILD_DIR [--workers 32] [--threads 4] [--size 2048]
-       [--passes 4] [--scene SDL] [--aa 1] [--real N] [--heartbeat-ms 2000]
+       [--passes 4] [--scene SDL] [--aa 1] [--settings JSON] [--real N] [--heartbeat-ms 2000]
        [--silence-ms 10000] [--idle-seconds 6] [--smoke]
 --smoke: seconds, tiny sizes, short heartbeats; exits 1 when a phase fails (the test command
 runs it, so a protocol change that breaks this script fails CI).
@@ -207,9 +207,10 @@ class Coordinator:
         text = await self.get("/metrics", raw=True)
         return float(re.search(r"^%s (\S+)$" % name, text, re.M).group(1))
 
-    async def submit(self, size, passes, scene="sphere\n", aa=1):
+    async def submit(self, size, passes, scene="sphere\n", aa=1, settings=None):
         body = json.dumps({"scene": scene, "settings": {
-            "width": size, "height": size, "passes": passes, "aa": aa}}).encode()
+            "width": size, "height": size, "passes": passes, "aa": aa,
+            **(settings or {})}}).encode()
         request = urllib.request.Request("http://127.0.0.1:%d/api/jobs" % self.http_port, body,
                                          {"Content-Type": "application/json"})
         return json.load(await asyncio.to_thread(urllib.request.urlopen, request))["id"]
@@ -323,7 +324,8 @@ async def measure(args, coordinator, report):
         pixels0 = await coordinator.metric("tessera_pixels_total")
         # Submission probes the scene's cost on the coordinator (docs/SERVICE.md): counted from
         # its answer on, so that only the job's scheduling and merging are measured.
-        job = await coordinator.submit(args.size, args.passes, args.scene_text, args.aa)
+        job = await coordinator.submit(args.size, args.passes, args.scene_text, args.aa,
+                                       args.settings)
         start = time.perf_counter()
         cpu, threads_before = cpu_seconds(pid), thread_cpu_seconds(pid)
         status = await coordinator.wait_job(job, check_workers)
@@ -404,6 +406,10 @@ def main():
     parser.add_argument("--scene", help="an SDL file for the throughput job (default: one "
                         "sphere); a costlier scene or --aa 9 gives smaller units")
     parser.add_argument("--aa", type=int, default=1)
+    parser.add_argument("--settings", type=json.loads, default={},
+                        help="more settings of the throughput job, a JSON object, e.g. "
+                        "'{\"shadows\": \"soft\", \"cone_samples\": 64}' for costlier pixels, "
+                        "so that the coordinator cuts smaller units")
     parser.add_argument("--real", type=int, default=0)
     parser.add_argument("--heartbeat-ms", type=int, default=2000)
     parser.add_argument("--silence-ms", type=int, default=10000)

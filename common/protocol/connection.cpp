@@ -40,13 +40,18 @@ void FrameConnection::send(const Frame& frame) {
     close(e.what());
     return;
   }
+  send_encoded(frame.type, std::move(bytes));
+}
+
+void FrameConnection::send_encoded(MessageType type, std::string bytes) {
+  if (!open_) return;
   // A peer that does not read its frames must not make us buffer without bound.
   if (queued_bytes_ + bytes.size() > 2 * limits_.max_body) {
     close("write queue overflow: the peer is not reading");
     return;
   }
   queued_bytes_ += bytes.size();
-  if (traffic_) traffic_(true, frame.type, bytes.size());
+  if (traffic_) traffic_(true, type, bytes.size());
   queue_.push_back(std::move(bytes));
   if (!writing_) write_next();
 }

@@ -43,6 +43,8 @@ class FrameConnection : public std::enable_shared_from_this<FrameConnection> {
   // a failed handshake closes with "TLS handshake failed: ...".
   void start(FrameHandler on_frame, CloseHandler on_close);
   void send(const Frame& frame);
+  // A frame already encoded (encode_frame_bytes), of `type`: for metrics.
+  void send_encoded(MessageType type, std::string bytes);
   void close(const std::string& reason);
   // Closes once every queued frame is written (a reject the peer should read first).
   void close_after_flush(const std::string& reason);

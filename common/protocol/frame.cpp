@@ -50,19 +50,24 @@ const char* to_string(MessageType type) {
 
 std::string encode_frame(const Frame& frame, const FrameLimits& limits) {
   // Invalid UTF-8 (a scene's bytes in an error message) is replaced rather than thrown.
-  const std::string header =
-      frame.header.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
-  const std::size_t body = 1 + 4 + header.size() + frame.payload.size();
+  return encode_frame_bytes(
+      frame.type, frame.header.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace),
+      frame.payload, limits);
+}
+
+std::string encode_frame_bytes(MessageType type, std::string_view header, std::string_view payload,
+                               const FrameLimits& limits) {
+  const std::size_t body = 1 + 4 + header.size() + payload.size();
   if (header.size() > limits.max_header || body > limits.max_body)
-    throw ProtocolError(std::string("frame too large: ") + to_string(frame.type) + " of " +
+    throw ProtocolError(std::string("frame too large: ") + to_string(type) + " of " +
                         std::to_string(body) + " bytes");
   std::string out;
   out.reserve(kFramePrefix + body);
   put_u32(out, body);
-  out.push_back(static_cast<char>(frame.type));
+  out.push_back(static_cast<char>(type));
   put_u32(out, header.size());
   out += header;
-  out += frame.payload;
+  out += payload;
   return out;
 }
 

@@ -54,6 +54,9 @@ class ProtocolError : public std::runtime_error {
 };
 
 std::string encode_frame(const Frame& frame, const FrameLimits& limits = {});
+// The frame of an already serialised header (a JSON object); throws ProtocolError past the limits.
+std::string encode_frame_bytes(MessageType type, std::string_view header, std::string_view payload,
+                               const FrameLimits& limits = {});
 
 constexpr std::size_t kFramePrefix = 4;
 // Validates the length prefix of a frame; returns the body length to read next.

@@ -1,7 +1,9 @@
 #include "common/protocol/messages.h"
 
 #include <bit>
+#include <charconv>
 #include <cstring>
+#include <iterator>
 #include <string_view>
 #include <utility>
 
@@ -222,6 +224,31 @@ Frame encode(const UnitMessage& m) {
   return frame_of(
       UnitMessage::kType,
       {{"job", m.job}, {"unit", m.unit}, {"pass", m.pass}, {"pixels", pixels_to_json(m.pixels)}});
+}
+
+std::string encode_unit_frame(const UnitMessage& m) {
+  // nlohmann::json's dump of encode(m)'s header: keys sorted, no spaces.
+  const UnitPixels& u = m.pixels;
+  std::string header;
+  header.reserve(128);
+  const auto number = [&](const char* before, std::int64_t value) {
+    header += before;
+    char digits[24];
+    header.append(digits, std::to_chars(digits, std::end(digits), value).ptr);
+  };
+  number(R"({"job":)", m.job);
+  number(R"(,"pass":)", m.pass);
+  number(R"(,"pixels":{"exclude":)", u.exclude);
+  header +=
+      u.pattern == PixelPattern::Anchors ? R"(,"pattern":"anchors")" : R"(,"pattern":"centres")";
+  number(R"(,"rect":[)", u.rect.x0);
+  number(",", u.rect.y0);
+  number(",", u.rect.x1);
+  number(",", u.rect.y1);
+  number(R"(],"step":)", u.step);
+  number(R"(},"unit":)", m.unit);
+  header += '}';
+  return encode_frame_bytes(UnitMessage::kType, header, {});
 }
 
 template <>

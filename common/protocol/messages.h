@@ -122,6 +122,10 @@ Frame encode(const ResultMessage& message);
 Frame encode(const JobFailedMessage& message);
 Frame encode(const CancelMessage& message);
 
+// A unit's whole frame (encode_frame(encode(message))'s bytes), written directly rather than
+// through a JSON object: the coordinator sends one for every unit it schedules.
+std::string encode_unit_frame(const UnitMessage& message);
+
 template <typename Message>
 Message decode(const Frame& frame);
 template <>

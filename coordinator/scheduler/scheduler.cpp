@@ -250,8 +250,11 @@ void Scheduler::send_unit(WorkerSlot& w, JobRun& run, int unit) {
     w.jobs_sent.insert(job.id);
   }
   const WorkUnit& wu = job.plan.units[unit];
-  w.connection->send(encode(UnitMessage{
-      .job = job.id, .unit = unit, .pass = job.plan.stages[wu.stage].pass, .pixels = wu.pixels}));
+  w.connection->send_encoded(MessageType::Unit,
+                             encode_unit_frame(UnitMessage{.job = job.id,
+                                                           .unit = unit,
+                                                           .pass = job.plan.stages[wu.stage].pass,
+                                                           .pixels = wu.pixels}));
   if (options_.metrics) options_.metrics->units_dispatched.add();
   UnitRun& r = run.units[unit];
   if (r.holders.empty()) r.dispatched = now;

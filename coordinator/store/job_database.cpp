@@ -385,12 +385,12 @@ std::int64_t JobDatabase::append_result(std::int64_t job, int unit, std::span<co
                                         const RenderStats& stats, const std::string& worker) {
   // Copied as bytes, not zero-filled first: this runs for every merged unit.
   QueuedResult result{
-      job,
-      0,
-      unit,
-      std::string(reinterpret_cast<const char*>(values.data()), values.size_bytes()),
-      to_json(stats).dump(),
-      worker};
+      .job = job,
+      .sequence = 0,
+      .unit = unit,
+      .payload = std::string(reinterpret_cast<const char*>(values.data()), values.size_bytes()),
+      .stats = stats,
+      .worker = worker};
   {
     std::lock_guard queue(queue_mutex_);
     if (auto next = next_sequence_.find(job); next != next_sequence_.end()) {
@@ -458,7 +458,7 @@ void JobDatabase::flush_locked() {
             .bind(2, result.sequence)
             .bind(3, std::int64_t{result.unit})
             .bind_blob(4, std::as_bytes(std::span(result.payload)))
-            .bind(5, result.stats)
+            .bind(5, to_json(result.stats).dump())
             .bind(6, result.worker)
             .run();
       }

@@ -102,7 +102,9 @@ class JobDatabase {
   struct QueuedResult {
     std::int64_t job, sequence;
     int unit;
-    std::string payload, stats, worker;
+    std::string payload;
+    RenderStats stats;  // turned into JSON by the flush, off the io thread that appends
+    std::string worker;
   };
 
   void open();  // the constructor's work, before its errors are given the directory's name

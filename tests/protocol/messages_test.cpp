@@ -129,6 +129,20 @@ TEST(Messages, DecodeReturnsWhatWasEncoded) {
   }
 }
 
+TEST(Messages, AUnitFrameWrittenDirectlyIsTheEncodedOne) {
+  const UnitPixels anchors{
+      .rect = {8, 16, 40, 48}, .step = 4, .exclude = 8, .pattern = PixelPattern::Anchors};
+  const UnitPixels centres{
+      .rect = {0, 0, 65536, 3}, .step = 65536, .pattern = PixelPattern::Centres};
+  for (const UnitPixels& pixels : {anchors, centres}) {
+    const UnitMessage unit{.job = std::numeric_limits<std::int64_t>::max(),
+                           .unit = 1234567,
+                           .pass = 255,
+                           .pixels = pixels};
+    EXPECT_EQ(encode_unit_frame(unit), encode_frame(encode(unit)));
+  }
+}
+
 TEST(Messages, ResultPixelsTravelBitExactly) {
   const ResultMessage sent = small_result();
   const ResultMessage back = decode<ResultMessage>(encode(sent));
