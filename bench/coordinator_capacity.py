@@ -160,11 +160,14 @@ def cpu_seconds(pid):
 
 
 def thread_cpu_seconds(pid):
-    """CPU time so far of each of a process's threads, by thread id."""
+    """CPU time so far of each of a process's threads, by thread id and name: the io thread is
+    the main one (the process's id), the store's and the intake pool's are named."""
     seconds = {}
     for tid in os.listdir("/proc/%d/task" % pid):
         try:
-            seconds[tid] = cpu_seconds_of("/proc/%d/task/%s/stat" % (pid, tid))
+            with open("/proc/%d/task/%s/comm" % (pid, tid)) as f:
+                name = "io" if int(tid) == pid else f.read().strip().replace("tessera-", "")
+            seconds[(tid, name)] = cpu_seconds_of("/proc/%d/task/%s/stat" % (pid, tid))
         except FileNotFoundError:  # the thread ended
             pass
     return seconds
@@ -331,8 +334,8 @@ async def measure(args, coordinator, report):
         status = await coordinator.wait_job(job, check_workers)
         elapsed = time.perf_counter() - start
         cpu = cpu_seconds(pid) - cpu
-        by_thread = sorted((seconds - threads_before.get(tid, 0)
-                            for tid, seconds in thread_cpu_seconds(pid).items()), reverse=True)
+        by_thread = sorted(((seconds - threads_before.get(thread, 0), thread[1])
+                            for thread, seconds in thread_cpu_seconds(pid).items()), reverse=True)
         if status["state"] != "done":
             raise AssertionError("the job ended %s" % status)
         units = await coordinator.metric("tessera_units_finished_total") - units0
@@ -343,9 +346,9 @@ async def measure(args, coordinator, report):
                 pixels / units, pixels / 1e6, elapsed, units / elapsed, pixels / elapsed / 1e6))
         cpu = max(cpu, 1e-9)
         report("coordinator CPU", "%.2f s: %.0f units and %.1f M pixel passes per CPU-second; "
-               "%.0f us a unit, %.1f ns a pixel pass; its busiest threads %s s" %
+               "%.0f us a unit, %.1f ns a pixel pass; its busiest threads %s" %
                (cpu, units / cpu, pixels / cpu / 1e6, cpu / units * 1e6, cpu / pixels * 1e9,
-                ", ".join("%.2f" % t for t in by_thread[:3])))
+                ", ".join("%s %.2f s" % (name, t) for t, name in by_thread[:3])))
 
         # Loss: one worker crashes and one hangs while a job runs.
         crash, hang = names[0], names[1]

@@ -1,5 +1,7 @@
 #include "coordinator/store/flush_thread.h"
 
+#include <pthread.h>
+
 namespace tessera {
 
 FlushThread::FlushThread(std::function<void()> flush)
@@ -28,6 +30,7 @@ long long FlushThread::runs() const {
 }
 
 void FlushThread::run() {
+  pthread_setname_np(pthread_self(), "tessera-store");  // for top -H and the capacity benchmark
   std::unique_lock lock(mutex_);
   while (true) {
     wake_.wait(lock, [this] { return requested_ || stopping_; });
