@@ -10,7 +10,7 @@ std::vector<PixelCoord> expand(const UnitPixels& unit) {
 
 long long pixel_count(const UnitPixels& unit) {
   long long n = 0;
-  for_each_pixel(unit, [&](PixelCoord) { ++n; });
+  for_each_run(unit, [&](PixelCoord, int count, int) { n += count; });
   return n;
 }
 

@@ -26,23 +26,47 @@ struct UnitPixels {
 
 inline int first_multiple_at_or_after(int v, int step) { return (v + step - 1) / step * step; }
 
-// Calls visit(PixelCoord) for each of the unit's pixels in scanline order, the order results
-// travel in. Inline, so that the coordinator merges a result without a list of its pixels.
-template <typename Visit>
-void for_each_pixel(const UnitPixels& u, Visit&& visit) {
+// Calls visit_run(first, count, stride) for the unit's pixels in scanline order, the order
+// results travel in, as runs along a row: pixels first, first + (stride, 0), ... (count of
+// them). Runs let the coordinator merge a row at a time (FrameBuffer::add_run) instead of a
+// pixel at a time; inline, so that it needs no list of the unit's pixels.
+template <typename VisitRun>
+void for_each_run(const UnitPixels& u, VisitRun&& visit_run) {
   const PixelRect& r = u.rect;
   if (u.step <= 0 || r.width() <= 0 || r.height() <= 0) return;
   const int x_start = first_multiple_at_or_after(r.x0, u.step);
   const int y_start = first_multiple_at_or_after(r.y0, u.step);
+  if (x_start >= r.x1) return;
+  const int across = (r.x1 - 1 - x_start) / u.step + 1;  // block columns in the rectangle
   for (int by = y_start; by < r.y1; by += u.step) {
-    for (int bx = x_start; bx < r.x1; bx += u.step) {
-      if (u.pattern == PixelPattern::Centres) {
-        visit(PixelCoord{std::min(bx + u.step / 2, r.x1 - 1), std::min(by + u.step / 2, r.y1 - 1)});
-      } else if (u.exclude <= 0 || bx % u.exclude != 0 || by % u.exclude != 0) {
-        visit(PixelCoord{bx, by});
+    if (u.pattern == PixelPattern::Centres) {
+      // Centres step with the blocks, except a last one clamped into the rectangle.
+      const int cy = std::min(by + u.step / 2, r.y1 - 1);
+      const int last_x = x_start + (across - 1) * u.step;
+      const int unclamped = last_x + u.step / 2 < r.x1 ? across : across - 1;
+      if (unclamped > 0) visit_run(PixelCoord{x_start + u.step / 2, cy}, unclamped, u.step);
+      if (unclamped < across) visit_run(PixelCoord{r.x1 - 1, cy}, 1, u.step);
+    } else if (u.exclude <= 0 || by % u.exclude != 0) {
+      visit_run(PixelCoord{x_start, by}, across, u.step);
+    } else {
+      // A row of the coarser level's anchors: the runs between its excluded columns.
+      int bx = x_start;
+      for (int excluded = first_multiple_at_or_after(x_start, u.exclude); bx < r.x1;
+           excluded += u.exclude) {
+        const int end = std::min(excluded, r.x1);
+        if (end > bx) visit_run(PixelCoord{bx, by}, (end - 1 - bx) / u.step + 1, u.step);
+        bx = first_multiple_at_or_after(excluded + 1, u.step);
       }
     }
   }
+}
+
+// The same pixels one at a time: visit(PixelCoord).
+template <typename Visit>
+void for_each_pixel(const UnitPixels& u, Visit&& visit) {
+  for_each_run(u, [&](PixelCoord first, int count, int stride) {
+    for (int i = 0; i < count; ++i) visit(PixelCoord{first.x + i * stride, first.y});
+  });
 }
 
 // The unit's pixels in for_each_pixel's order.

@@ -2,6 +2,10 @@
 
 #include <stdexcept>
 
+#if defined(__SSE2__)
+#include <xmmintrin.h>
+#endif
+
 namespace tessera {
 
 FrameBuffer::FrameBuffer(int width, int height)
@@ -12,6 +16,48 @@ FrameBuffer::FrameBuffer(int width, int height)
 
 void FrameBuffer::throw_full() {
   throw std::length_error("a pixel of the frame buffer has the most passes it can count");
+}
+
+void FrameBuffer::add_run(PixelCoord first, int count, int stride, const float* rgb) {
+  const std::size_t start = idx(first.x, first.y);
+  const auto step = static_cast<std::size_t>(stride);
+  const auto n = static_cast<std::size_t>(count);
+  std::uint16_t* counts = counts_.data() + start;
+  float* sums = sums_.data() + 3 * start;
+  for (std::size_t i = 0; i < n; ++i)
+    if (counts[i * step] == kMaxPasses) throw_full();
+  if (step == 1) {
+    // A row's sums lie side by side: one loop over its floats, four at a time with SSE2 (in
+    // every x86-64 CPU; the same IEEE additions as one at a time).
+    const std::size_t floats = 3 * n;
+    std::size_t j = 0;
+#if defined(__SSE2__)
+    for (; j + 4 <= floats; j += 4)
+      _mm_storeu_ps(sums + j, _mm_add_ps(_mm_loadu_ps(sums + j), _mm_loadu_ps(rgb + j)));
+#endif
+    for (; j < floats; ++j) sums[j] += rgb[j];
+  } else {
+    for (std::size_t i = 0; i < n; ++i)
+      for (int c = 0; c < 3; ++c) sums[3 * i * step + c] += rgb[3 * i + c];
+  }
+  for (std::size_t i = 0; i < n; ++i) ++counts[i * step];
+}
+
+void FrameBuffer::mean_run(PixelCoord first, int count, int stride, float* out) const {
+  const std::size_t start = idx(first.x, first.y);
+  const auto step = static_cast<std::size_t>(stride);
+  const std::uint16_t* counts = counts_.data() + start;
+  const float* sums = sums_.data() + 3 * start;
+  for (std::size_t i = 0; i < static_cast<std::size_t>(count); ++i) {
+    const std::uint16_t passes = counts[i * step];
+    // A float divided by a float count, rounded once, equals mean()'s double quotient rounded
+    // to float: a double holds more than twice a float's digits plus two, so rounding first to
+    // double and then to float cannot differ from rounding once (Figueroa, "When is double
+    // rounding innocuous?", 1995). Float division is the cheaper one.
+    const float divisor = passes;
+    for (int c = 0; c < 3; ++c)
+      out[3 * i + c] = passes == 0 ? 0.0f : sums[3 * i * step + c] / divisor;
+  }
 }
 
 Image FrameBuffer::resolve() const {

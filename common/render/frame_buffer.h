@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "common/image/image.h"
+#include "common/math/pixel_rect.h"
 
 namespace tessera {
 
@@ -37,6 +38,10 @@ class FrameBuffer {
     sums_[3 * i + 2] += rgb[2];
     ++counts_[i];
   }
+  // The same for a run of `count` pixels along row first.y, `stride` apart (for_each_run), the
+  // passes' values 3 floats a pixel in a row. Throws std::length_error, adding nothing, when
+  // one of them has kMaxPasses passes already.
+  void add_run(PixelCoord first, int count, int stride, const float* rgb);
   std::uint32_t passes_at(int x, int y) const { return counts_[idx(x, y)]; }
   // The mean of the passes added so far (black where none).
   Rgb mean(int x, int y) const {
@@ -45,6 +50,9 @@ class FrameBuffer {
     const double n = counts_[i];
     return {sums_[3 * i] / n, sums_[3 * i + 1] / n, sums_[3 * i + 2] / n};
   }
+  // mean() of a run's pixels rounded to float, 3 a pixel into `out`: what the coordinator shows
+  // of each pass (the tile records' 8-bit values).
+  void mean_run(PixelCoord first, int count, int stride, float* out) const;
   Image resolve() const;
 
  private:

@@ -47,14 +47,21 @@ double wall_clock_ms() {
       .count();
 }
 
-// Writes one pixel's 8-bit values as differences from the previous pixel's (TileRecord) at
-// `out`, which has room for them.
-void put_difference(char* out, std::uint8_t previous[3], const float value[3]) {
-  for (int c = 0; c < 3; ++c) {
-    const std::uint8_t now = to_8bit(value[c]);
-    out[c] = static_cast<char>(static_cast<std::uint8_t>(now - previous[c]));
-    previous[c] = now;
-  }
+// Pixels whose values the merge converts at a time (on the stack).
+constexpr std::size_t kChunk = 256;
+
+// Writes `count` pixels' 8-bit values (3 floats a pixel at `values`, at most kChunk pixels) as
+// differences from the previous pixel's (TileRecord) at `out`, which has room for them;
+// `previous` carries the last pixel's values from one call to the next.
+void put_differences(char* out, std::uint8_t previous[3], const float* values, std::size_t count) {
+  std::uint8_t now[3 * kChunk];
+  const std::size_t n = 3 * count;
+  to_8bit_run(values, n, now);
+  for (std::size_t j = 0; j < 3; ++j)
+    out[j] = static_cast<char>(static_cast<std::uint8_t>(now[j] - previous[j]));
+  for (std::size_t j = 3; j < n; ++j)
+    out[j] = static_cast<char>(static_cast<std::uint8_t>(now[j] - now[j - 3]));
+  for (int c = 0; c < 3; ++c) previous[c] = now[n - 3 + c];
 }
 
 }  // namespace
@@ -81,21 +88,25 @@ void Job::apply_result(int unit_index, std::span<const float> values, const Rend
   char* delta = record.pixels.data();
   const float* rgb = values.data();
   std::uint8_t previous[3] = {0, 0, 0};
-  for_each_pixel(unit.pixels, [&](PixelCoord p) {
-    if (!stage.preview_only) frame_buffer_.add_pass(p.x, p.y, rgb);
+  // A row of pixels at a time: the merge and the tile record's bytes are loops over the row.
+  for_each_run(unit.pixels, [&](PixelCoord first, int count, int stride) {
+    if (!stage.preview_only) frame_buffer_.add_run(first, count, stride, rgb);
     if (log_pixels) {
-      // A level's value stands for its block; a later pass shows the pixel's mean so far.
-      if (stage.level > 0) {
-        put_difference(delta, previous, rgb);
-      } else {
-        const Rgb mean = frame_buffer_.mean(p.x, p.y);
-        const float mean_rgb[3] = {static_cast<float>(mean.r), static_cast<float>(mean.g),
-                                   static_cast<float>(mean.b)};
-        put_difference(delta, previous, mean_rgb);
+      for (std::size_t done = 0; done < static_cast<std::size_t>(count); done += kChunk) {
+        const std::size_t n = std::min(kChunk, static_cast<std::size_t>(count) - done);
+        const float* shown = rgb + 3 * done;  // a level's value stands for its block
+        float mean[3 * kChunk];
+        if (stage.level == 0) {
+          // A later pass shows the pixel's mean so far.
+          frame_buffer_.mean_run({first.x + static_cast<int>(done) * stride, first.y},
+                                 static_cast<int>(n), stride, mean);
+          shown = mean;
+        }
+        put_differences(delta + 3 * done, previous, shown, n);
       }
-      delta += 3;
+      delta += 3 * static_cast<std::size_t>(count);
     }
-    rgb += 3;
+    rgb += 3 * static_cast<std::size_t>(count);
   });
   delta_bytes_ += record.pixels.size();
   tiles_.push_back(std::move(record));

@@ -1,0 +1,87 @@
+#include "common/render/frame_buffer.h"
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+#include <random>
+#include <stdexcept>
+#include <vector>
+
+namespace tessera {
+namespace {
+
+bool same_bits(float a, float b) { return std::memcmp(&a, &b, sizeof a) == 0; }
+
+// Runs of every stride, merged with add_run, leave the frame buffer as add_pass a pixel at a
+// time does, bit for bit; mean_run shows mean() rounded to float.
+TEST(FrameBuffer, RunsMergeAndShowAsSinglePixelsDo) {
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<float> value(-0.25f, 4.0f);
+  constexpr int kWidth = 67, kHeight = 9;
+  FrameBuffer by_run(kWidth, kHeight), by_pixel(kWidth, kHeight);
+  for (int round = 0; round < 3000; ++round) {
+    const int stride = 1 + round % 5, y = round % kHeight;
+    const int x = static_cast<int>(rng() % 7);
+    const int count = 1 + static_cast<int>(rng() % ((kWidth - 1 - x) / stride + 1));
+    std::vector<float> rgb(3 * static_cast<std::size_t>(count));
+    for (float& v : rgb) v = value(rng);
+    by_run.add_run({x, y}, count, stride, rgb.data());
+    for (int i = 0; i < count; ++i) by_pixel.add_pass(x + i * stride, y, &rgb[3 * i]);
+
+    std::vector<float> shown(3 * static_cast<std::size_t>(count));
+    by_run.mean_run({x, y}, count, stride, shown.data());
+    for (int i = 0; i < count; ++i) {
+      const Rgb mean = by_pixel.mean(x + i * stride, y);
+      ASSERT_TRUE(same_bits(shown[3 * i], static_cast<float>(mean.r))) << round << " " << i;
+      ASSERT_TRUE(same_bits(shown[3 * i + 1], static_cast<float>(mean.g)));
+      ASSERT_TRUE(same_bits(shown[3 * i + 2], static_cast<float>(mean.b)));
+    }
+  }
+  const Image a = by_run.resolve(), b = by_pixel.resolve();
+  for (int y = 0; y < kHeight; ++y)
+    for (int x = 0; x < kWidth; ++x) {
+      ASSERT_EQ(by_run.passes_at(x, y), by_pixel.passes_at(x, y));
+      ASSERT_EQ(a.get(x, y), b.get(x, y)) << x << "," << y;
+    }
+}
+
+// The float quotient mean_run takes equals the double one rounded to float for every pass
+// count, also for sums whose quotient lies near a rounding boundary.
+TEST(FrameBuffer, MeanOfAnyPassCountRoundsAsTheDoubleQuotientDoes) {
+  std::mt19937 rng(3);
+  std::uniform_int_distribution<std::uint32_t> bits(0x3a000000u, 0x46000000u);  // 5e-4 .. 8192
+  for (int passes = 1; passes <= 300; ++passes) {
+    FrameBuffer frame(1, 1);
+    for (int p = 0; p < passes; ++p) {
+      float rgb[3];
+      for (float& v : rgb) {
+        const std::uint32_t b = bits(rng);
+        std::memcpy(&v, &b, sizeof v);
+        v /= static_cast<float>(passes);
+      }
+      frame.add_pass(0, 0, rgb);
+    }
+    float shown[3];
+    frame.mean_run({0, 0}, 1, 1, shown);
+    const Rgb mean = frame.mean(0, 0);
+    EXPECT_TRUE(same_bits(shown[0], static_cast<float>(mean.r))) << passes;
+    EXPECT_TRUE(same_bits(shown[1], static_cast<float>(mean.g))) << passes;
+    EXPECT_TRUE(same_bits(shown[2], static_cast<float>(mean.b))) << passes;
+  }
+}
+
+TEST(FrameBuffer, ARunWithAFullPixelAddsNothing) {
+  FrameBuffer frame(4, 1);
+  const float one[3] = {1, 1, 1};
+  for (std::uint32_t p = 0; p < FrameBuffer::kMaxPasses; ++p) frame.add_pass(2, 0, one);
+  const float run[12] = {1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1, 1};
+  EXPECT_THROW(frame.add_run({0, 0}, 4, 1, run), std::length_error);
+  EXPECT_EQ(frame.passes_at(0, 0), 0u);
+  EXPECT_EQ(frame.passes_at(1, 0), 0u);
+  float shown[3];
+  frame.mean_run({0, 0}, 1, 1, shown);
+  EXPECT_EQ(shown[0], 0.0f);  // no passes: black
+}
+
+}  // namespace
+}  // namespace tessera
