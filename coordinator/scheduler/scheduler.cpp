@@ -268,7 +268,7 @@ void Scheduler::send_unit(WorkerSlot& w, JobRun& run, int unit) {
   if (observer_) observer_->state_changed(job);
 }
 
-void Scheduler::on_result(std::int64_t worker, const ResultMessage& result) {
+void Scheduler::on_result(std::int64_t worker, ResultMessage result) {
   WorkerSlot& w = workers_.at(worker);
   // Everything is checked before anything changes: a result that breaks a rule costs the worker
   // its connection, and remove_worker() then re-queues all of its units, this one included.
@@ -300,7 +300,6 @@ void Scheduler::on_result(std::int64_t worker, const ResultMessage& result) {
   const auto now = options_.clock();
   check_result(result, wu.cost, seconds_since(sent->second, now));
   const RenderStats& stats = result.stats;
-  const std::vector<float>& values = result.values;
   const Clock::time_point sent_at = sent->second;
   w.pipeline.observe(seconds_since(sent_at, now), stats.seconds);
   w.in_flight.erase(sent);
@@ -313,8 +312,8 @@ void Scheduler::on_result(std::int64_t worker, const ResultMessage& result) {
   }
   run.stragglers.erase({r.dispatched, unit});
   r.state = UnitState::Done;
-  job.apply_result(unit, values, stats, Job::ResultSource{worker, w.hello.name, now});
-  if (observer_) observer_->merged(job, unit, values, stats, w.hello.name);
+  job.apply_result(unit, result.values, stats, Job::ResultSource{worker, w.hello.name, now});
+  if (observer_) observer_->merged(job, unit, std::move(result.values), stats, w.hello.name);
   if (ServiceMetrics* m = options_.metrics) {
     m->units_finished.add();
     m->unit_latency.observe(seconds_since(sent_at, now));

@@ -62,9 +62,10 @@ struct Prediction {
 class JobObserver {
  public:
   virtual ~JobObserver() = default;
-  // A unit's result was merged into the job's frame buffer (Job::apply_result).
-  virtual void merged(const Job& job, int unit, std::span<const float> values,
-                      const RenderStats& stats, const std::string& worker) = 0;
+  // A unit's result was merged into the job's frame buffer (Job::apply_result): its values are
+  // handed over, not copied (a result is up to 16,384 pixels' floats).
+  virtual void merged(const Job& job, int unit, std::vector<float> values, const RenderStats& stats,
+                      const std::string& worker) = 0;
   // The job started running or finished (its buffers are already released).
   virtual void state_changed(const Job& job) = 0;
 };
@@ -81,7 +82,7 @@ class Scheduler {
   // worker, or one that fails result_check.h; a job_failed for a job never sent to it. The
   // caller drops the worker, which re-queues its units. Late duplicates and results for jobs
   // finished meanwhile are dropped silently.
-  void on_result(std::int64_t worker, const ResultMessage& result);
+  void on_result(std::int64_t worker, ResultMessage result);
   // The first worker to report a job failing loses the job (its units go to the others); the
   // job fails when a second worker reports it too, or at the time limit with the first report.
   void on_job_failed(std::int64_t worker, const JobFailedMessage& report);

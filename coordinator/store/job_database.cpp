@@ -381,16 +381,15 @@ void JobDatabase::set_state(std::int64_t job, const std::string& state, const st
   });
 }
 
-std::int64_t JobDatabase::append_result(std::int64_t job, int unit, std::span<const float> values,
+std::int64_t JobDatabase::append_result(std::int64_t job, int unit, std::vector<float> values,
                                         const RenderStats& stats, const std::string& worker) {
-  // Copied as bytes, not zero-filled first: this runs for every merged unit.
-  QueuedResult result{
-      .job = job,
-      .sequence = 0,
-      .unit = unit,
-      .payload = std::string(reinterpret_cast<const char*>(values.data()), values.size_bytes()),
-      .stats = stats,
-      .worker = worker};
+  // Taken over, not copied: this runs for every merged unit.
+  QueuedResult result{.job = job,
+                      .sequence = 0,
+                      .unit = unit,
+                      .payload = std::move(values),
+                      .stats = stats,
+                      .worker = worker};
   {
     std::lock_guard queue(queue_mutex_);
     if (auto next = next_sequence_.find(job); next != next_sequence_.end()) {

@@ -65,7 +65,7 @@ class JobDatabase {
   std::int64_t add_job(const StoredRequest& request, WallClock::time_point created);
   void set_state(std::int64_t job, const std::string& state, const std::string& error = {});
   // Queues a merged unit result; returns its sequence number within the job.
-  std::int64_t append_result(std::int64_t job, int unit, std::span<const float> values,
+  std::int64_t append_result(std::int64_t job, int unit, std::vector<float> values,
                              const RenderStats& stats, const std::string& worker);
   // Writes every queued result in one transaction. On failure the failed jobs' queued results
   // are dropped, the store keeps each job's results up to its last successful flush, and
@@ -102,8 +102,8 @@ class JobDatabase {
   struct QueuedResult {
     std::int64_t job, sequence;
     int unit;
-    std::string payload;
-    RenderStats stats;  // turned into JSON by the flush, off the io thread that appends
+    std::vector<float> payload;  // the result's values, taken over from the message
+    RenderStats stats;           // turned into JSON by the flush, off the io thread that appends
     std::string worker;
   };
 
