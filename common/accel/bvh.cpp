@@ -16,6 +16,7 @@
 
 #include <algorithm>
 #include <array>
+#include <bit>
 #include <cmath>
 #include <limits>
 
@@ -140,16 +141,28 @@ class Builder {
     return mid;
   }
 
-  // Fills bins_ for every axis in one pass over [begin, end).
+  // Fills bins_ and occupied_ for every axis in one pass over [begin, end); the bins must be
+  // empty (clear_bins).
   void bin(std::size_t begin, std::size_t end, const Vec3& lo, const Vec3& scale) {
-    for (auto& axis_bins : bins_) axis_bins.fill(Bin{});
-    for (std::size_t i = begin; i < end; ++i) {
-      const BuildPrimitive& p = primitives_[i];
-      for (int a = 0; a < 3; ++a) {
-        Bin& b = bins_[static_cast<std::size_t>(a)][bin_of(p.centroid[a], lo[a], scale[a])];
-        ++b.count;
-        b.bounds.extend(p.box);
-      }
+    const auto add = [this](int axis, std::uint32_t b, const BuildPrimitive& p) {
+      Bin& bin = bins_[static_cast<std::size_t>(axis)][b];
+      ++bin.count;
+      bin.bounds.extend(p.box);
+      occupied_[static_cast<std::size_t>(axis)] |= 1u << b;
+    };
+    for (const BuildPrimitive* p = primitives_.data() + begin; p != primitives_.data() + end; ++p) {
+      add(0, bin_of(p->centroid.x, lo.x, scale.x), *p);
+      add(1, bin_of(p->centroid.y, lo.y, scale.y), *p);
+      add(2, bin_of(p->centroid.z, lo.z, scale.z), *p);
+    }
+  }
+
+  // Empties the occupied bins (cheaper than all 48 for the many small nodes).
+  void clear_bins() {
+    for (std::size_t a = 0; a < 3; ++a) {
+      for (unsigned rest = occupied_[a]; rest != 0; rest &= rest - 1)
+        bins_[a][static_cast<std::size_t>(std::countr_zero(rest))] = Bin{};
+      occupied_[a] = 0;
     }
   }
 
@@ -164,35 +177,34 @@ class Builder {
     for (int a = 0; a < 3; ++a) {
       if (!(extent[a] > 0)) continue;
       const auto& bins = bins_[static_cast<std::size_t>(a)];
-      // Sweep from the right to get the area and count of every right-hand side. An empty bin
-      // leaves the union, and so its area, as it was.
-      std::array<double, kBins> right_area{};
-      std::array<std::uint32_t, kBins> right_count{};
+      const unsigned occupied = occupied_[static_cast<std::size_t>(a)];
+      // Only splits after an occupied bin are costed: after an empty one the sides, so the
+      // cost, are those of the split before it, and an equal cost never replaces the best.
+      // The right side of the split after bin b starts at the next occupied bin. Sweep from
+      // the right for the area and count of every right side (all but the lowest bin's).
+      std::array<double, kBins> right_area;
+      std::array<std::uint32_t, kBins> right_count;
       MinBox right;
-      double area_right = 0;
       std::uint32_t n_right = 0;
-      for (std::size_t b = kBins - 1; b > 0; --b) {
-        if (bins[b].count > 0) {
-          right.extend(bins[b].bounds);
-          n_right += bins[b].count;
-          area_right = right.bounds().surface_area();
-        }
-        right_area[b] = area_right;
+      for (unsigned rest = occupied; (rest & (rest - 1)) != 0;) {
+        const auto b = static_cast<std::size_t>(std::bit_width(rest) - 1);
+        rest ^= 1u << b;
+        right.extend(bins[b].bounds);
+        n_right += bins[b].count;
+        right_area[b] = right.bounds().surface_area();
         right_count[b] = n_right;
       }
-      // The split between bin b and bin b + 1. Only those after a non-empty bin b are costed:
-      // after an empty one the sides, so the cost, are those of the split before it, and an
-      // equal cost never replaces the best.
       MinBox left;
       std::uint32_t n_left = 0;
-      for (std::size_t b = 0; b + 1 < kBins; ++b) {
-        if (bins[b].count == 0) continue;
-        if (right_count[b + 1] == 0) break;
+      for (unsigned rest = occupied; (rest & (rest - 1)) != 0;) {  // all but the highest bin
+        const auto b = static_cast<std::size_t>(std::countr_zero(rest));
+        rest ^= 1u << b;
+        const auto next = static_cast<std::size_t>(std::countr_zero(rest));
         left.extend(bins[b].bounds);
         n_left += bins[b].count;
         const double cost =
             kTraversalCost + (static_cast<double>(n_left) * left.bounds().surface_area() +
-                              static_cast<double>(right_count[b + 1]) * right_area[b + 1]) /
+                              static_cast<double>(right_count[next]) * right_area[next]) /
                                  area;
         if (cost < best.cost) best.cost = cost, best.axis = a, best.bin = static_cast<int>(b);
       }
@@ -220,9 +232,11 @@ class Builder {
     // Binning and partition use one bin_of, so each side holds the primitives counted in its
     // bins, and neither is empty.
     const auto split = static_cast<std::size_t>(middle - primitives_.begin());
-    for (std::size_t b = 0; b < kBins; ++b)
-      (b <= last_first_bin ? first : second)
-          .bounds.extend(bins_[static_cast<std::size_t>(axis)][b].bounds);
+    const auto& bins = bins_[static_cast<std::size_t>(axis)];
+    for (unsigned rest = occupied_[static_cast<std::size_t>(axis)]; rest != 0; rest &= rest - 1) {
+      const auto b = static_cast<std::uint32_t>(std::countr_zero(rest));
+      (b <= last_first_bin ? first : second).bounds.extend(bins[b].bounds);
+    }
     if (first.bounds.has_zero() || first.centroids.has_zero()) first = gather(begin, split);
     if (second.bounds.has_zero() || second.centroids.has_zero()) second = gather(split, end);
     return split;
@@ -248,12 +262,14 @@ class Builder {
                        extent.z > 0 ? kBins / extent.z : 0};
       bin(begin, end, centroids.lo, scale);
       choice = cheapest_split(area, extent);
-      if (choice.axis >= 0) {
-        if (count <= kMaxLeafSize && static_cast<double>(count) <= choice.cost)
-          return make_leaf(begin, end, bounds);
+      const bool leaf =
+          choice.axis >= 0 && count <= kMaxLeafSize && static_cast<double>(count) <= choice.cost;
+      if (choice.axis >= 0 && !leaf) {
         axis = choice.axis;
         split = partition(begin, end, choice, centroids, scale, first, second);
       }
+      clear_bins();
+      if (leaf) return make_leaf(begin, end, bounds);
     }
     if (choice.axis < 0) {
       split = median_split(begin, end, axis);
@@ -275,6 +291,7 @@ class Builder {
   std::vector<BuildPrimitive> primitives_;
   Bvh& bvh_;
   std::array<std::array<Bin, kBins>, 3> bins_;  // one node's at a time
+  std::array<unsigned, 3> occupied_{};          // bit b: bins_[axis][b] is not empty
 };
 
 }  // namespace
