@@ -19,6 +19,7 @@
 #include <bit>
 #include <cmath>
 #include <limits>
+#include <thread>
 
 #if defined(__SSE2__)
 #include <emmintrin.h>
@@ -96,19 +97,30 @@ std::uint32_t bin_of(double centroid, double lo, double scale) {
 #endif
 }
 
+// Builds the subtree of one range of the shared primitives into its own nodes and
+// primitive_order, which start at 0. With threads to spare, it hands the second child of a
+// large node to a Builder of its own on another thread and appends that subtree after the first
+// child's, with its indices moved: the depth-first layout, and so the tree, is that of one
+// thread, whatever the thread count.
 class Builder {
  public:
-  Builder(std::vector<BuildPrimitive> primitives, Bvh& bvh)
-      : primitives_(std::move(primitives)), bvh_(bvh) {}
+  Builder(std::vector<BuildPrimitive>& primitives, Bvh& bvh, int threads)
+      : primitives_(primitives), bvh_(bvh), threads_(threads) {}
+
+  void build(std::size_t begin, std::size_t end, int depth, const NodeBoxes& boxes) {
+    bvh_.nodes.reserve(2 * (end - begin));
+    bvh_.primitive_order.reserve(end - begin);
+    build_node(begin, end, depth, boxes);
+  }
 
   void build() {
-    if (primitives_.empty()) return;
-    bvh_.nodes.reserve(2 * primitives_.size());
-    bvh_.primitive_order.reserve(primitives_.size());
-    build_node(0, primitives_.size(), 0, gather(0, primitives_.size()));
+    if (!primitives_.empty()) build(0, primitives_.size(), 0, gather(0, primitives_.size()));
   }
 
  private:
+  // Below this many primitives a subtree is not worth a thread (about a millisecond of work).
+  static constexpr std::size_t kMinParallelPrimitives = 4096;
+
   // The boxes of [begin, end) by a pass, in order (Bounds3::extend's bits, zeros included).
   NodeBoxes gather(std::size_t begin, std::size_t end) const {
     NodeBoxes boxes;
@@ -282,21 +294,48 @@ class Builder {
     node.bounds = bounds;
     node.split_axis = static_cast<std::uint8_t>(axis);
     bvh_.nodes.push_back(node);
-    build_node(begin, split, depth + 1, first);  // the first child is the next node
-    const std::uint32_t second_child = build_node(split, end, depth + 1, second);
-    bvh_.nodes[self].first_or_second_child = second_child;
+    if (threads_ > 1 && end - split >= kMinParallelPrimitives) {
+      // The two children's ranges are disjoint, so both builders may reorder theirs at once.
+      Bvh second_tree;
+      const int second_threads = threads_ / 2;
+      threads_ -= second_threads;
+      std::thread second_builder([&] {
+        Builder(primitives_, second_tree, second_threads).build(split, end, depth + 1, second);
+      });
+      build_node(begin, split, depth + 1, first);  // the first child is the next node
+      second_builder.join();
+      threads_ += second_threads;
+      bvh_.nodes[self].first_or_second_child = append(second_tree);
+    } else {
+      build_node(begin, split, depth + 1, first);  // the first child is the next node
+      bvh_.nodes[self].first_or_second_child = build_node(split, end, depth + 1, second);
+    }
     return self;
   }
 
-  std::vector<BuildPrimitive> primitives_;
+  // Appends a subtree built by another Builder; returns the index of its root.
+  std::uint32_t append(const Bvh& subtree) {
+    const auto node_base = static_cast<std::uint32_t>(bvh_.nodes.size());
+    const auto order_base = static_cast<std::uint32_t>(bvh_.primitive_order.size());
+    for (BvhNode node : subtree.nodes) {
+      node.first_or_second_child += node.count > 0 ? order_base : node_base;
+      bvh_.nodes.push_back(node);
+    }
+    bvh_.primitive_order.insert(bvh_.primitive_order.end(), subtree.primitive_order.begin(),
+                                subtree.primitive_order.end());
+    return node_base;
+  }
+
+  std::vector<BuildPrimitive>& primitives_;  // shared; each Builder reorders only its range
   Bvh& bvh_;
+  int threads_;                                 // this Builder's own thread included
   std::array<std::array<Bin, kBins>, 3> bins_;  // one node's at a time
   std::array<unsigned, 3> occupied_{};          // bit b: bins_[axis][b] is not empty
 };
 
 }  // namespace
 
-Bvh build_bvh(std::span<const Bounds3> primitive_bounds, BvhMode mode) {
+Bvh build_bvh(std::span<const Bounds3> primitive_bounds, BvhMode mode, int threads) {
   Bvh bvh;
   if (primitive_bounds.empty()) return bvh;
   if (mode == BvhMode::None) {
@@ -317,7 +356,7 @@ Bvh build_bvh(std::span<const Bounds3> primitive_bounds, BvhMode mode) {
     if (!usable(b)) continue;
     primitives.push_back({MinBox::of(b), b.centroid(), static_cast<std::uint32_t>(i)});
   }
-  Builder(std::move(primitives), bvh).build();
+  Builder(primitives, bvh, std::max(threads, 1)).build();
   make_bvh_pairs(bvh);
   return bvh;
 }

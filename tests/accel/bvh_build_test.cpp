@@ -1,8 +1,8 @@
 // The binned SAH builder gives, bit for bit, the tree of the builder it replaced (commit
 // 66e52a1: a pass for the bounds, then one binning pass per axis, each extending Bounds3 boxes),
 // which this file keeps as the reference: the same nodes, bounds bits, primitive_order and
-// pairs on random boxes, boxes full of signed zeros and ties, degenerate and skewed inputs and a
-// triangle mesh.
+// pairs, built with one thread or several, on random boxes, boxes full of signed zeros and
+// ties, degenerate and skewed inputs and a triangle mesh.
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -202,9 +202,7 @@ int nodes_with_negative_zero(const Bvh& bvh) {
   return n;
 }
 
-void expect_same_tree(const std::vector<Bounds3>& boxes) {
-  const Bvh expected = reference::build_sah(boxes);
-  const Bvh actual = build_bvh(boxes, BvhMode::Sah);
+void expect_same_tree(const Bvh& expected, const Bvh& actual) {
   ASSERT_EQ(actual.nodes.size(), expected.nodes.size());
   for (std::size_t n = 0; n < expected.nodes.size(); ++n) {
     SCOPED_TRACE(n);
@@ -226,6 +224,15 @@ void expect_same_tree(const std::vector<Bounds3>& boxes) {
   }
 }
 
+// The same tree as the reference's, built with one thread and with several.
+void expect_same_tree(const std::vector<Bounds3>& boxes) {
+  const Bvh expected = reference::build_sah(boxes);
+  for (const int threads : {1, 2, 3, 8}) {
+    SCOPED_TRACE(testing::Message() << threads << " threads");
+    expect_same_tree(expected, build_bvh(boxes, BvhMode::Sah, threads));
+  }
+}
+
 std::vector<Bounds3> random_boxes(std::mt19937_64& rng, int n, double world, double size) {
   std::uniform_real_distribution<double> u(0, 1);
   std::vector<Bounds3> boxes;
@@ -239,6 +246,7 @@ std::vector<Bounds3> random_boxes(std::mt19937_64& rng, int n, double world, dou
 
 TEST(BvhBuild, SameTreeAsTheReferenceOnRandomBoxes) {
   std::mt19937_64 rng(2026);
+  // 20,000: large enough for subtrees on other threads.
   for (const int n : {1, 2, 3, 4, 5, 9, 17, 64, 100, 1000, 20000}) {
     for (const double size : {0.001, 0.1, 3.0}) {
       SCOPED_TRACE(testing::Message() << n << " boxes of size " << size);
