@@ -15,166 +15,120 @@
 #include <vector>
 
 #include "common/accel/bvh.h"
+#include "tests/accel/random_boxes.h"
 
 namespace tessera {
 namespace {
 
-// The reference: commit 66e52a1's common/accel/bvh.cpp, cut to the SAH build.
+// The reference: commit 66e52a1's SAH build, condensed but with the same operations in the
+// same order (the order of std::partition's and std::nth_element's moves included).
 namespace reference {
 
 constexpr int kBins = 16;
-constexpr std::uint32_t kMaxLeafSize = 4;
-constexpr double kTraversalCost = 0.5;
-constexpr int kSahDepth = 64;
 
-struct BuildPrimitive {
+struct Primitive {
   Bounds3 bounds;
   Vec3 centroid;
   std::uint32_t index = 0;
 };
 
-class Builder {
- public:
-  Builder(std::vector<BuildPrimitive> primitives, Bvh& bvh)
-      : primitives_(std::move(primitives)), bvh_(bvh) {}
+struct Builder {
+  std::vector<Primitive> p;
+  Bvh& bvh;
 
-  void build() {
-    if (!primitives_.empty()) build_node(0, primitives_.size(), 0);
+  static std::uint32_t bin_of(const Primitive& q, int axis, double lo, double scale) {
+    const double x = (q.centroid[axis] - lo) * scale;
+    return !(x > 0) ? 0u : !(x < kBins - 1) ? kBins - 1 : static_cast<std::uint32_t>(x);
+  }
+  std::vector<Primitive>::iterator at(std::size_t i) {
+    return p.begin() + static_cast<std::ptrdiff_t>(i);
   }
 
- private:
-  std::uint32_t bin_of(const BuildPrimitive& p, int axis, double lo, double scale) const {
-    const double x = (p.centroid[axis] - lo) * scale;
-    if (!(x > 0)) return 0;
-    if (!(x < kBins - 1)) return kBins - 1;
-    return static_cast<std::uint32_t>(x);
-  }
-
-  std::uint32_t make_leaf(std::size_t begin, std::size_t end, const Bounds3& bounds) {
-    BvhNode node;
-    node.bounds = bounds;
-    node.first_or_second_child = static_cast<std::uint32_t>(bvh_.primitive_order.size());
-    node.count = static_cast<std::uint32_t>(end - begin);
-    for (std::size_t i = begin; i < end; ++i) bvh_.primitive_order.push_back(primitives_[i].index);
-    bvh_.nodes.push_back(node);
-    return static_cast<std::uint32_t>(bvh_.nodes.size() - 1);
-  }
-
-  std::size_t median_split(std::size_t begin, std::size_t end, int axis) {
-    const std::size_t mid = (begin + end) / 2;
-    std::nth_element(primitives_.begin() + static_cast<std::ptrdiff_t>(begin),
-                     primitives_.begin() + static_cast<std::ptrdiff_t>(mid),
-                     primitives_.begin() + static_cast<std::ptrdiff_t>(end),
-                     [axis](const BuildPrimitive& a, const BuildPrimitive& b) {
-                       return a.centroid[axis] < b.centroid[axis];
-                     });
-    return mid;
-  }
-
-  std::size_t sah_split(std::size_t begin, std::size_t end, const Bounds3& bounds,
-                        const Bounds3& centroids, int& axis) {
-    const std::size_t count = end - begin;
-    const double area = bounds.surface_area();
-    const Vec3 extent = centroids.diagonal();
-    if (!(area > 0)) {
-      axis = max_axis(extent);
-      return median_split(begin, end, axis);
-    }
-    double best_cost = std::numeric_limits<double>::infinity();
-    int best_axis = -1, best_bin = 0;
-    for (int a = 0; a < 3; ++a) {
-      if (!(extent[a] > 0)) continue;
-      const double scale = kBins / extent[a];
-      std::array<Bounds3, kBins> bin_bounds;
-      std::array<std::size_t, kBins> bin_counts{};
-      for (std::size_t i = begin; i < end; ++i) {
-        const std::uint32_t b = bin_of(primitives_[i], a, centroids.lo[a], scale);
-        ++bin_counts[b];
-        bin_bounds[b].extend(primitives_[i].bounds);
-      }
-      std::array<double, kBins> right_area{};
-      std::array<std::size_t, kBins> right_count{};
-      Bounds3 right;
-      std::size_t n_right = 0;
-      for (int b = kBins - 1; b > 0; --b) {
-        right.extend(bin_bounds[b]);
-        n_right += bin_counts[b];
-        right_area[b] = right.surface_area();
-        right_count[b] = n_right;
-      }
-      Bounds3 left;
-      std::size_t n_left = 0;
-      for (int b = 0; b < kBins - 1; ++b) {
-        left.extend(bin_bounds[b]);
-        n_left += bin_counts[b];
-        if (n_left == 0 || right_count[b + 1] == 0) continue;
-        const double cost =
-            kTraversalCost + (static_cast<double>(n_left) * left.surface_area() +
-                              static_cast<double>(right_count[b + 1]) * right_area[b + 1]) /
-                                 area;
-        if (cost < best_cost) best_cost = cost, best_axis = a, best_bin = b;
-      }
-    }
-    if (best_axis < 0) {
-      axis = max_axis(extent);
-      return median_split(begin, end, axis);
-    }
-    axis = best_axis;
-    if (count <= kMaxLeafSize && static_cast<double>(count) <= best_cost) return begin;
-    const double lo = centroids.lo[axis];
-    const double scale = kBins / extent[axis];
-    const auto middle = std::partition(
-        primitives_.begin() + static_cast<std::ptrdiff_t>(begin),
-        primitives_.begin() + static_cast<std::ptrdiff_t>(end), [&](const BuildPrimitive& p) {
-          return bin_of(p, axis, lo, scale) <= static_cast<std::uint32_t>(best_bin);
-        });
-    const auto split = static_cast<std::size_t>(middle - primitives_.begin());
-    if (split == begin || split == end) return median_split(begin, end, axis);
-    return split;
-  }
-
-  std::uint32_t build_node(std::size_t begin, std::size_t end, int depth) {
+  std::uint32_t node(std::size_t begin, std::size_t end, int depth) {
     Bounds3 bounds, centroids;
     for (std::size_t i = begin; i < end; ++i) {
-      bounds.extend(primitives_[i].bounds);
-      centroids.extend(primitives_[i].centroid);
+      bounds.extend(p[i].bounds);
+      centroids.extend(p[i].centroid);
     }
-    const std::size_t count = end - begin;
-    if (count == 1 || !(max_component(centroids.diagonal()) > 0))
-      return make_leaf(begin, end, bounds);
-    int axis = 0;
-    std::size_t split = 0;
-    if (depth < kSahDepth) {
-      split = sah_split(begin, end, bounds, centroids, axis);
-      if (split == begin) return make_leaf(begin, end, bounds);
-    } else {
-      axis = max_axis(centroids.diagonal());
-      split = median_split(begin, end, axis);
+    const Vec3 extent = centroids.diagonal();
+    const auto leaf = [&] {
+      bvh.nodes.push_back({bounds, static_cast<std::uint32_t>(bvh.primitive_order.size()),
+                           static_cast<std::uint32_t>(end - begin), 0});
+      for (std::size_t i = begin; i < end; ++i) bvh.primitive_order.push_back(p[i].index);
+      return static_cast<std::uint32_t>(bvh.nodes.size() - 1);
+    };
+    if (end - begin == 1 || !(max_component(extent) > 0)) return leaf();
+    int axis = max_axis(extent);
+    std::size_t split = begin;
+    const double area = bounds.surface_area();
+    if (depth < 64 && area > 0) {
+      double best_cost = kInfinity;
+      int best_axis = -1, best_bin = 0;
+      for (int a = 0; a < 3; ++a) {
+        if (!(extent[a] > 0)) continue;
+        const double scale = kBins / extent[a];
+        std::array<Bounds3, kBins> bin_bounds;
+        std::array<std::size_t, kBins> bin_counts{}, right_count{};
+        for (std::size_t i = begin; i < end; ++i) {
+          const std::uint32_t b = bin_of(p[i], a, centroids.lo[a], scale);
+          ++bin_counts[b];
+          bin_bounds[b].extend(p[i].bounds);
+        }
+        std::array<double, kBins> right_area{};
+        Bounds3 right, left;
+        std::size_t n_right = 0, n_left = 0;
+        for (int b = kBins - 1; b > 0; --b) {
+          right.extend(bin_bounds[b]);
+          right_count[b] = n_right += bin_counts[b];
+          right_area[b] = right.surface_area();
+        }
+        for (int b = 0; b < kBins - 1; ++b) {
+          left.extend(bin_bounds[b]);
+          n_left += bin_counts[b];
+          if (n_left == 0 || right_count[b + 1] == 0) continue;
+          const double cost = 0.5 + (static_cast<double>(n_left) * left.surface_area() +
+                                     static_cast<double>(right_count[b + 1]) * right_area[b + 1]) /
+                                        area;
+          if (cost < best_cost) best_cost = cost, best_axis = a, best_bin = b;
+        }
+      }
+      if (best_axis >= 0) {
+        axis = best_axis;
+        if (end - begin <= 4 && static_cast<double>(end - begin) <= best_cost) return leaf();
+        const double lo = centroids.lo[axis], scale = kBins / extent[axis];
+        split =
+            static_cast<std::size_t>(std::partition(at(begin), at(end),
+                                                    [&](const Primitive& q) {
+                                                      return bin_of(q, axis, lo, scale) <=
+                                                             static_cast<std::uint32_t>(best_bin);
+                                                    }) -
+                                     p.begin());
+      }
     }
-    const auto self = static_cast<std::uint32_t>(bvh_.nodes.size());
-    BvhNode node;
-    node.bounds = bounds;
-    node.split_axis = static_cast<std::uint8_t>(axis);
-    bvh_.nodes.push_back(node);
-    build_node(begin, split, depth + 1);
-    const std::uint32_t second = build_node(split, end, depth + 1);
-    bvh_.nodes[self].first_or_second_child = second;
+    if (split == begin || split == end) {
+      split = (begin + end) / 2;
+      std::nth_element(at(begin), at(split), at(end),
+                       [axis](const Primitive& a, const Primitive& b) {
+                         return a.centroid[axis] < b.centroid[axis];
+                       });
+    }
+    const auto self = static_cast<std::uint32_t>(bvh.nodes.size());
+    bvh.nodes.push_back({bounds, 0, 0, static_cast<std::uint8_t>(axis)});
+    node(begin, split, depth + 1);
+    bvh.nodes[self].first_or_second_child = node(split, end, depth + 1);
     return self;
   }
-
-  std::vector<BuildPrimitive> primitives_;
-  Bvh& bvh_;
 };
 
 Bvh build_sah(const std::vector<Bounds3>& boxes) {
   Bvh bvh;
-  std::vector<BuildPrimitive> primitives;
+  Builder builder{{}, bvh};
   for (std::size_t i = 0; i < boxes.size(); ++i) {
     const Bounds3& b = boxes[i];
     if (b.empty() || !is_finite(b.lo) || !is_finite(b.hi)) continue;
-    primitives.push_back({b, b.centroid(), static_cast<std::uint32_t>(i)});
+    builder.p.push_back({b, b.centroid(), static_cast<std::uint32_t>(i)});
   }
-  Builder(std::move(primitives), bvh).build();
+  if (!builder.p.empty()) builder.node(0, builder.p.size(), 0);
   make_bvh_pairs(bvh);
   return bvh;
 }
@@ -231,17 +185,6 @@ void expect_same_tree(const std::vector<Bounds3>& boxes) {
     SCOPED_TRACE(testing::Message() << threads << " threads");
     expect_same_tree(expected, build_bvh(boxes, BvhMode::Sah, threads));
   }
-}
-
-std::vector<Bounds3> random_boxes(std::mt19937_64& rng, int n, double world, double size) {
-  std::uniform_real_distribution<double> u(0, 1);
-  std::vector<Bounds3> boxes;
-  for (int i = 0; i < n; ++i) {
-    const Vec3 c{world * u(rng), world * u(rng), world * u(rng)};
-    const Vec3 h{size * u(rng), size * u(rng), size * u(rng)};
-    boxes.push_back({c - h, c + h});
-  }
-  return boxes;
 }
 
 TEST(BvhBuild, SameTreeAsTheReferenceOnRandomBoxes) {
