@@ -16,6 +16,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <bit>
 #include <cmath>
 #include <limits>
@@ -98,14 +99,15 @@ std::uint32_t bin_of(double centroid, double lo, double scale) {
 }
 
 // Builds the subtree of one range of the shared primitives into its own nodes and
-// primitive_order, which start at 0. With threads to spare, it hands the second child of a
-// large node to a Builder of its own on another thread and appends that subtree after the first
+// primitive_order, which start at 0. While a thread is spare, it hands the second child of a
+// large node to a Builder of its own on that thread and appends that subtree after the first
 // child's, with its indices moved: the depth-first layout, and so the tree, is that of one
-// thread, whatever the thread count.
+// thread, whatever the thread count. A thread is spare again as soon as its subtree is built,
+// so that it may take a subtree of a larger side that is still being built.
 class Builder {
  public:
-  Builder(std::vector<BuildPrimitive>& primitives, Bvh& bvh, int threads)
-      : primitives_(primitives), bvh_(bvh), threads_(threads) {}
+  Builder(std::vector<BuildPrimitive>& primitives, Bvh& bvh, std::atomic<int>& spare_threads)
+      : primitives_(primitives), bvh_(bvh), spare_threads_(spare_threads) {}
 
   void build(std::size_t begin, std::size_t end, int depth, const NodeBoxes& boxes) {
     bvh_.nodes.reserve(2 * (end - begin));
@@ -294,23 +296,28 @@ class Builder {
     node.bounds = bounds;
     node.split_axis = static_cast<std::uint8_t>(axis);
     bvh_.nodes.push_back(node);
-    if (threads_ > 1 && end - split >= kMinParallelPrimitives) {
+    if (end - split >= kMinParallelPrimitives && take_spare_thread()) {
       // The two children's ranges are disjoint, so both builders may reorder theirs at once.
       Bvh second_tree;
-      const int second_threads = threads_ / 2;
-      threads_ -= second_threads;
       std::thread second_builder([&] {
-        Builder(primitives_, second_tree, second_threads).build(split, end, depth + 1, second);
+        Builder(primitives_, second_tree, spare_threads_).build(split, end, depth + 1, second);
+        spare_threads_.fetch_add(1);
       });
       build_node(begin, split, depth + 1, first);  // the first child is the next node
       second_builder.join();
-      threads_ += second_threads;
       bvh_.nodes[self].first_or_second_child = append(second_tree);
     } else {
       build_node(begin, split, depth + 1, first);  // the first child is the next node
       bvh_.nodes[self].first_or_second_child = build_node(split, end, depth + 1, second);
     }
     return self;
+  }
+
+  bool take_spare_thread() {
+    int spare = spare_threads_.load();
+    while (spare > 0 && !spare_threads_.compare_exchange_weak(spare, spare - 1)) {
+    }
+    return spare > 0;
   }
 
   // Appends a subtree built by another Builder; returns the index of its root.
@@ -328,7 +335,7 @@ class Builder {
 
   std::vector<BuildPrimitive>& primitives_;  // shared; each Builder reorders only its range
   Bvh& bvh_;
-  int threads_;                                 // this Builder's own thread included
+  std::atomic<int>& spare_threads_;             // shared by all Builders of one tree
   std::array<std::array<Bin, kBins>, 3> bins_;  // one node's at a time
   std::array<unsigned, 3> occupied_{};          // bit b: bins_[axis][b] is not empty
 };
@@ -356,7 +363,8 @@ Bvh build_bvh(std::span<const Bounds3> primitive_bounds, BvhMode mode, int threa
     if (!usable(b)) continue;
     primitives.push_back({MinBox::of(b), b.centroid(), static_cast<std::uint32_t>(i)});
   }
-  Builder(primitives, bvh, std::max(threads, 1)).build();
+  std::atomic<int> spare_threads = threads - 1;  // the caller's thread builds too
+  Builder(primitives, bvh, spare_threads).build();
   make_bvh_pairs(bvh);
   return bvh;
 }
