@@ -19,6 +19,7 @@
 #include <atomic>
 #include <bit>
 #include <cmath>
+#include <exception>
 #include <limits>
 #include <thread>
 
@@ -298,13 +299,21 @@ class Builder {
     bvh_.nodes.push_back(node);
     if (end - split >= kMinParallelPrimitives && take_spare_thread()) {
       // The two children's ranges are disjoint, so both builders may reorder theirs at once.
+      // A failure (std::bad_alloc on a hostile mesh) on either thread reaches the caller.
       Bvh second_tree;
-      std::thread second_builder([&] {
-        Builder(primitives_, second_tree, spare_threads_).build(split, end, depth + 1, second);
-        spare_threads_.fetch_add(1);
-      });
-      build_node(begin, split, depth + 1, first);  // the first child is the next node
-      second_builder.join();
+      std::exception_ptr second_failure;
+      {
+        std::jthread second_builder([&] {
+          try {
+            Builder(primitives_, second_tree, spare_threads_).build(split, end, depth + 1, second);
+          } catch (...) {
+            second_failure = std::current_exception();
+          }
+          spare_threads_.fetch_add(1);
+        });
+        build_node(begin, split, depth + 1, first);  // the first child is the next node
+      }
+      if (second_failure) std::rethrow_exception(second_failure);
       bvh_.nodes[self].first_or_second_child = append(second_tree);
     } else {
       build_node(begin, split, depth + 1, first);  // the first child is the next node
