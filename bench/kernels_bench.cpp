@@ -129,9 +129,11 @@ void BM_MeshBvh(benchmark::State& state) {
   state.SetItemsProcessed(state.iterations());
 }
 
+// Arguments: the wave mesh's size, the build's threads.
 void BM_MeshBvhBuild(benchmark::State& state) {
   const Mesh mesh = wave_mesh(static_cast<int>(state.range(0)));
-  for (auto _ : state) benchmark::DoNotOptimize(build_mesh_accel(mesh, BvhMode::Sah));
+  const auto threads = static_cast<int>(state.range(1));
+  for (auto _ : state) benchmark::DoNotOptimize(build_mesh_accel(mesh, BvhMode::Sah, threads));
   state.counters["triangles"] = static_cast<double>(mesh.triangles.size());
 }
 
@@ -143,7 +145,11 @@ BENCHMARK(BM_TorusGrazing);
 BENCHMARK(BM_ToothCube);
 BENCHMARK(BM_TransformedSphereInstance);
 BENCHMARK(BM_MeshBvh)->Arg(16)->Arg(64)->Arg(224);
-BENCHMARK(BM_MeshBvhBuild)->Arg(224)->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_MeshBvhBuild)
+    ->Args({224, 1})
+    ->Args({224, 2})
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
 
 }  // namespace
 }  // namespace tessera

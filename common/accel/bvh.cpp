@@ -3,12 +3,29 @@
 // split is cheaper; larger nodes are always split, except when all centroids coincide (no
 // split separates anything). Primitives whose bounds are empty or not finite cannot be hit and
 // are left out of the SAH tree; BvhMode::None keeps every primitive, in input order.
+//
+// One pass over a node's primitives bins them on all three axes at once, keeping per bin the
+// bounds and the centroid bounds, so that each child's bounds are the union of its side's bins
+// rather than another pass. Min and max are exact, so the union has the bits a pass over the
+// child would give; the one exception is zero, where -0 and +0 compare equal and the sign of
+// the result depends on the order of the operands, so a child whose bounds hold a zero gets
+// the pass after all. The tree is thereby the same, bit for bit, as that of the builder that
+// made one pass for the bounds and one per axis for the bins (tests/accel/bvh_build_test.cpp
+// keeps that builder as its reference).
 #include "common/accel/bvh.h"
 
 #include <algorithm>
 #include <array>
+#include <atomic>
+#include <bit>
 #include <cmath>
+#include <exception>
 #include <limits>
+#include <thread>
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 namespace tessera {
 
@@ -22,32 +39,99 @@ constexpr double kTraversalCost = 0.5;
 // which bounds the depth by kSahDepth + 32 < kBvhMaxDepth for any input.
 constexpr int kSahDepth = 64;
 
+// A box as six values that all shrink as it grows: lo, and hi negated (negation is exact), so
+// that three SSE2 minpd extend it.
+struct alignas(16) MinBox {
+  std::array<double, 6> v{kInfinity, kInfinity, kInfinity, kInfinity, kInfinity, kInfinity};
+
+  static MinBox of(const Bounds3& b) {
+    return {{b.lo.x, b.lo.y, b.lo.z, -b.hi.x, -b.hi.y, -b.hi.z}};
+  }
+  static MinBox of(const Vec3& p) { return {{p.x, p.y, p.z, -p.x, -p.y, -p.z}}; }
+
+  // `b < v ? b : v` keeps the current value on ties, as Bounds3::extend's std::min and
+  // std::max do, so that a pass gives the bits Bounds3::extend would; minpd(b, v) computes
+  // exactly that.
+  void extend(const MinBox& b) {
+#if defined(__SSE2__)
+    _mm_store_pd(&v[0], _mm_min_pd(_mm_load_pd(&b.v[0]), _mm_load_pd(&v[0])));
+    _mm_store_pd(&v[2], _mm_min_pd(_mm_load_pd(&b.v[2]), _mm_load_pd(&v[2])));
+    _mm_store_pd(&v[4], _mm_min_pd(_mm_load_pd(&b.v[4]), _mm_load_pd(&v[4])));
+#else
+    for (std::size_t i = 0; i < 6; ++i) v[i] = b.v[i] < v[i] ? b.v[i] : v[i];
+#endif
+  }
+  Bounds3 bounds() const { return {{v[0], v[1], v[2]}, {-v[3], -v[4], -v[5]}}; }
+  bool has_zero() const {
+    return std::any_of(v.begin(), v.end(), [](double x) { return x == 0; });
+  }
+};
+
 struct BuildPrimitive {
-  Bounds3 bounds;
+  MinBox box;
   Vec3 centroid;
   std::uint32_t index = 0;
 };
 
+// A node's bounds and the bounds of its primitives' centroids.
+struct NodeBoxes {
+  MinBox bounds, centroids;
+};
+
+struct Bin {
+  MinBox bounds;
+  std::uint32_t count = 0;
+};
+
 bool usable(const Bounds3& b) { return !b.empty() && is_finite(b.lo) && is_finite(b.hi); }
 
+// The bin of a centroid coordinate: the first bin for x <= 0 and NaN, the last for x >= the
+// last bin and infinity (from a subnormal extent).
+std::uint32_t bin_of(double centroid, double lo, double scale) {
+  const double x = (centroid - lo) * scale;
+#if defined(__SSE2__)
+  // maxsd and minsd give the same without the branches the compiler makes of the comparisons.
+  const __m128d above_zero = _mm_max_sd(_mm_set_sd(x), _mm_setzero_pd());
+  return static_cast<std::uint32_t>(_mm_cvttsd_si32(_mm_min_sd(above_zero, _mm_set_sd(kBins - 1))));
+#else
+  const double above_zero = x > 0 ? x : 0;
+  return static_cast<std::uint32_t>(above_zero < kBins - 1 ? above_zero : kBins - 1);
+#endif
+}
+
+// Builds the subtree of one range of the shared primitives into its own nodes and
+// primitive_order, which start at 0. While a thread is spare, it hands the second child of a
+// large node to a Builder of its own on that thread and appends that subtree after the first
+// child's, with its indices moved: the depth-first layout, and so the tree, is that of one
+// thread, whatever the thread count. A thread is spare again as soon as its subtree is built,
+// so that it may take a subtree of a larger side that is still being built.
 class Builder {
  public:
-  Builder(std::vector<BuildPrimitive> primitives, Bvh& bvh)
-      : primitives_(std::move(primitives)), bvh_(bvh) {}
+  Builder(std::vector<BuildPrimitive>& primitives, Bvh& bvh, std::atomic<int>& spare_threads)
+      : primitives_(primitives), bvh_(bvh), spare_threads_(spare_threads) {}
+
+  void build(std::size_t begin, std::size_t end, int depth, const NodeBoxes& boxes) {
+    bvh_.nodes.reserve(2 * (end - begin));
+    bvh_.primitive_order.reserve(end - begin);
+    build_node(begin, end, depth, boxes);
+  }
 
   void build() {
-    if (primitives_.empty()) return;
-    bvh_.nodes.reserve(2 * primitives_.size());
-    bvh_.primitive_order.reserve(primitives_.size());
-    build_node(0, primitives_.size(), 0);
+    if (!primitives_.empty()) build(0, primitives_.size(), 0, gather(0, primitives_.size()));
   }
 
  private:
-  std::uint32_t bin_of(const BuildPrimitive& p, int axis, double lo, double scale) const {
-    const double x = (p.centroid[axis] - lo) * scale;
-    if (!(x > 0)) return 0;
-    if (!(x < kBins - 1)) return kBins - 1;  // also an infinite scale from a subnormal extent
-    return static_cast<std::uint32_t>(x);
+  // Below this many primitives a subtree is not worth a thread (about a millisecond of work).
+  static constexpr std::size_t kMinParallelPrimitives = 4096;
+
+  // The boxes of [begin, end) by a pass, in order (Bounds3::extend's bits, zeros included).
+  NodeBoxes gather(std::size_t begin, std::size_t end) const {
+    NodeBoxes boxes;
+    for (std::size_t i = begin; i < end; ++i) {
+      boxes.bounds.extend(primitives_[i].box);
+      boxes.centroids.extend(MinBox::of(primitives_[i].centroid));
+    }
+    return boxes;
   }
 
   std::uint32_t make_leaf(std::size_t begin, std::size_t end, const Bounds3& bounds) {
@@ -72,91 +156,140 @@ class Builder {
     return mid;
   }
 
-  // Chooses a split of [begin, end) by the binned SAH over all three axes. Returns the split
-  // position, or `begin` when a leaf is cheaper (and allowed).
-  std::size_t sah_split(std::size_t begin, std::size_t end, const Bounds3& bounds,
-                        const Bounds3& centroids, int& axis) {
-    const std::size_t count = end - begin;
-    const double area = bounds.surface_area();
-    const Vec3 extent = centroids.diagonal();
-    if (!(area > 0)) {
-      // Flat or line-like primitives whose boxes have no area: split by count.
-      axis = max_axis(extent);
-      return median_split(begin, end, axis);
+  // Fills bins_ and occupied_ for every axis in one pass over [begin, end); the bins must be
+  // empty (clear_bins).
+  void bin(std::size_t begin, std::size_t end, const Vec3& lo, const Vec3& scale) {
+    const auto add = [this](int axis, std::uint32_t b, const BuildPrimitive& p) {
+      Bin& bin = bins_[static_cast<std::size_t>(axis)][b];
+      ++bin.count;
+      bin.bounds.extend(p.box);
+      occupied_[static_cast<std::size_t>(axis)] |= 1u << b;
+    };
+    for (const BuildPrimitive* p = primitives_.data() + begin; p != primitives_.data() + end; ++p) {
+      add(0, bin_of(p->centroid.x, lo.x, scale.x), *p);
+      add(1, bin_of(p->centroid.y, lo.y, scale.y), *p);
+      add(2, bin_of(p->centroid.z, lo.z, scale.z), *p);
     }
-    double best_cost = std::numeric_limits<double>::infinity();
-    int best_axis = -1, best_bin = 0;
+  }
+
+  // Empties the occupied bins (cheaper than all 48 for the many small nodes).
+  void clear_bins() {
+    for (std::size_t a = 0; a < 3; ++a) {
+      for (unsigned rest = occupied_[a]; rest != 0; rest &= rest - 1)
+        bins_[a][static_cast<std::size_t>(std::countr_zero(rest))] = Bin{};
+      occupied_[a] = 0;
+    }
+  }
+
+  // The cheapest split of the binned node by the SAH; axis -1 when no bin boundary separates
+  // primitives.
+  struct SahChoice {
+    double cost = std::numeric_limits<double>::infinity();
+    int axis = -1, bin = 0;
+  };
+  SahChoice cheapest_split(double area, const Vec3& extent) const {
+    SahChoice best;
     for (int a = 0; a < 3; ++a) {
       if (!(extent[a] > 0)) continue;
-      const double scale = kBins / extent[a];
-      std::array<Bounds3, kBins> bin_bounds;
-      std::array<std::size_t, kBins> bin_counts{};
-      for (std::size_t i = begin; i < end; ++i) {
-        const std::uint32_t b = bin_of(primitives_[i], a, centroids.lo[a], scale);
-        ++bin_counts[b];
-        bin_bounds[b].extend(primitives_[i].bounds);
-      }
-      // Sweep from the right to get the area and count of every right-hand side.
-      std::array<double, kBins> right_area{};
-      std::array<std::size_t, kBins> right_count{};
-      Bounds3 right;
-      std::size_t n_right = 0;
-      for (int b = kBins - 1; b > 0; --b) {
-        right.extend(bin_bounds[b]);
-        n_right += bin_counts[b];
-        right_area[b] = right.surface_area();
+      const auto& bins = bins_[static_cast<std::size_t>(a)];
+      const unsigned occupied = occupied_[static_cast<std::size_t>(a)];
+      // Only splits after an occupied bin are costed: after an empty one the sides, so the
+      // cost, are those of the split before it, and an equal cost never replaces the best.
+      // The right side of the split after bin b starts at the next occupied bin. Sweep from
+      // the right for the area and count of every right side (all but the lowest bin's).
+      std::array<double, kBins> right_area;
+      std::array<std::uint32_t, kBins> right_count;
+      MinBox right;
+      std::uint32_t n_right = 0;
+      for (unsigned rest = occupied; (rest & (rest - 1)) != 0;) {
+        const auto b = static_cast<std::size_t>(std::bit_width(rest) - 1);
+        rest ^= 1u << b;
+        right.extend(bins[b].bounds);
+        n_right += bins[b].count;
+        right_area[b] = right.bounds().surface_area();
         right_count[b] = n_right;
       }
-      Bounds3 left;
-      std::size_t n_left = 0;
-      for (int b = 0; b < kBins - 1; ++b) {  // split between bin b and bin b + 1
-        left.extend(bin_bounds[b]);
-        n_left += bin_counts[b];
-        if (n_left == 0 || right_count[b + 1] == 0) continue;
+      MinBox left;
+      std::uint32_t n_left = 0;
+      for (unsigned rest = occupied; (rest & (rest - 1)) != 0;) {  // all but the highest bin
+        const auto b = static_cast<std::size_t>(std::countr_zero(rest));
+        rest ^= 1u << b;
+        const auto next = static_cast<std::size_t>(std::countr_zero(rest));
+        left.extend(bins[b].bounds);
+        n_left += bins[b].count;
         const double cost =
-            kTraversalCost + (static_cast<double>(n_left) * left.surface_area() +
-                              static_cast<double>(right_count[b + 1]) * right_area[b + 1]) /
+            kTraversalCost + (static_cast<double>(n_left) * left.bounds().surface_area() +
+                              static_cast<double>(right_count[next]) * right_area[next]) /
                                  area;
-        if (cost < best_cost) best_cost = cost, best_axis = a, best_bin = b;
+        if (cost < best.cost) best.cost = cost, best.axis = a, best.bin = static_cast<int>(b);
       }
     }
-    if (best_axis < 0) {  // cannot happen with a non-degenerate centroid box; be safe
-      axis = max_axis(extent);
-      return median_split(begin, end, axis);
-    }
-    axis = best_axis;
-    if (count <= kMaxLeafSize && static_cast<double>(count) <= best_cost) return begin;
+    return best;
+  }
+
+  // Partitions [begin, end) at the chosen bin; returns the split position and the boxes of both
+  // sides: the bounds as the union of each side's bins, the centroid bounds gathered by the
+  // partition (which applies its predicate once per primitive), or both by a pass when a zero
+  // makes the union's sign depend on the order (see the top of the file).
+  std::size_t partition(std::size_t begin, std::size_t end, const SahChoice& choice,
+                        const Bounds3& centroids, const Vec3& scale, NodeBoxes& first,
+                        NodeBoxes& second) {
+    const int axis = choice.axis;
+    const auto last_first_bin = static_cast<std::uint32_t>(choice.bin);
     const double lo = centroids.lo[axis];
-    const double scale = kBins / extent[axis];
     const auto middle = std::partition(
         primitives_.begin() + static_cast<std::ptrdiff_t>(begin),
         primitives_.begin() + static_cast<std::ptrdiff_t>(end), [&](const BuildPrimitive& p) {
-          return bin_of(p, axis, lo, scale) <= static_cast<std::uint32_t>(best_bin);
+          const bool in_first = bin_of(p.centroid[axis], lo, scale[axis]) <= last_first_bin;
+          (in_first ? first : second).centroids.extend(MinBox::of(p.centroid));
+          return in_first;
         });
+    // Binning and partition use one bin_of, so each side holds the primitives counted in its
+    // bins, and neither is empty.
     const auto split = static_cast<std::size_t>(middle - primitives_.begin());
-    if (split == begin || split == end) return median_split(begin, end, axis);
+    const auto& bins = bins_[static_cast<std::size_t>(axis)];
+    for (unsigned rest = occupied_[static_cast<std::size_t>(axis)]; rest != 0; rest &= rest - 1) {
+      const auto b = static_cast<std::uint32_t>(std::countr_zero(rest));
+      (b <= last_first_bin ? first : second).bounds.extend(bins[b].bounds);
+    }
+    if (first.bounds.has_zero() || first.centroids.has_zero()) first = gather(begin, split);
+    if (second.bounds.has_zero() || second.centroids.has_zero()) second = gather(split, end);
     return split;
   }
 
-  std::uint32_t build_node(std::size_t begin, std::size_t end, int depth) {
-    Bounds3 bounds, centroids;
-    for (std::size_t i = begin; i < end; ++i) {
-      bounds.extend(primitives_[i].bounds);
-      centroids.extend(primitives_[i].centroid);
-    }
+  std::uint32_t build_node(std::size_t begin, std::size_t end, int depth, const NodeBoxes& boxes) {
+    const Bounds3 bounds = boxes.bounds.bounds();
+    const Bounds3 centroids = boxes.centroids.bounds();
+    const Vec3 extent = centroids.diagonal();
     const std::size_t count = end - begin;
     // All centroids equal: no split separates anything (pbrt makes a leaf too).
-    if (count == 1 || !(max_component(centroids.diagonal()) > 0))
-      return make_leaf(begin, end, bounds);
+    if (count == 1 || !(max_component(extent) > 0)) return make_leaf(begin, end, bounds);
 
-    int axis = 0;
+    int axis = max_axis(extent);
     std::size_t split = 0;
-    if (depth < kSahDepth) {
-      split = sah_split(begin, end, bounds, centroids, axis);
-      if (split == begin) return make_leaf(begin, end, bounds);
-    } else {
-      axis = max_axis(centroids.diagonal());
+    NodeBoxes first, second;
+    const double area = bounds.surface_area();
+    SahChoice choice;
+    // From depth kSahDepth on, and for flat or line-like primitives whose boxes have no area,
+    // the node is split by count.
+    if (depth < kSahDepth && area > 0) {
+      const Vec3 scale{extent.x > 0 ? kBins / extent.x : 0, extent.y > 0 ? kBins / extent.y : 0,
+                       extent.z > 0 ? kBins / extent.z : 0};
+      bin(begin, end, centroids.lo, scale);
+      choice = cheapest_split(area, extent);
+      const bool leaf =
+          choice.axis >= 0 && count <= kMaxLeafSize && static_cast<double>(count) <= choice.cost;
+      if (choice.axis >= 0 && !leaf) {
+        axis = choice.axis;
+        split = partition(begin, end, choice, centroids, scale, first, second);
+      }
+      clear_bins();
+      if (leaf) return make_leaf(begin, end, bounds);
+    }
+    if (choice.axis < 0) {
       split = median_split(begin, end, axis);
+      first = gather(begin, split);
+      second = gather(split, end);
     }
 
     const auto self = static_cast<std::uint32_t>(bvh_.nodes.size());
@@ -164,19 +297,61 @@ class Builder {
     node.bounds = bounds;
     node.split_axis = static_cast<std::uint8_t>(axis);
     bvh_.nodes.push_back(node);
-    build_node(begin, split, depth + 1);  // the first child is the next node
-    const std::uint32_t second = build_node(split, end, depth + 1);
-    bvh_.nodes[self].first_or_second_child = second;
+    if (end - split >= kMinParallelPrimitives && take_spare_thread()) {
+      // The two children's ranges are disjoint, so both builders may reorder theirs at once.
+      // A failure (std::bad_alloc on a hostile mesh) on either thread reaches the caller.
+      Bvh second_tree;
+      std::exception_ptr second_failure;
+      {
+        std::jthread second_builder([&] {
+          try {
+            Builder(primitives_, second_tree, spare_threads_).build(split, end, depth + 1, second);
+          } catch (...) {
+            second_failure = std::current_exception();
+          }
+          spare_threads_.fetch_add(1);
+        });
+        build_node(begin, split, depth + 1, first);  // the first child is the next node
+      }
+      if (second_failure) std::rethrow_exception(second_failure);
+      bvh_.nodes[self].first_or_second_child = append(second_tree);
+    } else {
+      build_node(begin, split, depth + 1, first);  // the first child is the next node
+      bvh_.nodes[self].first_or_second_child = build_node(split, end, depth + 1, second);
+    }
     return self;
   }
 
-  std::vector<BuildPrimitive> primitives_;
+  bool take_spare_thread() {
+    int spare = spare_threads_.load();
+    while (spare > 0 && !spare_threads_.compare_exchange_weak(spare, spare - 1)) {
+    }
+    return spare > 0;
+  }
+
+  // Appends a subtree built by another Builder; returns the index of its root.
+  std::uint32_t append(const Bvh& subtree) {
+    const auto node_base = static_cast<std::uint32_t>(bvh_.nodes.size());
+    const auto order_base = static_cast<std::uint32_t>(bvh_.primitive_order.size());
+    for (BvhNode node : subtree.nodes) {
+      node.first_or_second_child += node.count > 0 ? order_base : node_base;
+      bvh_.nodes.push_back(node);
+    }
+    bvh_.primitive_order.insert(bvh_.primitive_order.end(), subtree.primitive_order.begin(),
+                                subtree.primitive_order.end());
+    return node_base;
+  }
+
+  std::vector<BuildPrimitive>& primitives_;  // shared; each Builder reorders only its range
   Bvh& bvh_;
+  std::atomic<int>& spare_threads_;             // shared by all Builders of one tree
+  std::array<std::array<Bin, kBins>, 3> bins_;  // one node's at a time
+  std::array<unsigned, 3> occupied_{};          // bit b: bins_[axis][b] is not empty
 };
 
 }  // namespace
 
-Bvh build_bvh(std::span<const Bounds3> primitive_bounds, BvhMode mode) {
+Bvh build_bvh(std::span<const Bounds3> primitive_bounds, BvhMode mode, int threads) {
   Bvh bvh;
   if (primitive_bounds.empty()) return bvh;
   if (mode == BvhMode::None) {
@@ -195,9 +370,10 @@ Bvh build_bvh(std::span<const Bounds3> primitive_bounds, BvhMode mode) {
   for (std::size_t i = 0; i < primitive_bounds.size(); ++i) {
     const Bounds3& b = primitive_bounds[i];
     if (!usable(b)) continue;
-    primitives.push_back({b, b.centroid(), static_cast<std::uint32_t>(i)});
+    primitives.push_back({MinBox::of(b), b.centroid(), static_cast<std::uint32_t>(i)});
   }
-  Builder(std::move(primitives), bvh).build();
+  std::atomic<int> spare_threads = threads - 1;  // the caller's thread builds too
+  Builder(primitives, bvh, spare_threads).build();
   make_bvh_pairs(bvh);
   return bvh;
 }

@@ -36,7 +36,9 @@ struct Bvh {
   std::vector<BvhPair> pairs;  // from nodes (make_bvh_pairs); pairs[0] is the root's, if interior
 };
 
-Bvh build_bvh(std::span<const Bounds3> primitive_bounds, BvhMode mode);
+// `threads` (the caller's included) may build large subtrees at once; the tree is the same
+// for any count.
+Bvh build_bvh(std::span<const Bounds3> primitive_bounds, BvhMode mode, int threads = 1);
 // Fills bvh.pairs from bvh.nodes (build_bvh does; for hand-made trees).
 void make_bvh_pairs(Bvh& bvh);
 // Traversal: common/accel/bvh_traverse.h.

@@ -7,7 +7,7 @@
 
 namespace tessera {
 
-MeshAccel build_mesh_accel(const Mesh& mesh, BvhMode mode) {
+MeshAccel build_mesh_accel(const Mesh& mesh, BvhMode mode, int threads) {
   MeshAccel accel;
   accel.mesh = &mesh;
   std::vector<Bounds3> bounds(mesh.triangles.size());
@@ -21,7 +21,7 @@ MeshAccel build_mesh_accel(const Mesh& mesh, BvhMode mode) {
     // Never hit, so not worth a place in the tree (an empty box keeps it out).
     if (degenerate[i]) bounds[i] = Bounds3{};
   }
-  accel.bvh = build_bvh(bounds, mode);
+  accel.bvh = build_bvh(bounds, mode, threads);
   constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
   accel.leaf_corners.reserve(3 * accel.bvh.primitive_order.size());
   for (const std::uint32_t index : accel.bvh.primitive_order)

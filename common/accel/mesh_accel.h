@@ -19,6 +19,7 @@ struct MeshAccel {
   std::vector<Vec3> leaf_corners;
 };
 
-MeshAccel build_mesh_accel(const Mesh& mesh, BvhMode mode);
+// `threads` as for build_bvh.
+MeshAccel build_mesh_accel(const Mesh& mesh, BvhMode mode, int threads = 1);
 
 }  // namespace tessera

@@ -8,6 +8,7 @@
 #include <vector>
 
 #include "common/accel/bvh_traverse.h"
+#include "tests/accel/random_boxes.h"
 
 namespace tessera {
 namespace {
@@ -27,17 +28,6 @@ double box_hit(const Bounds3& b, const Ray& ray, double t_max) {
     t1 = std::min(t1, tf);
   }
   return t0 <= t1 && t0 < t_max ? t0 : kInfinity;
-}
-
-std::vector<Bounds3> random_boxes(std::mt19937_64& rng, int n, double world, double size) {
-  std::uniform_real_distribution<double> u(0, 1);
-  std::vector<Bounds3> boxes;
-  for (int i = 0; i < n; ++i) {
-    const Vec3 c{world * u(rng), world * u(rng), world * u(rng)};
-    const Vec3 h{size * u(rng), size * u(rng), size * u(rng)};
-    boxes.push_back({c - h, c + h});
-  }
-  return boxes;
 }
 
 Ray random_ray(std::mt19937_64& rng, double world) {
