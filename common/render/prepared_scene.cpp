@@ -221,14 +221,14 @@ Bvh build_scene_bvh(const std::vector<Bounds3>& bounds, const std::vector<bool>&
 
 }  // namespace
 
-PreparedScene::PreparedScene(const Scene& scene, BvhMode mode)
+PreparedScene::PreparedScene(const Scene& scene, BvhMode mode, int build_threads)
     : scene_(&scene),
       camera_(make_camera_frame(scene.camera)),
       effects_(scene_effects(scene)),
       unsupported_(unsupported_features(scene)) {
   meshes_.reserve(scene.meshes.size());
   for (const Mesh& mesh : scene.meshes)
-    meshes_.push_back(std::make_unique<MeshAccel>(build_mesh_accel(mesh, mode)));
+    meshes_.push_back(std::make_unique<MeshAccel>(build_mesh_accel(mesh, mode, build_threads)));
 
   // Boolean objects point at their children's instances: the vector must never reallocate
   // (showExtents adds up to 12 bars an object).

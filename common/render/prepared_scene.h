@@ -36,7 +36,8 @@ class PreparedScene {
   // Throws SceneError for what cannot be traced (degenerate camera, an image texture that
   // cannot be decoded). `scene` must outlive
   // the prepared scene (meshes are referenced, not copied).
-  PreparedScene(const Scene& scene, BvhMode mode);
+  // `build_threads` build the meshes' BVHs (the same trees for any count).
+  PreparedScene(const Scene& scene, BvhMode mode, int build_threads = 1);
   PreparedScene(Scene&& temporary, BvhMode mode) = delete;  // it would dangle
   PreparedScene(const PreparedScene&) = delete;
   PreparedScene& operator=(const PreparedScene&) = delete;

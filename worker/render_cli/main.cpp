@@ -2,6 +2,7 @@
 #include <cstdio>
 #include <exception>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "common/loaders/scene_loader.h"
@@ -31,7 +32,10 @@ int main(int argc, char** argv) {
         options.scene_path, budget,
         options.root.empty() ? std::nullopt : std::optional<std::filesystem::path>(options.root),
         options.camera);
-    const PreparedScene prepared(scene, options.settings.bvh);
+    // The BVH build uses the render's threads (all cores when --threads is 0).
+    const int threads = options.threads > 0 ? options.threads
+                                            : static_cast<int>(std::thread::hardware_concurrency());
+    const PreparedScene prepared(scene, options.settings.bvh, threads);
     if (!options.quiet) print_warnings(scene, prepared);
     if (options.debug_view != DebugView::None) {
       std::uint64_t largest = 0;

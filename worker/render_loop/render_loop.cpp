@@ -31,8 +31,9 @@ struct PreparedJob {
   std::unique_ptr<PreparedScene> prepared;
   std::string error;  // set when preparing failed
 
-  void prepare() {
-    std::call_once(prepare_once, [this] {
+  // `threads`: the render threads, which wait for the preparation anyway (the BVH build uses them).
+  void prepare(int threads) {
+    std::call_once(prepare_once, [this, threads] {
       try {
         MemorySource source(bundle->files);
         const std::optional<SceneFormat> format = scene_format_named(bundle->format);
@@ -44,7 +45,7 @@ struct PreparedJob {
             load_scene(source, bundle->main, *format, budget, spec.overrides.camera));
         if (cancelled) return;  // the job went while loading: skip building its BVH
         apply_overrides(*scene, spec.overrides);
-        prepared = std::make_unique<PreparedScene>(*scene, spec.settings.bvh);
+        prepared = std::make_unique<PreparedScene>(*scene, spec.settings.bvh, threads);
       } catch (const std::exception& e) {
         error = e.what();
       }
@@ -142,7 +143,7 @@ void RenderLoop::run() {
 
 void RenderLoop::render(const Task& task) {
   PreparedJob& job = *task.job;
-  job.prepare();
+  job.prepare(static_cast<int>(threads_.size()));
   if (job.cancelled) return;
   if (!job.prepared) {
     if (!job.failure_reported.exchange(true)) {
