@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <iterator>
 
 #include <malloc.h>
 
@@ -183,9 +184,12 @@ void Job::release_buffers() {
   if (state_ == JobState::Done) {
     // Moved, not copied: the io thread makes no image (Api::on_released).
     final_pixels_ = std::make_shared<const FrameBuffer>(std::move(frame_buffer_));
-    // Pages still polling get the last merges; later ones load the final image.
+    // Pages still polling get the last merges (moved, not copied: up to the log's bound of
+    // pixels); later ones load the final image.
     const std::size_t keep = tiles_next() - delta_first_;
-    std::deque<TileRecord> tail(tiles_.end() - static_cast<std::ptrdiff_t>(keep), tiles_.end());
+    std::deque<TileRecord> tail(
+        std::make_move_iterator(tiles_.end() - static_cast<std::ptrdiff_t>(keep)),
+        std::make_move_iterator(tiles_.end()));
     const std::size_t next = tiles_next();
     frame_buffer_ = FrameBuffer(0, 0);
     tiles_ = std::move(tail);
