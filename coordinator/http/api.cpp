@@ -538,8 +538,14 @@ void Api::on_released(Job& job) {
         Job::Encodings encodings;
         try {
           const Image image = snapshot.image();
-          for (const char* format : kFinalFormats)
-            encodings[format] = std::make_shared<const std::string>(encode_image(image, format));
+          for (const char* format : kFinalFormats) {
+            auto bytes = std::make_shared<const std::string>(encode_image(image, format));
+            encodings[format] = bytes;
+            // Requests for this format (the page's PNG) need not wait for the next one.
+            boost::asio::post(io_, [this, id, version, format, bytes] {
+              encoded({id, format}, version, bytes, true);
+            });
+          }
         } catch (const std::exception& e) {
           // Its frame buffer stays: later requests make and encode it again (job_image).
           spdlog::error("the final image of job {}: {}", id, e.what());
@@ -552,7 +558,7 @@ void Api::on_released(Job& job) {
             if (config_.persistence) config_.persistence->store_images(*done);
           }
           // The job keeps them now (one that could not store them failed: no image), not
-          // this cache.
+          // this cache; requests still waiting (for a format that failed) get a 404.
           const bool kept = done && !encodings.empty() && done->state() == JobState::Done;
           for (const char* format : kFinalFormats)
             encoded({id, format}, version, kept ? encodings.at(format) : nullptr, false);

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <functional>
 #include <future>
 #include <optional>
 #include <string>
@@ -61,14 +62,15 @@ struct ApiWithHeldPool : ::testing::Test {
       return std::function<void()>();
     });
   }
-  // Asks for the job's PNG; the answer is set once the Api responds (io.run... below).
-  void ask(const Job& job, std::optional<HttpResponse>& answer) {
-    HttpRequest request{http::verb::get, "/api/jobs/" + std::to_string(job.id) + "/image", 11};
+  // Asks for the job's image; `answer` is set once the Api responds (run_until).
+  void ask(const Job& job, std::optional<HttpResponse>& answer, const std::string& format) {
+    HttpRequest request{http::verb::get,
+                        "/api/jobs/" + std::to_string(job.id) + "/image?format=" + format, 11};
     api.handle(std::move(request), {}, [&answer](HttpResponse r) { answer = std::move(r); });
   }
-  void run_until(const std::optional<HttpResponse>& answer) {
+  void run_until(const std::function<bool()>& done) {
     const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(20);
-    while (!answer && std::chrono::steady_clock::now() < deadline)
+    while (!done() && std::chrono::steady_clock::now() < deadline)
       io.run_one_for(std::chrono::milliseconds(50));
   }
 };
@@ -77,8 +79,8 @@ TEST_F(ApiWithHeldPool, ARequestWhileTheFinalImageIsMadeGetsTheFinalImage) {
   Job& job = make_job();
   merge(job, 0);
   std::optional<HttpResponse> preview;
-  ask(job, preview);
-  run_until(preview);
+  ask(job, preview, "png");
+  run_until([&] { return preview.has_value(); });
   ASSERT_TRUE(preview);
   ASSERT_EQ(preview->result_int(), 200u);
 
@@ -86,22 +88,27 @@ TEST_F(ApiWithHeldPool, ARequestWhileTheFinalImageIsMadeGetsTheFinalImage) {
   const Image final_image = job.frame_buffer().resolve();
   hold_pool();
   job.finish(JobState::Done, "", Clock::now());  // its final image queued behind the held task
-  std::optional<HttpResponse> answer;
-  ask(job, answer);
+  std::optional<HttpResponse> answer, exr;
+  ask(job, answer, "png");
+  ask(job, exr, "exr");
   io.poll();
   EXPECT_FALSE(answer) << "answered before the final image was made: " << body_of(*answer);
+  EXPECT_FALSE(exr);
   EXPECT_TRUE(job.final_encoded().empty());
 
   release.set_value();
-  run_until(answer);
+  run_until([&] { return answer.has_value(); });
   ASSERT_TRUE(answer);
   ASSERT_EQ(answer->result_int(), 200u);
+  run_until([&] { return !job.final_encoded().empty(); });  // the EXR too, then kept
   ASSERT_EQ(job.final_encoded().count("png"), 1u);
   EXPECT_EQ(body_of(*answer), *job.final_encoded().at("png"));
   EXPECT_NE(body_of(*answer), body_of(*preview));
   EXPECT_EQ(std::string((*answer)[http::field::etag]),
             "\"" + std::to_string(job.id) + "-" + std::to_string(job.version()) + "-png\"");
   EXPECT_EQ(body_of(*answer), encode_image(final_image, "png"));
+  ASSERT_TRUE(exr);
+  EXPECT_EQ(body_of(*exr), encode_image(final_image, "exr"));
 }
 
 }  // namespace
