@@ -372,45 +372,53 @@ void Api::job_image(const HttpRequest& request, Job& job, const Query& query,
   auto waiter = [respond, reply](std::shared_ptr<const std::string> bytes, std::uint64_t version) {
     respond(reply(std::move(bytes), version));
   };
-  const bool encoding = !cached.waiting.empty();
+  // A done job's final image being made (on_released) is such a version too.
+  const bool encoding = cached.encoding;
   if (encoding && cached.version == job.version()) return cached.waiting.push_back(waiter);
-  // A new version: snapshot it here (a copy), encode it on the pool. Requests waiting for an
-  // older version's encoding get this newer one.
-  std::shared_ptr<const Image> snapshot =
-      job.final_image() ? job.final_image() : std::make_shared<const Image>(job.image());
+  // A new version: its frame buffer shared or copied here, its image made and encoded on the
+  // pool. Requests waiting for an older version's encoding get this newer one.
   const std::uint64_t version = job.version();
-  const bool queued = pool_.submit([this, key, version, snapshot] {
+  const bool queued = pool_.submit([this, key, version, snapshot = job.snapshot()] {
     std::shared_ptr<const std::string> bytes;
     try {
-      bytes = std::make_shared<const std::string>(encode_image(*snapshot, key.second));
+      bytes = std::make_shared<const std::string>(encode_image(snapshot.image(), key.second));
     } catch (const std::exception& e) {
       spdlog::error("encoding job {} as {}: {}", key.first, key.second, e.what());
     }
-    return [this, key, version, bytes] {
-      auto it = encoded_.find(key);
-      if (it == encoded_.end() || it->second.version != version) return;  // superseded
-      auto waiting = std::move(it->second.waiting);
-      it->second.waiting.clear();
-      if (bytes)
-        it->second.bytes = bytes;
-      else
-        encoded_.erase(it);
-      for (auto& w : waiting) w(bytes, version);
-    };
+    return [this, key, version, bytes] { encoded(key, version, bytes, true); };
   });
   if (!queued) {
     if (!encoding) encoded_.erase(key);
     throw busy();
   }
   cached.version = version;
+  cached.encoding = true;
   cached.bytes.reset();
   cached.waiting.push_back(waiter);
   std::erase_if(encoded_, [&](const auto& entry) {
-    return entry.second.waiting.empty() && !jobs_.find(entry.first.first);
+    return !entry.second.encoding && !jobs_.find(entry.first.first);
   });
 }
 
+void Api::encoded(const std::pair<std::int64_t, std::string>& key, std::uint64_t version,
+                  std::shared_ptr<const std::string> bytes, bool keep) {
+  auto it = encoded_.find(key);
+  if (it == encoded_.end() || it->second.version != version) return;  // superseded
+  auto waiting = std::move(it->second.waiting);
+  if (bytes && keep) {
+    it->second.encoding = false;
+    it->second.bytes = bytes;
+    it->second.waiting.clear();
+  } else {
+    encoded_.erase(it);
+  }
+  for (auto& w : waiting) w(bytes, version);
+}
+
 namespace {
+
+// A done job's image is encoded in both once (on_released) and kept with the job.
+constexpr const char* kFinalFormats[] = {"png", "exr"};
 
 // The longest a /tiles request may be held (?wait=): well under the HTTP read timeout.
 constexpr long long kMaxTilesWaitMs = 20000;
@@ -496,7 +504,7 @@ void Api::answer_tile_waiters(std::int64_t job_id) {
 
 void Api::on_released(Job& job) {
   const std::int64_t id = job.id;
-  if (!job.final_image()) {
+  if (job.state() != JobState::Done) {
     // Cancelled or failed: its cached encodings go, and requests waiting for one get a 404.
     for (auto it = encoded_.begin(); it != encoded_.end();) {
       if (it->first.first != id) {
@@ -515,19 +523,45 @@ void Api::on_released(Job& job) {
   keep->async_wait([this, id, keep](boost::system::error_code ec) {
     if (Job* done = jobs_.find(id); done && !ec) done->free_buffers();
   });
-  // Encoded on the pool even when it is full: the service owes every done job its image.
+  // Made from the shared frame buffer and encoded on the pool, even when it is full: the
+  // service owes every done job its image. Requests for it meanwhile wait for this encoding
+  // (never served an older version's), as do those already waiting for a preview.
+  const std::uint64_t version = job.version();
+  for (const char* format : kFinalFormats) {
+    Encoding& final_encoding = encoded_[{id, format}];
+    final_encoding.version = version;
+    final_encoding.encoding = true;
+    final_encoding.bytes.reset();
+  }
   pool_.submit(
-      [this, id, image = job.final_image()] {
-        auto png = std::make_shared<const std::string>(encode_image(*image, "png"));
-        auto exr = std::make_shared<const std::string>(encode_image(*image, "exr"));
-        return std::function<void()>([this, id, png, exr] {
-          if (Job* done = jobs_.find(id)) {
-            done->keep_encodings({{"png", png}, {"exr", exr}});
+      [this, id, version, snapshot = job.snapshot()] {
+        Job::Encodings encodings;
+        try {
+          const Image image = snapshot.image();
+          for (const char* format : kFinalFormats) {
+            auto bytes = std::make_shared<const std::string>(encode_image(image, format));
+            encodings[format] = bytes;
+            // Requests for this format (the page's PNG) need not wait for the next one.
+            boost::asio::post(io_, [this, id, version, format, bytes] {
+              encoded({id, format}, version, bytes, true);
+            });
+          }
+        } catch (const std::exception& e) {
+          // Its frame buffer stays: later requests make and encode it again (job_image).
+          spdlog::error("the final image of job {}: {}", id, e.what());
+          encodings.clear();
+        }
+        return std::function<void()>([this, id, version, encodings] {
+          Job* done = jobs_.find(id);
+          if (done && !encodings.empty()) {
+            done->keep_encodings(encodings);
             if (config_.persistence) config_.persistence->store_images(*done);
           }
-          std::erase_if(encoded_, [id](const auto& entry) {
-            return entry.first.first == id && entry.second.waiting.empty();
-          });
+          // The job keeps them now (one that could not store them failed: no image), not
+          // this cache; requests still waiting (for a format that failed) get a 404.
+          const bool kept = done && !encodings.empty() && done->state() == JobState::Done;
+          for (const char* format : kFinalFormats)
+            encoded({id, format}, version, kept ? encodings.at(format) : nullptr, false);
           malloc_trim(0);
         });
       },

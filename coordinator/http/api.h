@@ -48,7 +48,8 @@ class Api {
   void handle(HttpRequest request, const boost::asio::ip::tcp::endpoint& peer, HttpRespond respond);
   // Sets the job's on_released and on_changed to the two below; every job, restored ones too.
   void watch(Job& job);
-  // A job has freed its buffers: a done one's final image is encoded on the pool (and stored).
+  // A job has freed its buffers: a done one's final image is made and encoded on the pool (and
+  // stored); until then requests for its image wait for that encoding.
   void on_released(Job& job);
   // A job merged a unit or finished: the long polls waiting for its tiles are answered (posted,
   // so that the merge's other bookkeeping comes first).
@@ -74,6 +75,10 @@ class Api {
   // The time a job would take, without submitting it (the page asks as settings change).
   void predict(HttpRequest& request, const Query& query, HttpRespond& respond);
   void job_image(const HttpRequest& request, Job& job, const Query& query, HttpRespond& respond);
+  // Answers the requests waiting for `key`'s encoding of `version` (a superseded one answers
+  // none) with `bytes`, null when it failed; keeps the bytes for the next requests or not.
+  void encoded(const std::pair<std::int64_t, std::string>& key, std::uint64_t version,
+               std::shared_ptr<const std::string> bytes, bool keep);
   // GET /api/jobs/{id}/tiles?since=N[&wait=MS]: answered at once when units merged since the
   // N-th (or the job is finished), else held until one merges or MS pass.
   void job_tiles(const HttpRequest& request, Job& job, const Query& query, HttpRespond& respond);
@@ -90,9 +95,11 @@ class Api {
   ServiceMetrics& metrics_;
   ApiConfig config_;
   // The last encoding per job and format (polling pages ask for the same version many
-  // times); requests for a version being encoded wait for that one encoding.
+  // times); requests for a version being encoded wait for that one encoding, a done job's
+  // final one included.
   struct Encoding {
     std::uint64_t version = 0;
+    bool encoding = false;                     // on the pool now
     std::shared_ptr<const std::string> bytes;  // null while encoding
     // Each gets the bytes (null when the image is gone) and the version they show.
     std::vector<std::function<void(std::shared_ptr<const std::string>, std::uint64_t)>> waiting;

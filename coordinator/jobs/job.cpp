@@ -2,10 +2,9 @@
 
 #include <algorithm>
 #include <chrono>
+#include <iterator>
 
 #include <malloc.h>
-
-#include "common/render/post_normalization.h"
 
 namespace tessera {
 
@@ -137,7 +136,7 @@ void Job::finish(JobState state, std::string error, Clock::time_point now) {
 
 void Job::keep_encodings(Encodings encoded) {
   final_encoded_ = std::move(encoded);
-  final_image_.reset();
+  final_pixels_.reset();
 }
 
 void Job::fail_unstored(std::string error) {
@@ -173,38 +172,24 @@ void Job::trim_delta_log(std::size_t max_bytes) {
   }
 }
 
-Image Job::image() const {
-  Image image = state_ == JobState::Done ? frame_buffer_.resolve() : known_so_far();
-  // Post-normalization needs the whole image (§4.6): applied here, never to units.
+ImageSnapshot Job::snapshot() const {
   const RenderSettings& s = spec.settings;
-  if (s.normalize_colors) post_normalize(image, s.normalize_brightness);
-  return image;
-}
-
-Image Job::known_so_far() const {
-  const int w = frame_buffer_.width(), h = frame_buffer_.height();
-  Image image(w, h);
-  for (int y = 0; y < h; ++y)
-    for (int x = 0; x < w; ++x) {
-      // The finest anchor merged over the pixel: the pixel itself once it has a pass, else
-      // the anchor of its block at each coarser level (levels overlap across workers).
-      for (int level = std::max(plan.levels, 1); level >= 1; --level) {
-        const int side = plan.levels > 0 ? block_side(plan.levels, level) : 1;
-        const PixelCoord a = block_of({x, y}, side);
-        if (frame_buffer_.passes_at(a.x, a.y) == 0) continue;
-        image.set(x, y, frame_buffer_.mean(a.x, a.y));
-        break;
-      }
-    }
-  return image;
+  ImageSnapshot snapshot{final_pixels_, state_ == JobState::Done, plan.levels, s.normalize_colors,
+                         s.normalize_brightness};
+  if (!snapshot.pixels) snapshot.pixels = std::make_shared<const FrameBuffer>(frame_buffer_);
+  return snapshot;
 }
 
 void Job::release_buffers() {
   if (state_ == JobState::Done) {
-    final_image_ = std::make_shared<const Image>(image());
-    // Pages still polling get the last merges; later ones load the final image.
+    // Moved, not copied: the io thread makes no image (Api::on_released).
+    final_pixels_ = std::make_shared<const FrameBuffer>(std::move(frame_buffer_));
+    // Pages still polling get the last merges (moved, not copied: up to the log's bound of
+    // pixels); later ones load the final image.
     const std::size_t keep = tiles_next() - delta_first_;
-    std::deque<TileRecord> tail(tiles_.end() - static_cast<std::ptrdiff_t>(keep), tiles_.end());
+    std::deque<TileRecord> tail(
+        std::make_move_iterator(tiles_.end() - static_cast<std::ptrdiff_t>(keep)),
+        std::make_move_iterator(tiles_.end()));
     const std::size_t next = tiles_next();
     frame_buffer_ = FrameBuffer(0, 0);
     tiles_ = std::move(tail);

@@ -25,6 +25,7 @@
 #include "common/protocol/bundle.h"
 #include "common/protocol/job_spec.h"
 #include "common/render/frame_buffer.h"
+#include "coordinator/jobs/image_snapshot.h"
 
 namespace tessera {
 
@@ -166,28 +167,28 @@ class Job {
   const FrameBuffer& frame_buffer() const { return frame_buffer_; }
   // Bumps with every merged unit and when the job ends: what its image depends on (ETags).
   std::uint64_t version() const { return version_; }
-  // A done job's final image until the coordinator has encoded it (release_buffers).
-  const std::shared_ptr<const Image>& final_image() const { return final_image_; }
   const Encodings& final_encoded() const { return final_encoded_; }
 
-  // The final image once done (bit-identical to tessera-render), else what is known so far:
-  // each pixel shows the finest anchor merged over it (area previews are only in the tile
-  // records); post-normalized when the settings ask for it. Only before release_buffers.
-  Image image() const;
+  // What the job's image is made of, for an intake thread to make it (ImageSnapshot::image):
+  // the final image once done (bit-identical to tessera-render), else what is known so far;
+  // post-normalized when the settings ask for it. On the io thread this costs no pass over the
+  // pixels: a done job's frame buffer is shared until its final image is encoded
+  // (keep_encodings), a running job's is copied (14 bytes a pixel).
+  ImageSnapshot snapshot() const;
   double elapsed_seconds(Clock::time_point now) const;
   std::optional<double> eta_seconds(Clock::time_point now) const;
   // The first stage not finished: the level or pass being refined now.
   int current_stage() const;
 
  private:
-  // Once the state is final (finish): keeps the final image of a done job and the tile records
+  // Once the state is final (finish): keeps a done job's frame buffer, shared, for its final
+  // image (made and encoded off the io thread, Api::on_released), and the tile records
   // that still have pixels (for pages catching up with the last merges; the coordinator frees
-  // them a little later with free_buffers), frees the frame buffer and the rest, and returns
-  // the memory to the system (malloc_trim).
+  // them a little later with free_buffers); frees the rest and returns the memory to the
+  // system (malloc_trim).
   void release_buffers();
   // Drops the pixels of the oldest tile records until those kept hold at most max_bytes.
   void trim_delta_log(std::size_t max_bytes);
-  Image known_so_far() const;
 
   std::vector<std::string> warnings_;
   bool ran_alone_ = true;  // no other job ran beside it
@@ -202,13 +203,13 @@ class Job {
   std::deque<TileRecord> tiles_;
   std::size_t tiles_first_ = 0, delta_first_ = 0, delta_bytes_ = 0;
   // 14 bytes a pixel: the whole of a running job's memory per pixel. What the page shows is
-  // painted by the page itself from the tile records; image() derives it when asked.
+  // painted by the page itself from the tile records; snapshot() derives it when asked.
   FrameBuffer frame_buffer_;
   std::uint64_t version_ = 0;
   // Once finished the buffers above are freed (release_buffers): a done job keeps only its
-  // final image, as pixels until the coordinator has encoded it, then only encoded; a
-  // cancelled or failed job keeps no image. So memory is bounded by the running jobs.
-  std::shared_ptr<const Image> final_image_;
+  // final image, as its frame buffer until the coordinator has encoded it, then only encoded;
+  // a cancelled or failed job keeps no image. So memory is bounded by the running jobs.
+  std::shared_ptr<const FrameBuffer> final_pixels_;
   Encodings final_encoded_;
 };
 

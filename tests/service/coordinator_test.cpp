@@ -315,12 +315,13 @@ TEST(JobMerge, CoarseBlocksShowTheirAnchorUntilFinerLevelsArrive) {
   Job job = make_job(5, 3, 1);  // levels of side 4, 2, 1
   job.record_dispatch(0, Clock::now());
   job.apply_result(0, values_for(job, 0), RenderStats{});
-  EXPECT_EQ(job.image().get(3, 2).r, 0.0f);  // block of anchor (0, 0)
-  EXPECT_EQ(job.image().get(4, 1).r, 4.0f);  // block of anchor (4, 0)
+  const Image first = job.snapshot().image();
+  EXPECT_EQ(first.get(3, 2).r, 0.0f);  // block of anchor (0, 0)
+  EXPECT_EQ(first.get(4, 1).r, 4.0f);  // block of anchor (4, 0)
   // Finer results win regardless of arrival order.
   for (int u = static_cast<int>(job.plan.units.size()) - 1; u >= 1; --u)
     job.apply_result(u, values_for(job, u), RenderStats{});
-  const Image shown = job.image();
+  const Image shown = job.snapshot().image();
   for (int y = 0; y < 3; ++y)
     for (int x = 0; x < 5; ++x) EXPECT_EQ(shown.get(x, y).r, x + 100.0 * y) << x << "," << y;
   EXPECT_EQ(job.done_cost(), job.plan.total_cost);
@@ -330,10 +331,11 @@ TEST(JobMerge, FinalImageIsTheFrameBufferMean) {
   Job job = make_job(6, 4, 3);
   for (int u = 0; u < static_cast<int>(job.plan.units.size()); ++u)
     job.apply_result(u, values_for(job, u), RenderStats{});
-  const Image shown = job.image();  // what is shown once every unit merged
+  const Image shown = job.snapshot().image();  // what is shown once every unit merged
   job.finish(JobState::Done, "", Clock::now());
-  ASSERT_TRUE(job.final_image());
-  const Image& final_image = *job.final_image();
+  const ImageSnapshot final_snapshot = job.snapshot();
+  ASSERT_TRUE(final_snapshot.final);
+  const Image final_image = final_snapshot.image();
   // Pass p returned x + 100 y + 0.25 p + c for channel c: the mean of passes 0..2 adds 0.25.
   for (int y = 0; y < 4; ++y)
     for (int x = 0; x < 6; ++x) {
@@ -361,9 +363,15 @@ TEST(JobMemory, ADoneJobKeepsOnlyItsFinalImage) {
   job.on_released = [&](Job&) { ++released; };
   job.finish(JobState::Done, "", Clock::now());
   expect_buffers_freed(job);
-  ASSERT_TRUE(job.final_image());
-  EXPECT_EQ(*job.final_image(), final_image);
+  // The frame buffer moved, not copied, for the final image to be made off the io thread...
+  const ImageSnapshot snapshot = job.snapshot();
+  EXPECT_TRUE(snapshot.final);
+  EXPECT_EQ(job.snapshot().pixels, snapshot.pixels);
+  EXPECT_EQ(snapshot.image(), final_image);
   EXPECT_EQ(released, 1);
+  // ... and freed once it is encoded.
+  job.keep_encodings({{"png", std::make_shared<const std::string>("png bytes")}});
+  EXPECT_EQ(snapshot.pixels.use_count(), 1);
 }
 
 TEST(JobMemory, CancellingThroughTheSchedulerFreesEverything) {
@@ -380,7 +388,7 @@ TEST(JobMemory, CancellingThroughTheSchedulerFreesEverything) {
   EXPECT_TRUE(scheduler.cancel(job->id));
   EXPECT_EQ(job->state(), JobState::Cancelled);
   expect_buffers_freed(*job);
-  EXPECT_FALSE(job->final_image());
+  EXPECT_EQ(job->snapshot().pixels->width(), 0);
   EXPECT_TRUE(job->tiles().empty());
   EXPECT_EQ(store.unfinished_of("10.0.0.7"), 0);
 }

@@ -107,7 +107,7 @@ std::vector<float> values_for(const Job& job, int unit) {
 }
 
 void expect_shows_the_image(const Layers& layers, const Job& job) {
-  const Image image = job.image();
+  const Image image = job.snapshot().image();
   for (int y = 0; y < image.height; ++y)
     for (int x = 0; x < image.width; ++x) {
       const Rgb c = image.get(x, y);
