@@ -11,8 +11,8 @@ namespace tessera {
 FrameBuffer::FrameBuffer(int width, int height)
     : width_(width),
       height_(height),
-      sums_(static_cast<std::size_t>(width) * height * 3, 0.0f),
-      counts_(static_cast<std::size_t>(width) * height, 0) {}
+      sums_(static_cast<std::size_t>(width) * height * 3),
+      counts_(static_cast<std::size_t>(width) * height) {}
 
 void FrameBuffer::throw_full() {
   throw std::length_error("a pixel of the frame buffer has the most passes it can count");
