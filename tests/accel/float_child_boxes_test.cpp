@@ -18,6 +18,8 @@
 #include <string>
 #include <vector>
 
+#include "tests/accel/edge_case_rays.h"
+
 namespace tessera {
 namespace {
 
@@ -151,18 +153,10 @@ TEST(FloatChildBoxes, EdgeCases) {
   const Bounds3 infinite{{-kInfinity, -kInfinity, -kInfinity}, {kInfinity, kInfinity, kInfinity}};
   const Bounds3 huge{{-1e300, -1e300, -1e300}, {1e300, 1e300, 1e300}};
   const Bounds3 tiny{{1e-40, 1e-40, 1e-40}, {2e-40, 2e-40, 2e-40}};
-  const std::vector<Ray> rays = {
-      {{0.5, 0.5, -1}, {0, 0, 1}},     // along z, zero x and y components
-      {{0.5, 0.5, -1}, {-0.0, 0, 1}},  // negative zero
-      {{0, 0.5, -1}, {0, 0, 1}},       // on the x = 0 plane of the box: NaN slab
-      {{1, 1, 1}, {-1, -1, -1}},       // from a corner
-      {{2, 2, 2}, {1, 1, 1}},          // away
-      {{0.5, 0.5, 0.5}, {1e-300, 0, 0}},
-      {{0.5, 0.5, 0.5}, {kInfinity, 1, 1}},
-      {{0, 0, 0}, {1, 1, 1}},  // through the tiny box near the origin
-      {{1e-40, 1e-40, 1e-40}, {1e-30, 1e-30, 1e-30}},
-      {{-1e5, 0.5, 0.5}, {1, 0, 0}},
-  };
+  std::vector<Ray> rays = edge_case_rays();
+  rays.push_back({{0, 0, 0}, {1, 1, 1}});  // through the tiny box near the origin
+  rays.push_back({{1e-40, 1e-40, 1e-40}, {1e-30, 1e-30, 1e-30}});
+  rays.push_back({{-1e5, 0.5, 0.5}, {1, 0, 0}});
   const std::vector<Bounds3> all = {unit, flat, point, infinite, huge, tiny};
   Counts counts;
   for (const Ray& ray : rays)
