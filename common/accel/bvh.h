@@ -42,9 +42,10 @@ struct BvhPair {
 // that one step tests four boxes with SSE and the node fills two cache lines exactly.
 struct alignas(64) BvhWideNode {
   FloatChildBoxes boxes = empty_float_child_boxes();
-  std::uint32_t child[4] = {0, 0, 0,
-                            0};  // wide index of an interior child; first primitive of a leaf
-  std::uint32_t count[4] = {0, 0, 0, 0};  // primitives of a leaf child; 0 for an interior one
+  // Per child: its index into Bvh::wide if interior, else its leaf's first primitive ...
+  std::uint32_t child[4] = {0, 0, 0, 0};
+  // ... and its leaf's primitive count, 0 for an interior child.
+  std::uint32_t count[4] = {0, 0, 0, 0};
 };
 static_assert(sizeof(BvhWideNode) == 128);
 
