@@ -22,6 +22,8 @@
 #include <exception>
 #include <limits>
 #include <thread>
+#include <utility>
+#include <vector>
 
 #if defined(__SSE2__)
 #include <emmintrin.h>
@@ -351,7 +353,7 @@ class Builder {
 
 }  // namespace
 
-Bvh build_bvh(std::span<const Bounds3> primitive_bounds, BvhMode mode, int threads) {
+Bvh build_bvh_nodes(std::span<const Bounds3> primitive_bounds, BvhMode mode, int threads) {
   Bvh bvh;
   if (primitive_bounds.empty()) return bvh;
   if (mode == BvhMode::None) {
@@ -374,6 +376,11 @@ Bvh build_bvh(std::span<const Bounds3> primitive_bounds, BvhMode mode, int threa
   }
   std::atomic<int> spare_threads = threads - 1;  // the caller's thread builds too
   Builder(primitives, bvh, spare_threads).build();
+  return bvh;
+}
+
+Bvh build_bvh(std::span<const Bounds3> primitive_bounds, BvhMode mode, int threads) {
+  Bvh bvh = build_bvh_nodes(primitive_bounds, mode, threads);
   make_bvh_pairs(bvh);
   return bvh;
 }
@@ -396,6 +403,49 @@ void make_bvh_pairs(Bvh& bvh) {
       pair.count[c] = child.count;
     }
     bvh.pairs.push_back(pair);
+  }
+}
+
+void make_bvh_wide(Bvh& bvh) {
+  bvh.wide.clear();
+  if (bvh.nodes.empty() || bvh.nodes[0].count > 0) return;
+  const auto second_child = [&](std::size_t n) { return bvh.nodes[n].first_or_second_child; };
+  // Wide nodes are made in the order they are reached (the root first); `pending` holds a
+  // wide node still to fill and the binary node it stands for.
+  std::vector<std::pair<std::uint32_t, std::size_t>> pending = {{0, 0}};
+  bvh.wide.emplace_back();
+  while (!pending.empty()) {
+    const auto [wide_index, binary] = pending.back();
+    pending.pop_back();
+    std::size_t children[4] = {binary + 1, second_child(binary), 0, 0};
+    int n = 2;
+    while (n < 4) {
+      int widest = -1;
+      double widest_area = -1;
+      for (int c = 0; c < n; ++c) {
+        const BvhNode& child = bvh.nodes[children[c]];
+        if (child.count == 0 && child.bounds.surface_area() > widest_area)
+          widest = c, widest_area = child.bounds.surface_area();
+      }
+      if (widest < 0) break;
+      const std::size_t opened = children[widest];
+      children[widest] = opened + 1;
+      children[n++] = second_child(opened);
+    }
+    BvhWideNode node;
+    for (int c = 0; c < n; ++c) {
+      const BvhNode& child = bvh.nodes[children[c]];
+      set_float_child_box(node.boxes, c, child.bounds);
+      node.count[c] = child.count;
+      if (child.count > 0) {
+        node.child[c] = child.first_or_second_child;
+      } else {
+        node.child[c] = static_cast<std::uint32_t>(bvh.wide.size());
+        pending.emplace_back(node.child[c], children[c]);
+        bvh.wide.emplace_back();
+      }
+    }
+    bvh.wide[wide_index] = node;
   }
 }
 

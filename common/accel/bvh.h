@@ -1,6 +1,12 @@
 // A bounding volume hierarchy over anything with bounds, built with the surface area heuristic
 // (binned, as in pbrt-v3 §4.3) or, for comparison, not at all (BvhMode::None: one leaf holding
-// every primitive, the seeds' "acceleration off").
+// every primitive, the seeds' "acceleration off"). The tree is built binary in double; the scene
+// BVH is traversed in that form, in double (BvhPair, bvh_traverse.h), a mesh's as a 4-wide tree
+// in float (BvhWideNode, wide_bvh_traverse.h; conservative, see float_child_boxes.h). Float
+// boxes contain a ray that leaves a surface more often than double ones (its origin is a few
+// rounding errors outside the surface's box in double, inside it in float): that costs nothing
+// inside a mesh, whose boxes the ray starts in anyway, but made every secondary ray re-test
+// the object it leaves in the scene BVH (docs/PERFORMANCE.md).
 #pragma once
 
 #include <cstdint>
@@ -8,6 +14,7 @@
 #include <vector>
 
 #include "common/accel/child_boxes.h"
+#include "common/accel/float_child_boxes.h"
 #include "common/math/ray.h"
 #include "common/settings/bvh_mode.h"
 
@@ -30,17 +37,40 @@ struct BvhPair {
   std::uint32_t count[2] = {0, 0};  // primitives of a leaf child; 0 for an interior child
 };
 
+// The mesh BVH's form: the binary tree collapsed into nodes of up to four children
+// (make_bvh_wide), their boxes side by side in float, rounded outward (float_child_boxes.h), so
+// that one step tests four boxes with SSE and the node fills two cache lines exactly.
+struct alignas(64) BvhWideNode {
+  FloatChildBoxes boxes = empty_float_child_boxes();
+  // Per child: its index into Bvh::wide if interior, else its leaf's first primitive ...
+  std::uint32_t child[4] = {0, 0, 0, 0};
+  // ... and its leaf's primitive count, 0 for an interior child.
+  std::uint32_t count[4] = {0, 0, 0, 0};
+};
+static_assert(sizeof(BvhWideNode) == 128);
+
+// The build keeps trees shallower than this (bvh.cpp), so the traversals' fixed stacks cannot
+// overflow.
+inline constexpr int kBvhMaxDepth = 128;
+
 struct Bvh {
   std::vector<BvhNode> nodes;                  // depth-first; nodes[0] is the root when non-empty
   std::vector<std::uint32_t> primitive_order;  // leaf ranges index into this
-  std::vector<BvhPair> pairs;  // from nodes (make_bvh_pairs); pairs[0] is the root's, if interior
+  // The form a traversal reads, made from nodes; [0] is the root's, if interior. Either one:
+  std::vector<BvhPair> pairs;     // make_bvh_pairs (build_bvh), for bvh_traverse.h
+  std::vector<BvhWideNode> wide;  // make_bvh_wide, for wide_bvh_traverse.h
 };
 
-// `threads` (the caller's included) may build large subtrees at once; the tree is the same
-// for any count.
+// The binary tree (nodes and primitive_order), without a traversal form. `threads` (the
+// caller's included) may build large subtrees at once; the tree is the same for any count.
+Bvh build_bvh_nodes(std::span<const Bounds3> primitive_bounds, BvhMode mode, int threads = 1);
+// build_bvh_nodes and make_bvh_pairs.
 Bvh build_bvh(std::span<const Bounds3> primitive_bounds, BvhMode mode, int threads = 1);
 // Fills bvh.pairs from bvh.nodes (build_bvh does; for hand-made trees).
 void make_bvh_pairs(Bvh& bvh);
-// Traversal: common/accel/bvh_traverse.h.
+// Fills bvh.wide from bvh.nodes: each interior node takes the children of its largest-area
+// interior children until it has four (Embree's and pbrt-v4's collapse of a binary SAH tree).
+void make_bvh_wide(Bvh& bvh);
+// Traversals: common/accel/bvh_traverse.h, common/accel/wide_bvh_traverse.h.
 
 }  // namespace tessera

@@ -10,9 +10,6 @@
 
 namespace tessera {
 
-// The build keeps trees shallower than this (bvh.cpp), so the fixed stack cannot overflow.
-inline constexpr int kBvhMaxDepth = 128;
-
 // Visits the leaves whose boxes the ray [0, t_max] enters, the nearer child's first:
 // `visit_leaf(first, count, t_max)` gets the leaf's range [first, first + count) of
 // Bvh::primitive_order and returns the possibly shrunk t_max (closest hit) or a negative value to

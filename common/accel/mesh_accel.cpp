@@ -21,7 +21,8 @@ MeshAccel build_mesh_accel(const Mesh& mesh, BvhMode mode, int threads) {
     // Never hit, so not worth a place in the tree (an empty box keeps it out).
     if (degenerate[i]) bounds[i] = Bounds3{};
   }
-  accel.bvh = build_bvh(bounds, mode, threads);
+  accel.bvh = build_bvh_nodes(bounds, mode, threads);
+  make_bvh_wide(accel.bvh);
   constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
   accel.leaf_corners.reserve(3 * accel.bvh.primitive_order.size());
   for (const std::uint32_t index : accel.bvh.primitive_order)

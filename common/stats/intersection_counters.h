@@ -10,7 +10,7 @@ namespace tessera {
 struct IntersectionCounters {
   std::uint64_t shape_tests = 0;     // object-level intersection routine calls
   std::uint64_t triangle_tests = 0;  // ray/triangle tests inside meshes
-  std::uint64_t bvh_nodes = 0;       // BVH nodes visited (scene and mesh hierarchies)
+  std::uint64_t bvh_nodes = 0;       // BVH boxes tested (scene and mesh hierarchies)
 };
 
 }  // namespace tessera

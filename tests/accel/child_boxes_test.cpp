@@ -11,6 +11,8 @@
 #include <random>
 #include <vector>
 
+#include "tests/accel/edge_case_rays.h"
+
 namespace tessera {
 namespace {
 
@@ -65,17 +67,8 @@ TEST(ChildBoxes, MatchTheScalarSlabTestOnEdgeCases) {
   const Bounds3 flat{{0, 0, 0.5}, {1, 1, 0.5}};
   const Bounds3 empty;
   const Bounds3 infinite{{-kInfinity, -kInfinity, -kInfinity}, {kInfinity, kInfinity, kInfinity}};
-  const std::vector<Ray> rays = {
-      {{0.5, 0.5, -1}, {0, 0, 1}},     // along z, zero x and y components
-      {{0.5, 0.5, -1}, {-0.0, 0, 1}},  // negative zero
-      {{0, 0.5, -1}, {0, 0, 1}},       // on the x = 0 plane of the box: NaN slab
-      {{1, 1, 1}, {-1, -1, -1}},       // from a corner
-      {{2, 2, 2}, {1, 1, 1}},          // away
-      {{0.5, 0.5, 0.5}, {1e-300, 0, 0}},
-      {{0.5, 0.5, 0.5}, {kInfinity, 1, 1}},
-  };
   const Bounds3 boxes[] = {unit, flat, empty, infinite};
-  for (const Ray& ray : rays)
+  for (const Ray& ray : edge_case_rays())
     for (const Bounds3& a : boxes)
       for (const Bounds3& b : boxes)
         for (const double t_max : {kInfinity, 0.25, 0.0}) {

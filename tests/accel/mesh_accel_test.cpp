@@ -78,6 +78,72 @@ TEST(MeshAccel, SahAndNoneMatchBruteForceOnRandomTriangles) {
             (none_counters.bvh_nodes + none_counters.triangle_tests) / 10);
 }
 
+// The float traversal prunes conservatively: the same nearest hits (and occlusion) as testing
+// every triangle far from the origin (where float's spacing is 0.008 and a triangle may be
+// smaller), with tiny triangles, and with axis-parallel rays.
+TEST(MeshAccel, MatchesBruteForceFarFromTheOrigin) {
+  struct Case {
+    double offset, world, size;
+  };
+  for (const Case& k :
+       {Case{1e5, 10, 1.2}, Case{-1e5, 1e-3, 1e-4}, Case{3e7, 1, 0.05}, Case{0, 1e-4, 1e-6}}) {
+    std::mt19937_64 rng(79);
+    std::uniform_real_distribution<double> u(0, 1);
+    Mesh mesh = random_triangles(rng, 1000, k.world, k.size);
+    for (Vec3& p : mesh.positions) p = p + Vec3{k.offset, k.offset, -k.offset};
+    const MeshAccel sah = build_mesh_accel(mesh, BvhMode::Sah);
+    IntersectionCounters counters;
+    int hits = 0;
+    for (int r = 0; r < 2000; ++r) {
+      const Vec3 base{k.offset, k.offset, -k.offset};
+      Vec3 o = base + Vec3{3 * u(rng) - 1, 3 * u(rng) - 1, 3 * u(rng) - 1} * k.world;
+      // Aimed at a corner of a triangle half of the time: grazing and shared-edge cases.
+      const Vec3 target = r % 2 ? mesh.positions[rng() % mesh.positions.size()]
+                                : base + Vec3{u(rng), u(rng), u(rng)} * k.world;
+      if (r % 5 == 0) o.x = target.x, o.y = target.y;  // along z
+      const Ray ray{o, target - o};
+      double t = 0;
+      std::uint32_t index = 0;
+      const bool expected = brute_force(mesh, ray, t, index);
+      LocalHit hit;
+      ASSERT_EQ(intersect_mesh(sah, false, ray, kInfinity, hit, counters), expected)
+          << k.offset << " ray " << r;
+      ASSERT_EQ(occluded_mesh(sah, ray, kInfinity, counters), expected) << k.offset << " ray " << r;
+      if (!expected) continue;
+      ++hits;
+      ASSERT_EQ(hit.t, t) << k.offset << " ray " << r;
+      ASSERT_EQ(hit.part, index) << k.offset << " ray " << r;
+    }
+    EXPECT_GT(hits, 500) << k.offset;
+  }
+}
+
+// Triangles hit at the same t (here the same triangle twice, in several places of the tree):
+// the smaller index wins, whatever order the traversal meets them in.
+TEST(MeshAccel, EqualDistancesGoToTheSmallerTriangleIndex) {
+  std::mt19937_64 rng(80);
+  std::uniform_real_distribution<double> u(0, 1);
+  Mesh mesh = random_triangles(rng, 500, 10, 1.2);
+  const std::size_t n = mesh.triangles.size();
+  for (std::size_t i = 0; i < n; ++i) mesh.triangles.push_back(mesh.triangles[n - 1 - i]);
+  const MeshAccel sah = build_mesh_accel(mesh, BvhMode::Sah);
+  IntersectionCounters counters;
+  int hits = 0;
+  for (int r = 0; r < 1000; ++r) {
+    const Vec3 o{30 * u(rng) - 10, 30 * u(rng) - 10, 30 * u(rng) - 10};
+    const Ray ray{o, Vec3{10 * u(rng), 10 * u(rng), 10 * u(rng)} - o};
+    double t = 0;
+    std::uint32_t index = 0;
+    if (!brute_force(mesh, ray, t, index)) continue;
+    ++hits;
+    LocalHit hit;
+    ASSERT_TRUE(intersect_mesh(sah, false, ray, kInfinity, hit, counters));
+    ASSERT_EQ(hit.part, index) << r;
+    ASSERT_LT(index, n) << r;
+  }
+  EXPECT_GT(hits, 200);
+}
+
 TEST(MeshAccel, EmptyMeshAndDegenerateTriangles) {
   const Mesh empty;
   const MeshAccel accel = build_mesh_accel(empty, BvhMode::Sah);

@@ -1,0 +1,212 @@
+// The four children of a wide BVH node (the mesh BVH's, wide_bvh_traverse.h) tested against a
+// ray at once, in float: the boxes are
+// stored side by side per axis and bound (structure of arrays), so that one SSE instruction
+// (part of every x86-64 CPU, so there is no other path to choose at run time) does the work of
+// four scalar ones. Other CPUs run the same IEEE operations one child at a time: maxps and
+// minps pick their second operand on NaN, as the scalar comparisons do, and nothing is fused,
+// so both give bit-identical results (tests/accel/float_child_boxes_test.cpp).
+//
+// Float is only used to prune: the test is CONSERVATIVE, it accepts every box that the double
+// slab test intersect_bounds (common/math/ray.h) accepts, so that traversal reaches every leaf
+// it reached in double and the double triangle test decides the hits. Why (Ize, "Robust BVH
+// ray traversal", 2013, with u = 2^-24 float's unit roundoff):
+//  - Boxes are rounded outward when converted from double (round_down_to_float for lo,
+//    round_up_to_float for hi), so the float box contains the double one.
+//  - The origin is rounded down and up per axis; each slab distance subtracts the one that
+//    makes (bound - origin) smaller for the near plane and larger for the far plane, taking
+//    the direction's sign into account (FloatBoxRay::origin_near, origin_far). The exact difference
+//    of these floats therefore lies on the accepting side of the exact double difference, and
+//    float subtraction keeps its sign (x - y == 0 only when x == y).
+//  - Each slab distance is then a product of that difference and the reciprocal direction
+//    (1 / d in double, rounded to float), with three roundings (the subtraction, the
+//    reciprocal's conversion, the product; the reciprocal's double rounding and the double
+//    test's own roundings add terms of order 2^-53). So a near distance is at most its exact
+//    value times (1 + gamma(3)), and a far one at least its exact value times (1 - gamma(3));
+//    the double test's distances are within gamma_double(4) of the same exact values. Far
+//    distances are multiplied by kFloatFarScale = 1 + 2 gamma(5) (an extra rounding for that
+//    product, and room for the double terms), and t_max is rounded up and multiplied by the
+//    same (float_far_limit), so that whenever a double near distance is at most a double far
+//    distance or t_max, the float near distance is at most the float far one or t_max.
+//  - The argument is relative, so it fails where products fall below FLT_MIN (gradual
+//    underflow, absolute errors up to 2^-149): the comparison gives the far end a margin of
+//    kFloatTinyMargin = FLT_MIN, which covers those and changes nothing at normal magnitudes.
+//    Overflow rounds a far distance to +inf, which accepts; a near distance that overflows
+//    only when the true one exceeds FLT_MAX, where the far one and t_max overflow as well.
+//  - A zero direction component makes the reciprocal +-inf and a distance +-inf or, with the
+//    origin on a plane, NaN, which maxps/minps leave out (the NaN operand comes first): the
+//    same as the double test. Since the float differences keep their sign and are on the
+//    accepting side, a slab the double test keeps is kept. A reciprocal beyond FLT_MAX (a
+//    direction component below 3e-39) is +-inf in float and takes the same path, on the
+//    accepting side. Directions with components above 1e37 are outside this argument (their
+//    reciprocals lose precision as subnormals); nothing in a scene comes near.
+//  - Empty child slots (fewer than four children) hold the empty box (lo = +inf, hi = -inf)
+//    and are masked out by lo.x <= hi.x, so a ray of NaNs, which accepts every slab, still
+//    never enters one.
+#pragma once
+
+#include <bit>
+#include <cfloat>
+#include <cmath>
+#include <cstdint>
+
+#include "common/math/ray.h"
+
+#if defined(__SSE2__)
+#include <xmmintrin.h>
+#endif
+
+namespace tessera {
+
+inline constexpr float kFloatUnitRoundoff = FLT_EPSILON * 0.5f;
+inline constexpr double float_gamma_bound(int n) {
+  return (n * double{kFloatUnitRoundoff}) / (1 - n * double{kFloatUnitRoundoff});
+}
+inline constexpr float kFloatFarScale = static_cast<float>(1 + 2 * float_gamma_bound(5));
+inline constexpr float kFloatTinyMargin = FLT_MIN;
+
+// The next float towards +inf (-inf) from f, for f not NaN and not already +inf (-inf): a step
+// of one in the bit pattern, away from zero or towards it by the sign (std::nextafter is a
+// library call, and these run for every ray). Without branches on the sign: whether a ray's
+// origin rounds up or down is a coin toss, and branches on it were a tenth of the mispredicted
+// branches of a mesh render (callgrind's model).
+inline std::uint32_t float_step_up_bits(float f) {
+  auto bits = std::bit_cast<std::uint32_t>(f);
+  bits = (bits << 1) == 0 ? 0 : bits;  // -0 steps as +0, to FLT_TRUE_MIN
+  return (bits >> 31) == 0 ? bits + 1 : bits - 1;
+}
+inline float float_step_up(float f) { return std::bit_cast<float>(float_step_up_bits(f)); }
+inline float float_step_down(float f) {
+  return std::bit_cast<float>(float_step_up_bits(-f) ^ 0x80000000u);
+}
+
+// The float with bits `yes` where `pick`, else the one with bits `no`, by masks: compilers turn
+// a ternary into a branch, which mispredicts here half of the time.
+inline float select_float_bits(bool pick, std::uint32_t yes, std::uint32_t no) {
+  const std::uint32_t mask = 0u - static_cast<std::uint32_t>(pick);
+  return std::bit_cast<float>(no ^ ((no ^ yes) & mask));
+}
+
+// The nearest float at or below (above) x; +-inf beyond float's range.
+inline float round_down_to_float(double x) {
+  const float f = static_cast<float>(x);
+  return select_float_bits(static_cast<double>(f) > x,
+                           std::bit_cast<std::uint32_t>(float_step_down(f)),
+                           std::bit_cast<std::uint32_t>(f));
+}
+inline float round_up_to_float(double x) {
+  const float f = static_cast<float>(x);
+  return select_float_bits(static_cast<double>(f) < x, float_step_up_bits(f),
+                           std::bit_cast<std::uint32_t>(f));
+}
+
+// The float limit that stands for the double t_max in the test (see the argument above).
+inline float float_far_limit(double t_max) {
+  return round_up_to_float(t_max * static_cast<double>(kFloatFarScale));
+}
+
+struct alignas(16) FloatChildBoxes {
+  float bound[3][2][4];  // [axis][0 lo, 1 hi][child]
+};
+
+// Four empty slots; set_float_child_box fills slot `c` with `box`, rounded outward.
+inline FloatChildBoxes empty_float_child_boxes() {
+  FloatChildBoxes boxes;
+  for (auto& axis : boxes.bound)
+    for (int c = 0; c < 4; ++c) axis[0][c] = INFINITY, axis[1][c] = -INFINITY;
+  return boxes;
+}
+inline void set_float_child_box(FloatChildBoxes& boxes, int c, const Bounds3& box) {
+  for (int a = 0; a < 3; ++a) {
+    boxes.bound[a][0][c] = round_down_to_float(box.lo[a]);
+    boxes.bound[a][1][c] = round_up_to_float(box.hi[a]);
+  }
+}
+
+// The per-ray constants of the test, each repeated four times (one per child) so that a step
+// loads them instead of broadcasting them again.
+struct FloatBoxRay {
+  // Subtracted from the near plane: the origin rounded towards it; from the far plane: rounded
+  // away from it.
+  alignas(16) float origin_near[3][4];
+  alignas(16) float origin_far[3][4];
+  alignas(16) float inv_dir[3][4];
+  int near_side[3];  // 0 (lo) where the direction is forward (1 / d >= 0), else 1 (hi)
+
+  explicit FloatBoxRay(const Ray& ray) {
+    for (int a = 0; a < 3; ++a) {
+      const double inv = 1 / ray.direction[a];
+      const bool forward = inv >= 0;
+      const auto down = std::bit_cast<std::uint32_t>(round_down_to_float(ray.origin[a]));
+      const auto up = std::bit_cast<std::uint32_t>(round_up_to_float(ray.origin[a]));
+      near_side[a] = forward ? 0 : 1;
+      // Forward, the near plane is lo and (lo - origin) is smaller with the origin rounded up;
+      // backward, it is hi and (hi - origin) * inv is smaller with (hi - origin) larger.
+      const float near_origin = select_float_bits(forward, up, down);
+      const float far_origin = select_float_bits(forward, down, up);
+      for (int c = 0; c < 4; ++c) {
+        inv_dir[a][c] = static_cast<float>(inv);
+        origin_near[a][c] = near_origin;
+        origin_far[a][c] = far_origin;
+      }
+    }
+  }
+};
+
+// Bit c of the result is set when the ray [0, t_max] may meet child c's box (every box the
+// double test accepts, and some more); entry[c] receives its float entry distance, which is at
+// most float_far_limit of any t_max for which the double test accepts the box (so a later,
+// smaller t_max may skip it). `far_limit` is float_far_limit(t_max). One child at a time: the
+// path of CPUs without SSE, and the reference the SSE path is tested against.
+inline unsigned intersect_float_child_boxes_scalar(const FloatChildBoxes& boxes,
+                                                   const FloatBoxRay& ray, float far_limit,
+                                                   float entry[4]) {
+  unsigned hits = 0;
+  for (int c = 0; c < 4; ++c) {
+    float t0 = 0, t1 = far_limit;
+    for (int a = 0; a < 3; ++a) {
+      const int near = ray.near_side[a];
+      const float t_near = (boxes.bound[a][near][c] - ray.origin_near[a][c]) * ray.inv_dir[a][c];
+      const float t_far =
+          (boxes.bound[a][1 - near][c] - ray.origin_far[a][c]) * ray.inv_dir[a][c] * kFloatFarScale;
+      t0 = t_near > t0 ? t_near : t0;
+      t1 = t_far < t1 ? t_far : t1;
+    }
+    entry[c] = t0;
+    const bool hit = t0 <= t1 + kFloatTinyMargin && boxes.bound[0][0][c] <= boxes.bound[0][1][c];
+    hits |= (hit ? 1u : 0u) << c;
+  }
+  return hits;
+}
+
+// The same with SSE, four children in one go.
+[[gnu::always_inline]] inline unsigned intersect_float_child_boxes(const FloatChildBoxes& boxes,
+                                                                   const FloatBoxRay& ray,
+                                                                   float far_limit,
+                                                                   float entry[4]) {
+#if defined(__SSE__)
+  __m128 t0 = _mm_setzero_ps(), t1 = _mm_set1_ps(far_limit);
+  const __m128 far_scale = _mm_set1_ps(kFloatFarScale);
+#pragma GCC unroll 3
+  for (int a = 0; a < 3; ++a) {
+    const __m128 inv = _mm_load_ps(ray.inv_dir[a]);
+    const int near = ray.near_side[a];
+    const __m128 t_near = _mm_mul_ps(
+        _mm_sub_ps(_mm_load_ps(boxes.bound[a][near]), _mm_load_ps(ray.origin_near[a])), inv);
+    const __m128 t_far = _mm_mul_ps(
+        _mm_mul_ps(
+            _mm_sub_ps(_mm_load_ps(boxes.bound[a][1 - near]), _mm_load_ps(ray.origin_far[a])), inv),
+        far_scale);
+    t0 = _mm_max_ps(t_near, t0);  // t_near > t0 ? t_near : t0
+    t1 = _mm_min_ps(t_far, t1);   // t_far < t1 ? t_far : t1
+  }
+  _mm_storeu_ps(entry, t0);
+  const __m128 hit =
+      _mm_and_ps(_mm_cmple_ps(t0, _mm_add_ps(t1, _mm_set1_ps(kFloatTinyMargin))),
+                 _mm_cmple_ps(_mm_load_ps(boxes.bound[0][0]), _mm_load_ps(boxes.bound[0][1])));
+  return static_cast<unsigned>(_mm_movemask_ps(hit));
+#else
+  return intersect_float_child_boxes_scalar(boxes, ray, far_limit, entry);
+#endif
+}
+
+}  // namespace tessera

@@ -1,0 +1,87 @@
+// The traversal of a mesh's BVH (common/accel/bvh.h, Bvh::wide): depth-first with an explicit
+// stack over the wide nodes. A step tests a node's (up to) four children's boxes in float
+// (float_child_boxes.h, conservative: it reaches every leaf the double slab test would),
+// descends into the child the ray enters first and keeps the others with their entry distances, the
+// nearer ones on top; a kept child is skipped when a closer hit found meanwhile lies before its
+// entry. The order only decides how soon t_max shrinks: callers choose among hits at equal t by
+// primitive index, so results do not depend on it.
+#pragma once
+
+#include <bit>
+#include <cstdint>
+
+#include "common/accel/bvh.h"
+
+namespace tessera {
+
+// Visits the leaves whose boxes the ray [0, t_max] may enter, nearer children first:
+// `visit_leaf(first, count, t_max)` gets the leaf's range [first, first + count) of
+// Bvh::primitive_order and returns the possibly shrunk t_max (closest hit) or a negative value to
+// stop the traversal (any-hit queries). Counts the boxes tested in `nodes_visited` (four per
+// wide node).
+template <typename VisitLeaf>
+void traverse_wide_bvh_leaves(const Bvh& bvh, const Ray& ray, double t_max,
+                              std::uint64_t& nodes_visited, VisitLeaf&& visit_leaf) {
+  if (bvh.nodes.empty()) return;
+  ++nodes_visited;
+  const BvhNode& root = bvh.nodes[0];
+  {
+    const Vec3 inv_dir{1 / ray.direction.x, 1 / ray.direction.y, 1 / ray.direction.z};
+    if (!intersect_bounds(root.bounds, ray.origin, inv_dir, t_max)) return;
+  }
+  if (root.count > 0) {
+    visit_leaf(root.first_or_second_child, root.count, t_max);
+    return;
+  }
+  const FloatBoxRay box_ray(ray);
+  float far_limit = float_far_limit(t_max);
+  // A child to visit: an interior one (count 0, index into bvh.wide) or a leaf's range.
+  struct Pending {
+    std::uint32_t index;
+    std::uint32_t count;
+    float entry;
+  };
+  Pending stack[3 * kBvhMaxDepth];  // a wide step pushes at most three children a level
+  int size = 0;
+  Pending current{0, 0, 0};
+  const BvhWideNode* wide = bvh.wide.data();
+  for (;;) {
+    if (current.count > 0) {
+      const double limit = visit_leaf(current.index, current.count, t_max);
+      if (limit < 0) return;
+      if (limit != t_max) t_max = limit, far_limit = float_far_limit(t_max);
+    } else {
+      const BvhWideNode& node = wide[current.index];
+      alignas(16) float entry[4];
+      nodes_visited += 4;
+      const unsigned hits = intersect_float_child_boxes(node.boxes, box_ray, far_limit, entry);
+      if (hits != 0) {
+        if ((hits & (hits - 1)) == 0) {  // one child: nothing to order
+          const int c = std::countr_zero(hits);
+          current = {node.child[c], node.count[c], entry[c]};
+          continue;
+        }
+        // The children hit, nearest first (the lower slot on a tie): an insertion sort of at
+        // most four.
+        int order[4], n = 0;
+        for (unsigned rest = hits; rest != 0; rest &= rest - 1) {
+          const int c = std::countr_zero(rest);
+          int i = n++;
+          for (; i > 0 && entry[order[i - 1]] > entry[c]; --i) order[i] = order[i - 1];
+          order[i] = c;
+        }
+        for (int i = n - 1; i > 0; --i)
+          stack[size++] = {node.child[order[i]], node.count[order[i]], entry[order[i]]};
+        current = {node.child[order[0]], node.count[order[0]], entry[order[0]]};
+        continue;
+      }
+    }
+    for (;;) {
+      if (size == 0) return;
+      current = stack[--size];
+      if (current.entry <= far_limit) break;
+    }
+  }
+}
+
+}  // namespace tessera
