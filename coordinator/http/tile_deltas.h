@@ -29,7 +29,7 @@
 namespace tessera {
 
 // Pixel bytes per answer: beyond it the answer stops early (its `next` says where), so one
-// request never makes the io thread copy or compress much.
+// request never makes the io thread convert, copy or compress much.
 inline constexpr std::size_t kTilesAnswerBytes = 256u << 10;
 
 std::string encode_tiles(const Job& job, std::size_t since);

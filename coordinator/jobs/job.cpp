@@ -1,5 +1,7 @@
 #include "coordinator/jobs/job.h"
 
+#include "coordinator/jobs/tile_pixels.h"
+
 #include <algorithm>
 #include <chrono>
 #include <iterator>
@@ -46,23 +48,6 @@ double wall_clock_ms() {
       .count();
 }
 
-// Pixels whose values the merge converts at a time (on the stack).
-constexpr std::size_t kChunk = 256;
-
-// Writes `count` pixels' 8-bit values (3 floats a pixel at `values`, at most kChunk pixels) as
-// differences from the previous pixel's (TileRecord) at `out`, which has room for them;
-// `previous` carries the last pixel's values from one call to the next.
-void put_differences(char* out, std::uint8_t previous[3], const float* values, std::size_t count) {
-  std::uint8_t now[3 * kChunk];
-  const std::size_t n = 3 * count;
-  to_8bit_run(values, n, now);
-  for (std::size_t j = 0; j < 3; ++j)
-    out[j] = static_cast<char>(static_cast<std::uint8_t>(now[j] - previous[j]));
-  for (std::size_t j = 3; j < n; ++j)
-    out[j] = static_cast<char>(static_cast<std::uint8_t>(now[j] - now[j - 3]));
-  for (int c = 0; c < 3; ++c) previous[c] = now[n - 3 + c];
-}
-
 }  // namespace
 
 bool Job::record_dispatch(int stage, Clock::time_point now) {
@@ -78,36 +63,20 @@ void Job::apply_result(int unit_index, std::span<const float> values, const Rend
                        const std::optional<ResultSource>& from) {
   const WorkUnit& unit = plan.units[unit_index];
   const Stage& stage = plan.stages[unit.stage];
+  TileRecord record{unit_index, from ? from->worker : 0, wall_clock_ms(), {}};
+  // A row of pixels at a time; the page's bytes of this unit are made when a page asks
+  // (encode_tiles), except an area preview's, whose values the frame buffer does not keep.
+  if (stage.preview_only) {
+    if (!spec.settings.normalize_colors) append_tile_values(record.preview_values, values);
+  } else {
+    for_each_run(unit.pixels,
+                 [&, rgb = values.data()](PixelCoord first, int count, int stride) mutable {
+                   frame_buffer_.add_run(first, count, stride, rgb);
+                   rgb += 3 * static_cast<std::size_t>(count);
+                 });
+  }
   // Normalized jobs' values change with the whole image's highest one: the page loads the PNG.
-  const bool log_pixels = !spec.settings.normalize_colors;
-  TileRecord record{unit.pixels.rect, unit.stage, from ? from->worker : 0, wall_clock_ms(), {}};
-  // Sized once and written through a pointer, not a push_back per byte: this loop runs for
-  // every pixel pass the coordinator merges.
-  if (log_pixels) record.pixels.resize(3 * static_cast<std::size_t>(unit.cost));
-  char* delta = record.pixels.data();
-  const float* rgb = values.data();
-  std::uint8_t previous[3] = {0, 0, 0};
-  // A row of pixels at a time: the merge and the tile record's bytes are loops over the row.
-  for_each_run(unit.pixels, [&](PixelCoord first, int count, int stride) {
-    if (!stage.preview_only) frame_buffer_.add_run(first, count, stride, rgb);
-    if (log_pixels) {
-      for (std::size_t done = 0; done < static_cast<std::size_t>(count); done += kChunk) {
-        const std::size_t n = std::min(kChunk, static_cast<std::size_t>(count) - done);
-        const float* shown = rgb + 3 * done;  // a level's value stands for its block
-        float mean[3 * kChunk];
-        if (stage.level == 0) {
-          // A later pass shows the pixel's mean so far.
-          frame_buffer_.mean_run({first.x + static_cast<int>(done) * stride, first.y},
-                                 static_cast<int>(n), stride, mean);
-          shown = mean;
-        }
-        put_differences(delta + 3 * done, previous, shown, n);
-      }
-      delta += 3 * static_cast<std::size_t>(count);
-    }
-    rgb += 3 * static_cast<std::size_t>(count);
-  });
-  delta_bytes_ += record.pixels.size();
+  if (!spec.settings.normalize_colors) delta_bytes_ += 3 * static_cast<std::size_t>(unit.cost);
   tiles_.push_back(std::move(record));
   trim_delta_log(delta_log_bytes);
   done_cost_ += unit.cost;
@@ -137,6 +106,8 @@ void Job::finish(JobState state, std::string error, Clock::time_point now) {
 void Job::keep_encodings(Encodings encoded) {
   final_encoded_ = std::move(encoded);
   final_pixels_.reset();
+  // The records' values were read from those pixels: pages still behind load the final image.
+  trim_delta_log(0);
 }
 
 void Job::fail_unstored(std::string error) {
@@ -165,9 +136,9 @@ void Job::restore_unfinished(Clock::time_point created, std::optional<Clock::tim
 
 void Job::trim_delta_log(std::size_t max_bytes) {
   while (delta_bytes_ > max_bytes && delta_first_ < tiles_next()) {
-    std::string& dropped = tiles_[delta_first_ - tiles_first_].pixels;
-    delta_bytes_ -= dropped.size();
-    dropped = std::string();
+    TileRecord& dropped = tiles_[delta_first_ - tiles_first_];
+    delta_bytes_ -= 3 * static_cast<std::size_t>(plan.units[dropped.unit].cost);
+    dropped.preview_values = std::string();
     ++delta_first_;
   }
 }
@@ -184,8 +155,8 @@ void Job::release_buffers() {
   if (state_ == JobState::Done) {
     // Moved, not copied: the io thread makes no image (Api::on_released).
     final_pixels_ = std::make_shared<const FrameBuffer>(std::move(frame_buffer_));
-    // Pages still polling get the last merges (moved, not copied: up to the log's bound of
-    // pixels); later ones load the final image.
+    // Pages still polling get the last merges, their values read from those pixels until the
+    // final image is encoded (keep_encodings); later ones load the final image.
     const std::size_t keep = tiles_next() - delta_first_;
     std::deque<TileRecord> tail(
         std::make_move_iterator(tiles_.end() - static_cast<std::ptrdiff_t>(keep)),

@@ -20,7 +20,6 @@
 #include <string>
 #include <vector>
 
-#include "common/image/to_8bit.h"  // the tile records' values
 #include "common/progressive/plan.h"
 #include "common/protocol/bundle.h"
 #include "common/protocol/job_spec.h"
@@ -46,24 +45,22 @@ struct WorkerShare {
   double seconds = 0;
 };
 
-// One merged unit, in merge order: where it is, which stage and worker, and what the page
-// paints for it (GET /api/jobs/{id}/tiles, docs/SERVICE.md): one 8-bit RGB value per traced
-// pixel, in expand() order, each byte the difference from the same channel of the pixel before
-// (mod 256, the first pixel as it is), so that smooth images compress well. A level's values
-// stand for their blocks (the page fills them); a whole-image pass's are the pixels' means so
-// far. Emptied once the log holds more than kDeltaLogBytes of newer values.
+// One merged unit, in merge order: which unit and worker, and when. What the page paints for
+// it (GET /api/jobs/{id}/tiles, docs/SERVICE.md) is made when a page asks (tile_pixels.h):
+// the means so far of the unit's pixels, read from the job's frame buffer; only an area
+// preview's values, which no frame buffer keeps, are held here. A level's values stand for
+// their blocks (the page fills them).
 struct TileRecord {
-  PixelRect rect;
-  int stage = 0;
+  int unit = 0;
   std::int64_t worker = 0;
-  double merged_at_ms = 0;  // wall clock, milliseconds since 1970: for measuring latency
-  std::string pixels;
+  double merged_at_ms = 0;     // wall clock, milliseconds since 1970: for measuring latency
+  std::string preview_values;  // an area preview's bytes (append_tile_values), else empty
 };
 
-// The newest pixels of merged units a job keeps for pages that poll: older records keep their
-// place (for the worker overlay) but not their pixels, and a page further behind loads the
-// whole image instead. 8 MiB (about 2.8 million pixels' worth), or 1.5 bytes a pixel of larger
-// images (half of one pass), which keeps a running job within 15.5 bytes a pixel.
+// How far behind a page may be and still get records rather than the whole image: the bytes
+// of the newest merged units' pixels, 8 MiB (about 2.8 million pixels' worth) or 1.5 bytes a
+// pixel of larger images (half of one pass). It bounds an answer's work and what a page
+// behind downloads, and the area previews' values a job keeps.
 inline constexpr std::size_t kDeltaLogBytes = 8u << 20;
 inline constexpr double kDeltaLogBytesPerPixel = 1.5;
 
@@ -158,13 +155,17 @@ class Job {
   const RenderStats& stats() const { return stats_; }
   const std::map<std::int64_t, WorkerShare>& shares() const { return shares_; }  // by worker id
   // Merged units from sequence number tiles_first on (tiles()[i] is number tiles_first + i);
-  // the pixels of those before delta_first are dropped (kDeltaLogBytes).
+  // those before delta_first no longer give their pixels (kDeltaLogBytes): a page that far
+  // behind loads the whole image. delta_bytes: the pixel bytes of those from delta_first on.
   const std::deque<TileRecord>& tiles() const { return tiles_; }
   std::size_t tiles_first() const { return tiles_first_; }
   std::size_t delta_first() const { return delta_first_; }
   std::size_t delta_bytes() const { return delta_bytes_; }
   std::size_t tiles_next() const { return tiles_first_ + tiles_.size(); }
   const FrameBuffer& frame_buffer() const { return frame_buffer_; }
+  // What the tile records from delta_first on read their values from: the frame buffer, or a
+  // done job's final pixels until its image is encoded (then no record gives pixels).
+  const FrameBuffer& tile_pixels() const { return final_pixels_ ? *final_pixels_ : frame_buffer_; }
   // Bumps with every merged unit and when the job ends: what its image depends on (ETags).
   std::uint64_t version() const { return version_; }
   const Encodings& final_encoded() const { return final_encoded_; }
@@ -187,7 +188,8 @@ class Job {
   // them a little later with free_buffers); frees the rest and returns the memory to the
   // system (malloc_trim).
   void release_buffers();
-  // Drops the pixels of the oldest tile records until those kept hold at most max_bytes.
+  // Moves delta_first past the oldest tile records until those after it give at most
+  // max_bytes of pixels.
   void trim_delta_log(std::size_t max_bytes);
 
   std::vector<std::string> warnings_;

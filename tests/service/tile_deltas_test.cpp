@@ -15,6 +15,7 @@
 #include <random>
 
 #include "common/image/image.h"
+#include "common/image/to_8bit.h"
 #include "coordinator/http/tile_deltas.h"
 #include "coordinator/jobs/job.h"
 
@@ -158,7 +159,7 @@ TEST(TileDeltas, APageBehindTheLogLoadsTheWholeImage) {
   EXPECT_EQ(recent.pixels * 3, job.delta_bytes());
 }
 
-TEST(TileDeltas, AFinishedJobKeepsOnlyItsNewestDeltas) {
+TEST(TileDeltas, AFinishedJobKeepsOnlyItsNewestDeltasUntilItsImageIsEncoded) {
   Job job = make_job(16, 16, 2);
   job.record_dispatch(0, Clock::now());
   job.delta_log_bytes = 3 * 64;
@@ -168,16 +169,63 @@ TEST(TileDeltas, AFinishedJobKeepsOnlyItsNewestDeltas) {
   job.finish(JobState::Done, "", Clock::now());
   EXPECT_EQ(job.frame_buffer().width(), 0);
   EXPECT_EQ(job.tiles_next(), next);
-  EXPECT_LT(job.tiles().size(), next);  // only the records that have pixels stay
-  for (const TileRecord& t : job.tiles()) EXPECT_FALSE(t.pixels.empty());
+  EXPECT_LT(job.tiles().size(), next);  // only the records that give pixels stay
+  EXPECT_EQ(job.tiles_first(), job.delta_first());
   Layers layers{16, 16, {}};
   const Answer last = layers.paint(encode_tiles(job, next - 1));
-  EXPECT_EQ(last.flags, 2u);  // finished, not whole
+  EXPECT_EQ(last.flags, 2u);  // finished, not whole: read from the final pixels
   EXPECT_EQ(last.count, 1u);
+  EXPECT_GT(last.pixels, 0u);
   EXPECT_EQ(layers.paint(encode_tiles(job, 0)).flags, 3u);  // too far behind: the PNG
-  job.free_buffers();                                       // what the coordinator does 30 s later
+  job.keep_encodings({});  // the final image is encoded: its pixels are gone
+  EXPECT_EQ(layers.paint(encode_tiles(job, next - 1)).flags, 3u);
+  EXPECT_EQ(layers.paint(encode_tiles(job, next)).flags, 2u);  // caught up: nothing to load
+  job.free_buffers();  // what the coordinator does 30 s later
   EXPECT_TRUE(job.tiles().empty());
   EXPECT_EQ(job.tiles_next(), next);
+}
+
+TEST(TileDeltas, APageThatAsksRarelyShowsTheImageAsItIsNow) {
+  Job job = make_job(13, 9, 4);
+  job.record_dispatch(0, Clock::now());
+  Layers layers{13, 9, {}};
+  std::size_t since = 0;
+  for (int u = 0; u < static_cast<int>(job.plan.units.size()); ++u) {
+    job.apply_result(u, values_for(job, u), RenderStats{});
+    if (u % 7 != 6) continue;  // several merges between two answers
+    const Answer a = layers.paint(encode_tiles(job, since));
+    EXPECT_EQ(a.count, job.tiles_next() - since);
+    since = a.next;
+    expect_shows_the_image(layers, job);
+  }
+}
+
+TEST(TileDeltas, AnAreaPreviewShowsItsOwnValues) {
+  JobSpec spec;
+  spec.settings.width = 16;
+  spec.settings.height = 16;
+  Job job(1, Bundle{"scene.sdl", "sdl", {{"scene.sdl", "sphere"}}}, spec,
+          PlanOptions{.width = 16, .height = 16, .preview = PreviewMode::Area, .unit_pixels = 8},
+          1);
+  job.record_dispatch(0, Clock::now());
+  ASSERT_TRUE(job.plan.stages[job.plan.units[0].stage].preview_only);
+  const std::vector<float> values = values_for(job, 0);
+  job.apply_result(0, values, RenderStats{});
+  Layers layers{16, 16, {}};
+  const Answer a = layers.paint(encode_tiles(job, 0));
+  ASSERT_EQ(a.pixels, values.size() / 3);
+  // Its pixels are the blocks' centres, painted as the multiples of step that start the blocks.
+  const UnitPixels& unit = job.plan.units[0].pixels;
+  std::size_t i = 0;
+  for (int y = first_multiple_at_or_after(unit.rect.y0, unit.step); y < unit.rect.y1;
+       y += unit.step)
+    for (int x = first_multiple_at_or_after(unit.rect.x0, unit.step); x < unit.rect.x1;
+         x += unit.step, ++i) {
+      const Rgb8 expected{to_8bit(values[3 * i]), to_8bit(values[3 * i + 1]),
+                          to_8bit(values[3 * i + 2])};
+      EXPECT_EQ(layers.by_step.at(unit.step).at({x / unit.step, y / unit.step}), expected);
+    }
+  EXPECT_EQ(i, values.size() / 3);
 }
 
 TEST(TileDeltas, TheLogGrowsWithTheImage) {
