@@ -37,22 +37,22 @@ inline double horner_error(const double* c, int n, double x) {
   return gamma_bound(2 * n + 1) * v;
 }
 
-// The root in (a, b), where the degree-N polynomial c is monotone and c(a), c(b) have opposite
-// signs (dc: its derivative): Newton steps that stay inside the bracket, bisection otherwise.
-// The bracket shrinks every step, so it ends within an ulp or two of the root, or at a point
-// where the polynomial rounds to zero.
+// The root in (a, b), where the degree-N polynomial c is monotone and c(a) = fa, c(b) have
+// opposite signs, neither zero (dc: its derivative): Newton steps that stay inside the bracket,
+// bisection otherwise. The bracket shrinks every step, so it ends within an ulp or two of the
+// root, or at a point where the polynomial rounds to zero.
 template <int N>
 double bracketed_root(const double* c, const double* dc, double a, double b, double fa) {
+  // The sign at the bracket's left end, which stays the same as the end moves.
+  const bool positive_at_a = fa > 0;
   double x = a + (b - a) / 2;
   for (int iteration = 0; iteration < 200; ++iteration) {
     const double fx = horner(c, N, x);
     if (fx == 0) return x;
-    if (sign(fx) == sign(fa)) {
+    if (positive_at_a ? fx > 0 : fx < 0)
       a = x;
-      fa = fx;
-    } else {
+    else
       b = x;
-    }
     const double dfx = horner(dc, N - 1, x);
     // Converged: Newton's step is below the rounding of x. Tested before the step is kept in
     // the bracket: x may have just become an end of it, and a step smaller than its ulp, taken
