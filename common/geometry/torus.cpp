@@ -53,8 +53,13 @@ LocalHit surface_hit(double big_r, double r, const Vec3& p, const Vec3& u) {
   hit.part = 0;
   const double rho = std::hypot(p.x, p.y);
   const double d_outer = std::hypot(rho - big_r, p.z);  // to the circle around +R
-  const double d_inner = std::hypot(rho + big_r, p.z);  // to the circle around -R
-  const bool inner = std::fabs(d_inner - r) < std::fabs(d_outer - r);
+  // The circle around -R is nearer to the tube's surface only when |d_inner - r| is the smaller
+  // of the two. d_inner >= rho + R (up to hypot's ulp, which the margin covers), so on most hits
+  // (every one on a ring torus) rho + R - r alone shows that it is not, and its hypot is spared.
+  const bool inner_possible =
+      !((rho + big_r) * (1 - 8 * kMachineEpsilon) - r > std::fabs(d_outer - r));
+  const double d_inner = inner_possible ? std::hypot(rho + big_r, p.z) : 0;
+  const bool inner = inner_possible && std::fabs(d_inner - r) < std::fabs(d_outer - r);
   const double d = inner ? d_inner : d_outer;
   if (rho > 0 && d > 0 && std::isfinite(rho)) {
     const double cx = p.x / rho, cy = p.y / rho;

@@ -21,21 +21,39 @@ int effective_degree(const Polynomial& p) {
 
 int sign(double v) { return (v > 0) - (v < 0); }
 
-// The root in (a, b), where p is monotone and p(a), p(b) have opposite signs: Newton steps
-// that stay inside the bracket, bisection otherwise. The bracket shrinks every step, so it ends
-// within an ulp or two of the root, or at a point where p rounds to zero.
-double bracketed_root(const Polynomial& p, const Polynomial& dp, double a, double b, double fa) {
+// Horner's rule on c[0..n] (evaluate), inline so that the root search below, which passes
+// a constant degree, gets it unrolled.
+inline double horner(const double* c, int n, double x) {
+  double v = c[n];
+  for (int i = n - 1; i >= 0; --i) v = v * x + c[i];
+  return v;
+}
+
+// evaluation_error() on c[0..n], inline for the same reason.
+inline double horner_error(const double* c, int n, double x) {
+  const double ax = std::fabs(x);
+  double v = std::fabs(c[n]);
+  for (int i = n - 1; i >= 0; --i) v = v * ax + std::fabs(c[i]);
+  return gamma_bound(2 * n + 1) * v;
+}
+
+// The root in (a, b), where the degree-N polynomial c is monotone and c(a) = fa, c(b) have
+// opposite signs, neither zero (dc: its derivative): Newton steps that stay inside the bracket,
+// bisection otherwise. The bracket shrinks every step, so it ends within an ulp or two of the
+// root, or at a point where the polynomial rounds to zero.
+template <int N>
+double bracketed_root(const double* c, const double* dc, double a, double b, double fa) {
+  // The sign at the bracket's left end, which stays the same as the end moves.
+  const bool positive_at_a = fa > 0;
   double x = a + (b - a) / 2;
   for (int iteration = 0; iteration < 200; ++iteration) {
-    const double fx = evaluate(p, x);
+    const double fx = horner(c, N, x);
     if (fx == 0) return x;
-    if (sign(fx) == sign(fa)) {
+    if (positive_at_a ? fx > 0 : fx < 0)
       a = x;
-      fa = fx;
-    } else {
+    else
       b = x;
-    }
-    const double dfx = evaluate(dp, x);
+    const double dfx = horner(dc, N - 1, x);
     // Converged: Newton's step is below the rounding of x. Tested before the step is kept in
     // the bracket: x may have just become an end of it, and a step smaller than its ulp, taken
     // for leaving the bracket, would otherwise restart a bisection that crawls back to x.
@@ -81,6 +99,66 @@ int low_degree_roots(const Polynomial& p, double lo, double hi,
   return count;
 }
 
+// Roots of degree 1 or 2 in (lo, hi), ascending, handed to visit until it returns false.
+template <class Visit>
+bool visit_low_degree_roots(const Polynomial& p, double lo, double hi, const Visit& visit) {
+  PolynomialRoot roots[kMaxPolynomialDegree];
+  const int n = low_degree_roots(p, lo, hi, roots);
+  for (int i = 0; i < n; ++i)
+    if (!visit(roots[i])) return false;
+  return true;
+}
+
+// visit_real_roots for the polynomial c[0..N] of degree exactly N >= 3 and lo < hi. The
+// degree is a template argument so that the recursion through the derivatives, and the Horner
+// loops, are compiled for each degree with no indirect calls between them.
+template <int N, class Visit>
+bool visit_roots(const double* c, double lo, double hi, const Visit& visit) {
+  double dc[N];
+  for (int i = 1; i <= N; ++i) dc[i - 1] = i * c[i];
+
+  // The split points, in order: lo, the derivative's roots (p's extrema and inflections) as they
+  // are found, hi. Each piece between two of them is monotone and holds a root when p changes
+  // sign across it. An interior split point whose value is lost in rounding is itself a root: p
+  // touches zero there (or crosses it at an inflection); whether it touches is known once the
+  // next split point's value is, so it is handed on then, before that piece's own root.
+  double x_before = lo, value_before = horner(c, N, lo);
+  bool zero_pending = false;
+  double value_before_zero = 0;
+  const auto split_at = [&](double x, double value, bool interior) {
+    if (zero_pending) {
+      zero_pending = false;
+      if (!visit(PolynomialRoot{x_before, sign(value_before_zero) * sign(value) > 0})) return false;
+    }
+    if (sign(value_before) * sign(value) < 0 &&
+        !visit(PolynomialRoot{bracketed_root<N>(c, dc, x_before, x, value_before), false}))
+      return false;
+    if (interior && value == 0) {
+      zero_pending = true;
+      value_before_zero = value_before;
+    }
+    x_before = x;
+    value_before = value;
+    return true;
+  };
+  const auto at_critical_point = [&](const PolynomialRoot& critical) {
+    double value = horner(c, N, critical.x);
+    if (std::fabs(value) <= horner_error(c, N, critical.x)) value = 0;
+    return split_at(critical.x, value, true);
+  };
+  bool complete;
+  if constexpr (N == 3) {
+    Polynomial derivative_of_degree_2;
+    derivative_of_degree_2.degree = 2;
+    for (int i = 0; i <= 2; ++i) derivative_of_degree_2.c[i] = dc[i];
+    complete = visit_low_degree_roots(derivative_of_degree_2, lo, hi, at_critical_point);
+  } else {
+    complete = visit_roots<N - 1>(dc, lo, hi, at_critical_point);
+  }
+  if (!complete) return false;
+  return split_at(hi, horner(c, N, hi), false);
+}
+
 }  // namespace
 
 Polynomial operator+(const Polynomial& a, const Polynomial& b) {
@@ -112,63 +190,17 @@ Polynomial derivative(const Polynomial& p) {
   return r;
 }
 
-double evaluate(const Polynomial& p, double x) {
-  double v = p.c[p.degree];
-  for (int i = p.degree - 1; i >= 0; --i) v = v * x + p.c[i];
-  return v;
-}
+double evaluate(const Polynomial& p, double x) { return horner(p.c, p.degree, x); }
 
-double evaluation_error(const Polynomial& p, double x) {
-  const double ax = std::fabs(x);
-  double v = std::fabs(p.c[p.degree]);
-  for (int i = p.degree - 1; i >= 0; --i) v = v * ax + std::fabs(p.c[i]);
-  return gamma_bound(2 * p.degree + 1) * v;
-}
+double evaluation_error(const Polynomial& p, double x) { return horner_error(p.c, p.degree, x); }
 
 bool visit_real_roots(const Polynomial& p_in, double lo, double hi, RootVisitor visit) {
   Polynomial p = p_in;
   p.degree = effective_degree(p_in);
   if (p.degree == 0 || !(lo < hi)) return true;
-  if (p.degree <= 2) {
-    PolynomialRoot roots[kMaxPolynomialDegree];
-    const int n = low_degree_roots(p, lo, hi, roots);
-    for (int i = 0; i < n; ++i)
-      if (!visit(roots[i])) return false;
-    return true;
-  }
-  const Polynomial dp = derivative(p);
-
-  // The split points, in order: lo, the derivative's roots (p's extrema and inflections) as they
-  // are found, hi. Each piece between two of them is monotone and holds a root when p changes
-  // sign across it. An interior split point whose value is lost in rounding is itself a root: p
-  // touches zero there (or crosses it at an inflection); whether it touches is known once the
-  // next split point's value is, so it is handed on then, before that piece's own root.
-  double x_before = lo, value_before = evaluate(p, lo);
-  bool zero_pending = false;
-  double value_before_zero = 0;
-  const auto split_at = [&](double x, double value, bool interior) {
-    if (zero_pending) {
-      zero_pending = false;
-      if (!visit({x_before, sign(value_before_zero) * sign(value) > 0})) return false;
-    }
-    if (sign(value_before) * sign(value) < 0 &&
-        !visit({bracketed_root(p, dp, x_before, x, value_before), false}))
-      return false;
-    if (interior && value == 0) {
-      zero_pending = true;
-      value_before_zero = value_before;
-    }
-    x_before = x;
-    value_before = value;
-    return true;
-  };
-  const auto at_critical_point = [&](const PolynomialRoot& critical) {
-    double value = evaluate(p, critical.x);
-    if (std::fabs(value) <= evaluation_error(p, critical.x)) value = 0;
-    return split_at(critical.x, value, true);
-  };
-  if (!visit_real_roots(dp, lo, hi, at_critical_point)) return false;
-  return split_at(hi, evaluate(p, hi), false);
+  if (p.degree == 3) return visit_roots<3>(p.c, lo, hi, visit);
+  if (p.degree == 4) return visit_roots<4>(p.c, lo, hi, visit);
+  return visit_low_degree_roots(p, lo, hi, visit);
 }
 
 int real_roots(const Polynomial& p, double lo, double hi,

@@ -37,7 +37,8 @@ struct PolynomialRoot {
 };
 
 // Receives roots one at a time; returns false to end the search. (A non-owning reference to a
-// callable, so that the recursion through the derivatives needs no templates or allocation.)
+// callable, so that callers need no templates and no allocation; the search itself, through the
+// derivatives, is compiled for each degree and calls it only to hand over a root.)
 class RootVisitor {
  public:
   template <class F>
