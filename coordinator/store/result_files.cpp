@@ -10,13 +10,11 @@
 #include <string>
 #include <system_error>
 
+#include "coordinator/store/content_files.h"
+
 namespace tessera {
 
 namespace {
-
-[[noreturn]] void fail_errno(const std::string& what, const std::filesystem::path& path) {
-  throw std::system_error(errno, std::generic_category(), what + " " + path.string());
-}
 
 // Closes the descriptor however the scope is left.
 struct FileDescriptor {
