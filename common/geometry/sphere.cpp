@@ -36,6 +36,11 @@ struct SphereRoots {
   const double beta = dot(f, d);
   const double f2 = dot(f, f);
   const double c = f2 - 1;
+  // An origin outside the sphere moving away from it (a ray leaving its surface, most often):
+  // both roots are then <= 0 (their product c / a > 0, their sum -2 beta / a <= 0), and so
+  // are the t[] computed below (c / q with q < 0, and q / a), which no error bound lets
+  // through: the answer the whole test would give, without its square roots and divisions.
+  if (c > 0 && beta >= 0) return false;
   const double s = beta / a;
   const Vec3 closest = f - d * s;
   const double l = length(closest);
