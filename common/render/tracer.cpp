@@ -116,15 +116,16 @@ bool Tracer::closest_hit(const Ray& ray, Hit& hit) {
   const std::vector<Instance>& instances = scene_.instances();
   bool found = false;
   hit.time = ray.time;
+  // Straight into hit.world, which intersect_instance leaves alone on a miss: a WorldHit of
+  // its own per shape test cost a zeroing (rep stos) and a copy, some 5 % of the traversal's time.
   traverse_bvh(scene_.bvh(), ray, kInfinity, stats_.intersections.bvh_nodes,
                [&](std::uint32_t index, double t_max) {
-                 WorldHit h;
-                 if (!intersect_instance(instances[index], ray, t_max, h, stats_.intersections))
+                 if (!intersect_instance(instances[index], ray, t_max, hit.world,
+                                         stats_.intersections))
                    return t_max;
-                 hit.world = h;
                  hit.instance = index;
                  found = true;
-                 return h.t;
+                 return hit.world.t;
                });
   return found;
 }
