@@ -118,15 +118,15 @@ bool Tracer::closest_hit(const Ray& ray, Hit& hit) {
   hit.time = ray.time;
   // Straight into hit.world, which intersect_instance leaves alone on a miss: a WorldHit of
   // its own per shape test cost a zeroing (rep stos) and a copy, some 5 % of the traversal's time.
-  traverse_bvh(scene_.bvh(), ray, kInfinity, stats_.intersections.bvh_nodes,
-               [&](std::uint32_t index, double t_max) {
-                 if (!intersect_instance(instances[index], ray, t_max, hit.world,
-                                         stats_.intersections))
-                   return t_max;
-                 hit.instance = index;
-                 found = true;
-                 return hit.world.t;
-               });
+  traverse_bvh(
+      scene_.bvh(), ray, kInfinity, stats_.intersections.bvh_nodes,
+      [&](std::uint32_t index, double t_max) {
+        if (!intersect_instance(instances[index], ray, t_max, hit.world, stats_.intersections))
+          return t_max;
+        hit.instance = index;
+        found = true;
+        return hit.world.t;
+      });
   return found;
 }
 
@@ -259,11 +259,12 @@ Rgb Tracer::local_illumination(const Hit& hit, const Material& m, const SurfaceC
     double distance = 0;
     if (!towards_light(light, directional, hit.world.point, l, distance)) continue;
 
-    double cone = 1;  // spotlight: zero outside the cut-off, cos^exponent inside (§4.1.3)
+    // Spotlight: zero outside the cut-off, cos^exponent inside (§4.1.3); the power is taken
+    // below, once the point is known to be lit.
+    double cos_alpha = 1;
     if (light.is_spot) {
-      const double cos_alpha = std::clamp(dot(-l, light.spot.direction), -1.0, 1.0);
+      cos_alpha = std::clamp(dot(-l, light.spot.direction), -1.0, 1.0);
       if (cos_alpha < cos_cutoff_[index]) continue;
-      cone = light.spot.exponent == 0 ? 1 : std::pow(std::max(cos_alpha, 0.0), light.spot.exponent);
     }
 
     const double n_dot_l = facing(dot(normal, l), m.light_back_faces);
@@ -291,6 +292,9 @@ Rgb Tracer::local_illumination(const Hit& hit, const Material& m, const SurfaceC
       if (light.casts_shadows) shadow = soft_visibility(hit, light, l, distance, rng);
     }
     if (shadow <= 0) continue;
+    const double cone = light.is_spot && light.spot.exponent != 0
+                            ? std::pow(std::max(cos_alpha, 0.0), light.spot.exponent)
+                            : 1;
 
     Rgb contribution = colours.diffuse * light.color * (n_dot_l * diffuse_scale);  // eq. 4.8
     if (n_dot_h > 0)                                                               // eq. 4.9
