@@ -43,7 +43,12 @@ struct SphereRoots {
   if (c > 0 && beta >= 0) return false;
   const double s = beta / a;
   const Vec3 closest = f - d * s;
-  const double l = length(closest);
+  const double l2 = dot(closest, closest);
+  // A line certainly outside the sphere (a miss, most often): then l = sqrt(l2) > 1 + 4e-13 and
+  // disc below is negative, not an underflow to -0 (a > 1e-290), so it is decided here without
+  // the square root.
+  if (l2 > 1 + 1e-12 && a > 1e-290) return false;
+  const double l = std::sqrt(l2);
   const double disc = a * (1 - l) * (1 + l);  // beta^2 - a c, without cancellation
   if (!(disc >= 0)) return false;
   const double root = std::sqrt(disc);
