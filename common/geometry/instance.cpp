@@ -28,8 +28,9 @@ namespace tessera {
 
 namespace {
 
-// |lin(a)| v: the linear part's absolute values applied to a non-negative vector.
-Vec3 abs_linear(const Affine& a, const Vec3& v) {
+// |lin(a)| v: the linear part's absolute values applied to a non-negative vector. Forced
+// inline: called twice for every hit, GCC kept it out of line (0.7 % of the demo's instructions).
+[[gnu::always_inline]] inline Vec3 abs_linear(const Affine& a, const Vec3& v) {
   Vec3 out;
   for (int r = 0; r < 3; ++r)
     out[r] = std::fabs(a.m[r][0]) * v.x + std::fabs(a.m[r][1]) * v.y + std::fabs(a.m[r][2]) * v.z;
