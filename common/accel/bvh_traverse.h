@@ -13,15 +13,15 @@ namespace tessera {
 // Visits the leaves whose boxes the ray [0, t_max] enters, the nearer child's first:
 // `visit_leaf(first, count, t_max)` gets the leaf's range [first, first + count) of
 // Bvh::primitive_order and returns the possibly shrunk t_max (closest hit) or a negative value to
-// stop the traversal (any-hit queries). Counts visited nodes in `nodes_visited`.
+// stop the traversal (any-hit queries). Counts the nodes whose boxes it tests in `nodes_visited`.
 template <typename VisitLeaf>
 void traverse_bvh_leaves(const Bvh& bvh, const Ray& ray, double t_max, std::uint64_t& nodes_visited,
                          VisitLeaf&& visit_leaf) {
   if (bvh.nodes.empty()) return;
   const BoxRay box_ray(ray);
-  ++nodes_visited;
   const BvhNode& root = bvh.nodes[0];
   if (root.count > 0) {
+    ++nodes_visited;
     if (intersect_bounds(root.bounds, box_ray.origin, box_ray.inv_dir, t_max))
       visit_leaf(root.first_or_second_child, root.count, t_max);
     return;
