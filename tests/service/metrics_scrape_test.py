@@ -139,7 +139,14 @@ def main():
         # The finished job's images are in the store now, on top of what it held before.
         images = sum(len(service.request("GET", "/api/jobs/%d/image?format=%s" %
                                          (job["id"], fmt))[2]) for fmt in ("png", "exr"))
-        store_after = check_store(service, scrape(service))
+        # Stored right after they are encoded, on the io thread: a request for the last format
+        # can be answered just before that, so the gauge may lag one scrape behind.
+        deadline = time.monotonic() + 10
+        while True:
+            store_after = check_store(service, scrape(service))
+            if store_after >= store_before + images or time.monotonic() > deadline:
+                break
+            time.sleep(0.05)
         assert store_after >= store_before + images, (store_before, images, store_after)
         print("store: %d bytes before the job, %d after (images %d)" %
               (store_before, store_after, images))
