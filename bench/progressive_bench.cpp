@@ -4,6 +4,9 @@
 // samples. The ratio of the two is the overhead; the target is at most 1.05.
 #include <benchmark/benchmark.h>
 
+#include <algorithm>
+#include <vector>
+
 #include "common/loaders/sdl_loader.h"
 #include "common/progressive/plan.h"
 #include "common/render/frame_buffer.h"
@@ -63,6 +66,34 @@ void BM_Progressive(benchmark::State& state) {
   }
   state.counters["units"] = static_cast<double>(plan.units.size());
 }
+
+// The floor of the coordinator's merge (issue 22 §3: 200 M pixel passes a second on one core):
+// a 2048x2048 job's plan at 4 passes, in the capacity benchmark's units of 16,132 pixels, added
+// into a new frame buffer row by row as Job::apply_result does, with nothing else (no socket, no
+// store, no checks). Items are pixel passes.
+void BM_MergeRuns(benchmark::State& state) {
+  const int side = static_cast<int>(state.range(0));
+  const Plan plan = make_plan({.width = side, .height = side, .passes = 4, .unit_pixels = 16132});
+  long long largest = 0, pixel_passes = 0;
+  for (const WorkUnit& unit : plan.units) {
+    largest = std::max(largest, unit.cost);
+    pixel_passes += unit.cost;
+  }
+  const std::vector<float> values(3 * static_cast<std::size_t>(largest), 0.25f);
+  for (auto _ : state) {
+    FrameBuffer frame(side, side);
+    for (const WorkUnit& unit : plan.units) {
+      const float* rgb = values.data();
+      for_each_run(unit.pixels, [&](PixelCoord first, int count, int stride) {
+        frame.add_run(first, count, stride, rgb);
+        rgb += 3 * static_cast<std::size_t>(count);
+      });
+    }
+    benchmark::DoNotOptimize(frame);
+  }
+  state.SetItemsProcessed(state.iterations() * pixel_passes);
+}
+BENCHMARK(BM_MergeRuns)->Arg(2048)->Arg(256)->Unit(benchmark::kMillisecond);
 
 // Interleaved so that the machine's load drifts across both alike.
 BENCHMARK(BM_Direct)->Arg(1)->Unit(benchmark::kMillisecond);

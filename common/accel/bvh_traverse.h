@@ -13,20 +13,22 @@ namespace tessera {
 // Visits the leaves whose boxes the ray [0, t_max] enters, the nearer child's first:
 // `visit_leaf(first, count, t_max)` gets the leaf's range [first, first + count) of
 // Bvh::primitive_order and returns the possibly shrunk t_max (closest hit) or a negative value to
-// stop the traversal (any-hit queries). Counts visited nodes in `nodes_visited`.
+// stop the traversal (any-hit queries). Counts the nodes whose boxes it tests in `nodes_visited`.
 template <typename VisitLeaf>
 void traverse_bvh_leaves(const Bvh& bvh, const Ray& ray, double t_max, std::uint64_t& nodes_visited,
                          VisitLeaf&& visit_leaf) {
   if (bvh.nodes.empty()) return;
   const BoxRay box_ray(ray);
-  ++nodes_visited;
   const BvhNode& root = bvh.nodes[0];
-  double root_entry = 0;
-  if (!intersect_bounds(root.bounds, box_ray.origin, box_ray.inv_dir, t_max, root_entry)) return;
   if (root.count > 0) {
-    visit_leaf(root.first_or_second_child, root.count, t_max);
+    ++nodes_visited;
+    if (intersect_bounds(root.bounds, box_ray.origin, box_ray.inv_dir, t_max))
+      visit_leaf(root.first_or_second_child, root.count, t_max);
     return;
   }
+  // An interior root's own box is not tested (a scalar test, some 4 % of a small scene's
+  // instructions): its children's boxes lie inside it, and each slab distance is monotonic in
+  // the plane, so a ray that misses it misses both of them in the first pair test below.
   // A child to visit: an interior one (count 0, index into bvh.pairs) or a leaf's range.
   struct Pending {
     std::uint32_t index;
@@ -35,7 +37,7 @@ void traverse_bvh_leaves(const Bvh& bvh, const Ray& ray, double t_max, std::uint
   };
   Pending stack[kBvhMaxDepth];
   int size = 0;
-  Pending current{0, 0, root_entry};
+  Pending current{0, 0, 0};
   const BvhPair* pairs = bvh.pairs.data();
   for (;;) {
     if (current.count > 0) {

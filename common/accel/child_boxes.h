@@ -25,11 +25,24 @@ struct BoxRay {
   Vec3 origin;
   Vec3 inv_dir;
   int near_side[3];  // 0 (lo) where the direction is forward (inv_dir >= 0), else 1 (hi)
+#if defined(__SSE2__)
+  // origin and inv_dir per axis, in both lanes: made once per ray rather than at every node,
+  // where they cost a round trip through the stack (some 15 instructions a node).
+  __m128d origin_lanes[3];
+  __m128d inv_dir_lanes[3];
+#endif
 
   explicit BoxRay(const Ray& ray)
       : origin(ray.origin),
         inv_dir{1 / ray.direction.x, 1 / ray.direction.y, 1 / ray.direction.z},
-        near_side{inv_dir.x >= 0 ? 0 : 1, inv_dir.y >= 0 ? 0 : 1, inv_dir.z >= 0 ? 0 : 1} {}
+        near_side{inv_dir.x >= 0 ? 0 : 1, inv_dir.y >= 0 ? 0 : 1, inv_dir.z >= 0 ? 0 : 1} {
+#if defined(__SSE2__)
+    for (int a = 0; a < 3; ++a) {
+      origin_lanes[a] = _mm_set1_pd(origin[a]);
+      inv_dir_lanes[a] = _mm_set1_pd(inv_dir[a]);
+    }
+#endif
+  }
 };
 
 inline ChildBoxes make_child_boxes(const Bounds3& first, const Bounds3& second) {
@@ -48,18 +61,17 @@ inline ChildBoxes make_child_boxes(const Bounds3& first, const Bounds3& second) 
 [[gnu::always_inline]] inline unsigned intersect_child_boxes(const ChildBoxes& boxes,
                                                              const BoxRay& ray, double t_max,
                                                              double entry[2]) {
-  constexpr double kFarScale = 1 + 2 * gamma_bound(3);
-  const double origin[3] = {ray.origin.x, ray.origin.y, ray.origin.z};
-  const double inv_dir[3] = {ray.inv_dir.x, ray.inv_dir.y, ray.inv_dir.z};
 #if defined(__SSE2__)
+  constexpr double kFarScale = 1 + 2 * gamma_bound(3);
   __m128d t0 = _mm_setzero_pd(), t1 = _mm_set1_pd(t_max);
+  const __m128d far_scale = _mm_set1_pd(kFarScale);
+#pragma GCC unroll 3
   for (int a = 0; a < 3; ++a) {
-    const __m128d o = _mm_set1_pd(origin[a]), inv = _mm_set1_pd(inv_dir[a]);
+    const __m128d o = ray.origin_lanes[a], inv = ray.inv_dir_lanes[a];
     const int near = ray.near_side[a];
     const __m128d t_near = _mm_mul_pd(_mm_sub_pd(_mm_load_pd(boxes.bound[a][near]), o), inv);
-    const __m128d t_far =
-        _mm_mul_pd(_mm_mul_pd(_mm_sub_pd(_mm_load_pd(boxes.bound[a][1 - near]), o), inv),
-                   _mm_set1_pd(kFarScale));
+    const __m128d t_far = _mm_mul_pd(
+        _mm_mul_pd(_mm_sub_pd(_mm_load_pd(boxes.bound[a][1 - near]), o), inv), far_scale);
     t0 = _mm_max_pd(t_near, t0);  // t_near > t0 ? t_near : t0
     t1 = _mm_min_pd(t_far, t1);   // t_far < t1 ? t_far : t1
   }

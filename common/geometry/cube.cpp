@@ -33,6 +33,11 @@ struct SlabSpan {
 // shared them: every cube test pays for the calls otherwise.
 [[gnu::always_inline]] inline bool slab_span(const Vec3& o, const Vec3& d, SlabSpan& span) {
   if (!is_finite(o) || !is_finite(d)) return false;
+  // An origin outside a slab moving away from it (a ray leaving a face, most often): that
+  // slab's far distance (+-1 - o) / d is <= 0 by its exact sign, so the span below would end at
+  // t <= 0, which neither caller takes. Deciding it first saves the six divisions.
+  for (int a = 0; a < 3; ++a)
+    if ((d[a] > 0 && o[a] >= 1) || (d[a] < 0 && o[a] <= -1)) return false;
   for (int a = 0; a < 3; ++a) {
     if (d[a] == 0) {
       if (!(o[a] >= -1 && o[a] <= 1)) return false;  // parallel and outside (or NaN)

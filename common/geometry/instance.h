@@ -46,7 +46,8 @@ struct WorldHit {
   std::uint32_t object = 0;
 };
 
-// Nearest hit with t in (0, t_max), or false. A moving instance is posed at the ray's time.
+// Nearest hit with t in (0, t_max), or false, leaving `hit` as it was (Tracer::closest_hit
+// keeps its best hit so far there). A moving instance is posed at the ray's time.
 bool intersect_instance(const Instance& instance, const Ray& world_ray, double t_max, WorldHit& hit,
                         IntersectionCounters& counters);
 

@@ -36,9 +36,19 @@ struct SphereRoots {
   const double beta = dot(f, d);
   const double f2 = dot(f, f);
   const double c = f2 - 1;
+  // An origin outside the sphere moving away from it (a ray leaving its surface, most often):
+  // both roots are then <= 0 (their product c / a > 0, their sum -2 beta / a <= 0), and so
+  // are the t[] computed below (c / q with q < 0, and q / a), which no error bound lets
+  // through: the answer the whole test would give, without its square roots and divisions.
+  if (c > 0 && beta >= 0) return false;
   const double s = beta / a;
   const Vec3 closest = f - d * s;
-  const double l = length(closest);
+  const double l2 = dot(closest, closest);
+  // A line certainly outside the sphere (a miss, most often): then l = sqrt(l2) > 1 + 4e-13 and
+  // disc below is negative, not an underflow to -0 (a > 1e-290), so it is decided here without
+  // the square root.
+  if (l2 > 1 + 1e-12 && a > 1e-290) return false;
+  const double l = std::sqrt(l2);
   const double disc = a * (1 - l) * (1 + l);  // beta^2 - a c, without cancellation
   if (!(disc >= 0)) return false;
   const double root = std::sqrt(disc);

@@ -1,5 +1,7 @@
 #include "common/protocol/connection.h"
 
+#include <array>
+
 #include <boost/asio/post.hpp>
 
 #include "common/protocol/messages.h"
@@ -26,7 +28,7 @@ void FrameConnection::start(FrameHandler on_frame, CloseHandler on_close) {
   stream_.handshake([self = shared_from_this()](boost::system::error_code ec) {
     if (!self->open_) return;
     if (ec) return self->close("TLS handshake failed: " + ec.message());
-    self->read_prefix();
+    self->read_head();
     self->write_next();
   });
 }
@@ -83,41 +85,46 @@ void FrameConnection::close_after_flush(const std::string& reason) {
   closing_reason_ = reason;
 }
 
-void FrameConnection::read_prefix() {
-  asio::async_read(stream_, asio::buffer(prefix_),
+void FrameConnection::read_head() {
+  asio::async_read(stream_, asio::buffer(head_),
                    [self = shared_from_this()](boost::system::error_code ec, std::size_t) {
                      if (!self->open_) return;
                      if (ec)
                        return self->close(ec == asio::error::eof ? "peer closed" : ec.message());
                      try {
-                       self->read_body(decode_body_length(self->prefix_, self->limits_));
+                       self->read_rest(decode_frame_head(self->head_, self->limits_));
                      } catch (const ProtocolError& e) {
+                       if (self->traffic_) self->traffic_(false, std::nullopt, kFrameHead);
                        self->close(e.what());
                      }
                    });
 }
 
-void FrameConnection::read_body(std::size_t size) {
-  body_.resize(size);
-  asio::async_read(stream_, asio::buffer(body_),
-                   [self = shared_from_this()](boost::system::error_code ec, std::size_t) {
-                     if (!self->open_) return;
-                     if (ec) return self->close(ec.message());
-                     self->last_received_ = std::chrono::steady_clock::now();
-                     Frame frame;
-                     const std::size_t bytes = kFramePrefix + self->body_.size();
-                     try {
-                       frame = decode_owned_body(std::move(self->body_), self->limits_);
-                     } catch (const ProtocolError& e) {
-                       if (self->traffic_) self->traffic_(false, std::nullopt, bytes);
-                       return self->close(e.what());
-                     }
-                     if (self->traffic_) self->traffic_(false, frame.type, bytes);
-                     self->body_ = std::string();
-                     if (frame.type != MessageType::Heartbeat && self->on_frame_)
-                       self->on_frame_(std::move(frame));
-                     if (self->open_) self->read_prefix();
-                   });
+void FrameConnection::read_rest(const FrameHead& head) {
+  header_.resize(head.header_bytes);
+  payload_.resize(head.payload_bytes);
+  // One read into both: the payload lands in the buffer the frame keeps.
+  const std::array<asio::mutable_buffer, 2> parts{asio::buffer(header_), asio::buffer(payload_)};
+  asio::async_read(
+      stream_, parts,
+      [self = shared_from_this(), type = head.type](boost::system::error_code ec, std::size_t) {
+        if (!self->open_) return;
+        if (ec) return self->close(ec.message());
+        self->last_received_ = std::chrono::steady_clock::now();
+        Frame frame;
+        const std::size_t bytes = kFrameHead + self->header_.size() + self->payload_.size();
+        try {
+          frame = decode_frame_parts(type, self->header_, std::move(self->payload_));
+        } catch (const ProtocolError& e) {
+          if (self->traffic_) self->traffic_(false, std::nullopt, bytes);
+          return self->close(e.what());
+        }
+        if (self->traffic_) self->traffic_(false, frame.type, bytes);
+        self->payload_ = std::string();
+        if (frame.type != MessageType::Heartbeat && self->on_frame_)
+          self->on_frame_(std::move(frame));
+        if (self->open_) self->read_head();
+      });
 }
 
 void FrameConnection::write_next() {

@@ -58,8 +58,8 @@ class FrameConnection : public std::enable_shared_from_this<FrameConnection> {
   const std::string& peer() const { return peer_; }
 
  private:
-  void read_prefix();
-  void read_body(std::size_t size);
+  void read_head();
+  void read_rest(const FrameHead& head);
   void write_next();
   void tick();
 
@@ -72,8 +72,8 @@ class FrameConnection : public std::enable_shared_from_this<FrameConnection> {
   CloseHandler on_close_;
   FrameTraffic traffic_;
   bool open_ = false;
-  std::uint8_t prefix_[kFramePrefix] = {};
-  std::string body_;
+  std::uint8_t head_[kFrameHead] = {};
+  std::string header_, payload_;
   std::deque<std::string> queue_;
   std::size_t queued_bytes_ = 0;
   bool writing_ = false;

@@ -82,39 +82,38 @@ std::size_t decode_body_length(const std::uint8_t prefix[kFramePrefix], const Fr
 
 namespace {
 
-// The frame's type and header; `payload_at` is where its payload starts in the body.
-Frame decode_head(std::string_view body, const FrameLimits& limits, std::size_t& payload_at) {
-  if (body.size() < 5) throw ProtocolError("frame body too short");
-  const auto* p = reinterpret_cast<const std::uint8_t*>(body.data());
+// The type and header length at `p`, the start of a body of `body` bytes (at least 5), checked.
+FrameHead check_head(const std::uint8_t* p, std::size_t body, const FrameLimits& limits) {
   if (!known_type(p[0])) throw ProtocolError("unknown message type " + std::to_string(p[0]));
   const std::size_t header_size = get_u32(p + 1);
-  if (header_size > limits.max_header || header_size > body.size() - 5)
+  if (header_size > limits.max_header || header_size > body - 5)
     throw ProtocolError("bad header length " + std::to_string(header_size));
-  Frame frame;
-  frame.type = static_cast<MessageType>(p[0]);
-  frame.header = nlohmann::json::parse(body.substr(5, header_size), nullptr, false);
-  if (!frame.header.is_object())
-    throw ProtocolError(std::string("header of ") + to_string(frame.type) +
-                        " is not a JSON object");
-  payload_at = 5 + header_size;
-  return frame;
+  return {static_cast<MessageType>(p[0]), header_size, body - 5 - header_size};
 }
 
 }  // namespace
 
-Frame decode_body(std::string_view body, const FrameLimits& limits) {
-  std::size_t payload_at = 0;
-  Frame frame = decode_head(body, limits, payload_at);
-  frame.payload.assign(body.substr(payload_at));
+FrameHead decode_frame_head(const std::uint8_t head[kFrameHead], const FrameLimits& limits) {
+  return check_head(head + kFramePrefix, decode_body_length(head, limits), limits);
+}
+
+Frame decode_frame_parts(MessageType type, std::string_view header, std::string&& payload) {
+  Frame frame;
+  frame.type = type;
+  frame.header = nlohmann::json::parse(header, nullptr, false);
+  if (!frame.header.is_object())
+    throw ProtocolError(std::string("header of ") + to_string(frame.type) +
+                        " is not a JSON object");
+  frame.payload = std::move(payload);
   return frame;
 }
 
-Frame decode_owned_body(std::string&& body, const FrameLimits& limits) {
-  std::size_t payload_at = 0;
-  Frame frame = decode_head(body, limits, payload_at);
-  body.erase(0, payload_at);
-  frame.payload = std::move(body);
-  return frame;
+Frame decode_body(std::string_view body, const FrameLimits& limits) {
+  if (body.size() < 5) throw ProtocolError("frame body too short");
+  const FrameHead head =
+      check_head(reinterpret_cast<const std::uint8_t*>(body.data()), body.size(), limits);
+  return decode_frame_parts(head.type, body.substr(5, head.header_bytes),
+                            std::string(body.substr(5 + head.header_bytes)));
 }
 
 std::optional<Frame> FrameDecoder::next() {

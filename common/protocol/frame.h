@@ -63,9 +63,20 @@ constexpr std::size_t kFramePrefix = 4;
 std::size_t decode_body_length(const std::uint8_t prefix[kFramePrefix], const FrameLimits& limits);
 // Decodes a complete body (everything after the length prefix).
 Frame decode_body(std::string_view body, const FrameLimits& limits);
-// The same, the payload taking over the body's buffer instead of a copy of it (a result's
-// pixels are up to 196 kB, and the coordinator reads one for every unit).
-Frame decode_owned_body(std::string&& body, const FrameLimits& limits);
+
+// A connection reads a frame in two steps: its first kFrameHead bytes (the length prefix, the
+// type and the header's length), then the header and the payload straight into their own
+// buffers, so that a result's pixels (up to 196 kB, one for every unit the coordinator merges)
+// are neither moved nor copied after the read.
+constexpr std::size_t kFrameHead = kFramePrefix + 5;
+struct FrameHead {
+  MessageType type;
+  std::size_t header_bytes, payload_bytes;
+};
+// Validates a frame's first bytes; throws ProtocolError.
+FrameHead decode_frame_head(const std::uint8_t head[kFrameHead], const FrameLimits& limits);
+// The frame of a header's bytes and a payload, which it takes over; throws ProtocolError.
+Frame decode_frame_parts(MessageType type, std::string_view header, std::string&& payload);
 
 // Bytes in, frames out, for stream transports that deliver arbitrary chunks.
 class FrameDecoder {

@@ -58,6 +58,9 @@ Rgb trace_pixel(const PreparedScene& scene, const RenderSettings& settings, Trac
   const int times = time_samples(scene, settings);
   const bool moving = scene.effects().has(Effect::MotionBlur);
   const double shutter = scene.scene().globals.motion_blur_frame_length;
+  // Camera rays start in air. Default-initialized, not MediumStack{}: value-initializing zeroes
+  // all its entries (264 bytes) for every sample.
+  MediumStack air;
   Rgb sum;
   for (int j = 0; j < times; ++j) {
     const auto first = (static_cast<std::uint32_t>(pass) * static_cast<std::uint32_t>(times) +
@@ -74,7 +77,7 @@ Rgb trace_pixel(const PreparedScene& scene, const RenderSettings& settings, Trac
       Ray ray = scene.camera().ray_through(px, py, settings.width, settings.height);
       if (moving) ray.time = shutter_time(shutter, j, times, settings.jitter, rng.next());
       ++stats.camera_rays;
-      Rgb c = tracer.trace(ray, RayKind::Camera, 0, 1.0, MediumStack{}, rng);
+      Rgb c = tracer.trace(ray, RayKind::Camera, 0, 1.0, air, rng);
       if (!fits_float(c)) {
         ++stats.nan_samples;  // counted and reported, never written into the image
         c = Rgb{};

@@ -3,6 +3,10 @@
 #include <cmath>
 #include <cstdint>
 
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
+
 namespace tessera {
 
 namespace {
@@ -15,10 +19,29 @@ constexpr double kSecondsSlack = 1.0;
 // hardware and still keeps the job totals (64-bit) from overflowing.
 constexpr double kMaxEventsPerSecond = 1e10;
 
+// Whether every value is finite: branch-free over the exponent bits, four values at a time with
+// SSE2 (a result holds up to 48,000 values, and one arrives with every unit).
+bool all_finite(const float* values, std::size_t count) {
+  std::size_t i = 0;
+#if defined(__SSE2__)
+  const __m128i exponent = _mm_set1_epi32(0x7f800000);
+  __m128i not_finite = _mm_setzero_si128();
+  for (; i + 4 <= count; i += 4) {
+    const __m128i bits = _mm_loadu_si128(reinterpret_cast<const __m128i*>(values + i));
+    not_finite = _mm_or_si128(not_finite, _mm_cmpeq_epi32(_mm_and_si128(bits, exponent), exponent));
+  }
+  if (_mm_movemask_epi8(not_finite) != 0) return false;
+#endif
+  for (; i < count; ++i)
+    if (!std::isfinite(values[i])) return false;
+  return true;
+}
+
 void check_pixels(const std::vector<float>& values, long long pixels) {
   if (values.size() != static_cast<std::size_t>(pixels) * 3)
     throw ProtocolError("result of " + std::to_string(values.size() / 3) +
                         " pixels for a unit of " + std::to_string(pixels));
+  if (all_finite(values.data(), values.size())) return;
   for (std::size_t i = 0; i < values.size(); ++i)
     if (!std::isfinite(values[i]))
       throw ProtocolError("pixel value " + std::to_string(values[i]) + " at " +

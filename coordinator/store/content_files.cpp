@@ -10,13 +10,9 @@
 
 namespace tessera {
 
-namespace {
-
-[[noreturn]] void fail_errno(const std::string& what, const std::filesystem::path& path) {
+void fail_errno(const std::string& what, const std::filesystem::path& path) {
   throw std::system_error(errno, std::generic_category(), what + " " + path.string());
 }
-
-}  // namespace
 
 void write_file_atomically(const std::filesystem::path& path, std::string_view bytes) {
   std::filesystem::path temporary =

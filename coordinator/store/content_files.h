@@ -15,4 +15,7 @@ inline constexpr std::string_view kTemporaryPrefix = ".tmp-";
 void write_file_atomically(const std::filesystem::path& path, std::string_view bytes);
 std::string read_whole_file(const std::filesystem::path& path);
 
+// Throws std::system_error for errno, e.g. "cannot write DIR/results/3: No space left on device".
+[[noreturn]] void fail_errno(const std::string& what, const std::filesystem::path& path);
+
 }  // namespace tessera

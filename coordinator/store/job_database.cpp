@@ -5,13 +5,16 @@
 #include <cctype>
 #include <cstring>
 #include <iterator>
+#include <optional>
 #include <system_error>
 #include <utility>
 
+#include <spdlog/spdlog.h>
 #include <nlohmann/json.hpp>
 
 #include "coordinator/store/content_files.h"
 #include "coordinator/store/flush_thread.h"
+#include "coordinator/store/result_files.h"
 #include "coordinator/store/sqlite.h"
 
 namespace tessera {
@@ -78,6 +81,15 @@ constexpr Migration kMigrations[] = {
     {2,
      "ALTER TABLE jobs ADD COLUMN camera TEXT;"
      "ALTER TABLE jobs ADD COLUMN viewpoints TEXT NOT NULL DEFAULT '[]'"},
+    // Results' payloads in one file per job (result_files.h), the row keeping where: SQLite
+    // copied each blob three times (its log, the checkpoint's read and write). Rows stored
+    // before keep their payload inline (payload_offset NULL) and load as they did; the jobs'
+    // result_file_bytes, what their files hold in committed rows, counts towards the budget.
+    {3,
+     "ALTER TABLE results ADD COLUMN payload_offset INTEGER;"
+     "ALTER TABLE results ADD COLUMN payload_bytes INTEGER;"
+     "ALTER TABLE results ADD COLUMN payload_check INTEGER;"
+     "ALTER TABLE jobs ADD COLUMN result_file_bytes INTEGER NOT NULL DEFAULT 0"},
 };
 static_assert(std::size(kMigrations) == JobDatabase::kSchemaVersion - 1,
               "one migration per schema version after the first");
@@ -192,6 +204,7 @@ void JobDatabase::open() {
   guarded({}, [&] {
     std::filesystem::create_directories(dir_ / "bundles");
     std::filesystem::create_directories(dir_ / "images");
+    std::filesystem::create_directories(dir_ / "results");
     db_ = std::make_unique<sqlite::Connection>((dir_ / "tessera.db").string());
     // A write-protected file is opened read-only without a word; the first write would fail
     // later, inside a job.
@@ -260,12 +273,17 @@ std::filesystem::path JobDatabase::bundle_path(const std::string& hash) const {
   return dir_ / "bundles" / hash;
 }
 
+std::filesystem::path JobDatabase::result_file(std::int64_t job) const {
+  return dir_ / "results" / std::to_string(job);
+}
+
 std::filesystem::path JobDatabase::image_path(std::int64_t job, const std::string& name) const {
   return dir_ / "images" / std::to_string(job) / name;
 }
 
 // Files a crash left behind: temporaries, bundles written before their job's row committed,
-// images of jobs deleted before their files were.
+// images and result files of jobs deleted before their files were, and result payloads written
+// after the last rows that committed.
 void JobDatabase::sweep_orphans() {
   std::map<std::string, bool> bundles;
   {
@@ -282,13 +300,27 @@ void JobDatabase::sweep_orphans() {
   for (const auto& entry : std::filesystem::directory_iterator(dir_ / "images"))
     if (!jobs_with_images.count(entry.path().filename().string()))
       std::filesystem::remove_all(entry);
+  std::map<std::string, std::int64_t> result_file_bytes;  // by file name, the job's id
+  {
+    sqlite::Statement statement(*db_, "SELECT id, result_file_bytes FROM jobs");
+    while (statement.step())
+      result_file_bytes[std::to_string(statement.column_int(0))] = statement.column_int(1);
+  }
+  for (const auto& entry : std::filesystem::directory_iterator(dir_ / "results")) {
+    auto job = result_file_bytes.find(entry.path().filename().string());
+    if (job == result_file_bytes.end())
+      std::filesystem::remove_all(entry);
+    else
+      truncate_payloads(entry.path(), job->second);
+  }
 }
 
 std::int64_t JobDatabase::size_locked() {
   return (db_->query_int("PRAGMA page_count") - db_->query_int("PRAGMA freelist_count")) *
              db_->query_int("PRAGMA page_size") +
          db_->query_int("SELECT COALESCE(SUM(bytes), 0) FROM bundles") +
-         db_->query_int("SELECT COALESCE(SUM(bytes), 0) FROM images");
+         db_->query_int("SELECT COALESCE(SUM(bytes), 0) FROM images") +
+         db_->query_int("SELECT COALESCE(SUM(result_file_bytes), 0) FROM jobs");
 }
 
 std::int64_t JobDatabase::size_bytes() {
@@ -443,28 +475,74 @@ void JobDatabase::flush_locked() {
     batch.swap(queue_);
   }
   if (batch.empty()) return;
+  // Each job's payloads go to its file from the end of its committed ones on.
+  struct JobPayloads {
+    std::int64_t job = 0, start = 0, end = 0;
+    std::vector<std::span<const std::byte>> payloads;
+    bool written = false;  // bytes from `start` on may be in the file
+  };
+  std::vector<JobPayloads> files;
   std::vector<std::int64_t> jobs;
+  auto file_of = [&](std::int64_t job) {
+    return std::find_if(files.begin(), files.end(),
+                        [&](const JobPayloads& file) { return file.job == job; });
+  };
   for (const QueuedResult& result : batch)
-    if (std::find(jobs.begin(), jobs.end(), result.job) == jobs.end()) jobs.push_back(result.job);
+    if (file_of(result.job) == files.end()) {
+      files.emplace_back().job = result.job;
+      jobs.push_back(result.job);
+    }
   try {
     guarded(jobs, [&] {
       sqlite::Transaction transaction(*db_);
+      sqlite::Statement file_end(*db_, "SELECT result_file_bytes FROM jobs WHERE id = ?");
+      for (JobPayloads& file : files) {
+        if (!file_end.bind(1, file.job).step())
+          throw StoreError(jobs, "job " + std::to_string(file.job) + " is not stored");
+        file.start = file.end = file_end.column_int(0);
+        file_end.reset();
+      }
       sqlite::Statement insert(*db_,
                                "INSERT INTO results (job_id, sequence, unit, payload, stats, "
-                               "worker) VALUES (?, ?, ?, ?, ?, ?)");
+                               "worker, payload_offset, payload_bytes, payload_check) "
+                               "VALUES (?, ?, ?, x'', ?, ?, ?, ?, ?)");
       for (const QueuedResult& result : batch) {
+        JobPayloads& file = *file_of(result.job);
+        const std::span<const std::byte> payload = std::as_bytes(std::span(result.payload));
+        const auto bytes = static_cast<std::int64_t>(payload.size());
         insert.bind(1, result.job)
             .bind(2, result.sequence)
             .bind(3, std::int64_t{result.unit})
-            .bind_blob(4, std::as_bytes(std::span(result.payload)))
-            .bind(5, to_json(result.stats).dump())
-            .bind(6, result.worker)
+            .bind(4, to_json(result.stats).dump())
+            .bind(5, result.worker)
+            .bind(6, file.end)
+            .bind(7, bytes)
+            .bind(8, std::bit_cast<std::int64_t>(payload_checksum(payload)))
             .run();
+        file.payloads.push_back(payload);
+        file.end += bytes;
       }
+      sqlite::Statement grow(*db_, "UPDATE jobs SET result_file_bytes = ? WHERE id = ?");
+      for (const JobPayloads& file : files) grow.bind(1, file.end).bind(2, file.job).run();
+      // Before the files grow: a write over the budget never reaches the disk.
       check_budget(jobs);
+      for (JobPayloads& file : files) {
+        file.written = true;
+        append_payloads(result_file(file.job), file.start, file.payloads);
+      }
       transaction.commit();
     });
   } catch (const StoreError&) {
+    // What was written belongs to no committed row: cut it off now rather than at the next
+    // open, so that the files hold what the budget counts.
+    for (const JobPayloads& file : files) {
+      if (!file.written) continue;
+      try {
+        truncate_payloads(result_file(file.job), file.start);
+      } catch (const std::system_error&) {
+        // The next open cuts it off; no row points at it meanwhile.
+      }
+    }
     // The dropped results leave gaps in the sequence: start again after what is stored. What
     // the jobs merged since the batch was taken goes too (they fail), so no sequence repeats.
     for (std::int64_t job : jobs) drop_queued(job);
@@ -529,7 +607,8 @@ std::vector<StoredJob> JobDatabase::load_all() {
       viewpoints
     FROM jobs ORDER BY id)sql");
     sqlite::Statement results(*db_,
-                              "SELECT sequence, unit, payload, stats, worker FROM results "
+                              "SELECT sequence, unit, payload, stats, worker, payload_offset, "
+                              "payload_bytes, payload_check FROM results "
                               "WHERE job_id = ? ORDER BY sequence");
     sqlite::Statement images(*db_, "SELECT name FROM images WHERE job_id = ? ORDER BY name");
     while (select.step()) {
@@ -573,22 +652,42 @@ std::vector<StoredJob> JobDatabase::load_all() {
           request.camera = camera_from_record(nlohmann::json::parse(select.column_text(21)));
         request.viewpoints = viewpoints_from_record(select.column_text(22));
 
+        std::optional<PayloadReader> payloads;  // opened at the first row that points into it
+        std::vector<std::int64_t> unreadable;
         results.bind(1, job.id);
         while (results.step()) {
           StoredResult& result = job.results.emplace_back();
           result.sequence = results.column_int(0);
           result.unit = static_cast<int>(results.column_int(1));
-          std::span<const std::byte> payload = results.column_blob(2);
-          if (payload.size() % sizeof(float) != 0)
-            throw std::runtime_error("result " + std::to_string(result.sequence) +
-                                     " has a payload of " + std::to_string(payload.size()) +
-                                     " bytes, not whole floats");
-          result.values.resize(payload.size() / sizeof(float));
-          if (!payload.empty()) std::memcpy(result.values.data(), payload.data(), payload.size());
+          if (results.is_null(5)) {  // stored inline, before schema version 3
+            std::span<const std::byte> payload = results.column_blob(2);
+            if (payload.size() % sizeof(float) != 0)
+              throw std::runtime_error("result " + std::to_string(result.sequence) +
+                                       " has a payload of " + std::to_string(payload.size()) +
+                                       " bytes, not whole floats");
+            result.values.resize(payload.size() / sizeof(float));
+            if (!payload.empty()) std::memcpy(result.values.data(), payload.data(), payload.size());
+          } else {
+            if (!payloads) payloads.emplace(result_file(job.id));
+            if (!payloads->read(results.column_int(5), results.column_int(6),
+                                std::bit_cast<std::uint64_t>(results.column_int(7)),
+                                result.values)) {
+              unreadable.push_back(result.sequence);
+              job.results.pop_back();
+              continue;
+            }
+          }
           result.stats = stats_from_json(nlohmann::json::parse(results.column_text(3)));
           result.worker = results.column_text(4);
         }
         results.reset();
+        // Only damage from outside (the file cut, deleted or overwritten) leaves these: the
+        // units are rendered again rather than the job or the coordinator failing.
+        if (!unreadable.empty())
+          spdlog::warn(
+              "job {}: {} stored results' payloads are missing or damaged in {} (the "
+              "first is result {}); their units will be rendered again",
+              job.id, unreadable.size(), result_file(job.id).string(), unreadable[0]);
         images.bind(1, job.id);
         while (images.step()) job.images.push_back(images.column_text(0));
         images.reset();
@@ -640,6 +739,7 @@ void JobDatabase::delete_job_locked(std::int64_t job) {
   });
   std::error_code ignored;
   std::filesystem::remove_all(dir_ / "images" / std::to_string(job), ignored);
+  std::filesystem::remove(result_file(job), ignored);
   for (const std::string& hash : unused_bundles)
     std::filesystem::remove(bundle_path(hash), ignored);
   drop_queued(job);

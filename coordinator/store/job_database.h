@@ -1,6 +1,7 @@
 // The coordinator's durable job store (issue 17 §1-2): one SQLite database DIR/tessera.db in
 // WAL mode for jobs, states and merged unit results, with bundles as content-addressed files
-// under DIR/bundles/<hash> and final images under DIR/images/<id>/. Every write is one
+// under DIR/bundles/<hash>, final images under DIR/images/<id>/ and the results' pixel values
+// appended to DIR/results/<id> (result_files.h). Every write is one
 // transaction, so a failed write (disk full, over the byte budget, I/O error) leaves the store
 // as it was before it; a crash loses only results not yet flushed.
 //
@@ -47,8 +48,8 @@ class StoreError : public std::runtime_error {
 
 class JobDatabase {
  public:
-  // 2: jobs keep their scene's camera and Viewpoints.
-  static constexpr std::int64_t kSchemaVersion = 2;
+  // 2: jobs keep their scene's camera and Viewpoints. 3: results' payloads in files.
+  static constexpr std::int64_t kSchemaVersion = 3;
   static constexpr std::int64_t kUnlimited = std::numeric_limits<std::int64_t>::max();
 
   // Opens DIR (created if missing) and its database, migrating a store of an older schema
@@ -95,7 +96,7 @@ class JobDatabase {
   // deleted. Returns the deleted ids.
   std::vector<std::int64_t> prune(WallClock::time_point now, std::chrono::seconds keep_finished,
                                   std::int64_t max_disk_bytes);
-  // The database's used pages plus every bundle and image file.
+  // The database's used pages plus every bundle, image and result file.
   std::int64_t size_bytes();
 
  private:
@@ -116,6 +117,8 @@ class JobDatabase {
   void delete_job_locked(std::int64_t job);
   void sweep_orphans();
   std::filesystem::path bundle_path(const std::string& hash) const;
+  // The job's results' payloads, DIR/results/<job> (result_files.h).
+  std::filesystem::path result_file(std::int64_t job) const;
 
   std::filesystem::path dir_;
   std::int64_t max_disk_bytes_;

@@ -34,6 +34,10 @@ LocalWorkers::LocalWorkers(const std::filesystem::path& binary, int count, int t
     if (pid == 0) {
       prctl(PR_SET_PDEATHSIG, SIGTERM);
       if (getppid() != parent) _exit(0);  // the coordinator died before prctl took effect
+      // Nothing of the coordinator's but stdin, stdout and stderr: an inherited listening
+      // socket would keep the coordinator's ports taken after it died, until the worker exits,
+      // and a coordinator restarted at once could not bind them.
+      close_range(3, ~0U, 0);
       if (!secret.empty()) setenv("TESSERA_SECRET", secret.c_str(), 1);
       // The last argument ends the list early without TLS.
       execl(binary.c_str(), binary.c_str(), "--coordinator", address.c_str(), "--threads",

@@ -53,6 +53,30 @@ class Coordinator:
             ["--secret", SECRET, "--local-workers", "1", "--local-threads", "2", "--data-dir",
              self.data, *self.ports, *self.extra], log, port_file)
         self.ports = ["--http-port", str(self.http_port), "--worker-port", str(worker_port)]
+        self.assert_workers_hold_no_port((self.http_port, worker_port))
+
+    def assert_workers_hold_no_port(self, ports):
+        """The local workers (the coordinator's children) hold none of its listening sockets:
+        one inherited would keep a port taken after a kill, and the restart could not bind it."""
+        listening = set()
+        for table in ("/proc/net/tcp", "/proc/net/tcp6"):
+            with open(table) as f:
+                for row in f.read().splitlines()[1:]:
+                    fields = row.split()
+                    if fields[3] == "0A" and int(fields[1].rsplit(":", 1)[1], 16) in ports:
+                        listening.add("socket:[%s]" % fields[9])
+        assert listening, "no listening socket found for ports %s" % (ports,)
+        for pid in [p for p in os.listdir("/proc") if p.isdigit()]:
+            try:
+                with open("/proc/%s/stat" % pid) as f:
+                    parent = int(f.read().rsplit(")", 1)[1].split()[1])
+                if parent != self.proc.pid:
+                    continue
+                held = {os.readlink("/proc/%s/fd/%s" % (pid, fd))
+                        for fd in os.listdir("/proc/%s/fd" % pid)}
+            except OSError:
+                continue  # gone meanwhile
+            assert not held & listening, "worker %s holds the coordinator's ports" % pid
 
     def kill(self):
         self.proc.send_signal(signal.SIGKILL)

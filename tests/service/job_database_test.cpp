@@ -420,7 +420,8 @@ TEST_F(JobDatabaseTest, AFullStoreFailsTheWriteAndKeepsWhatItHeld) {
   {
     // Room for about 16 more results: a flush that was not one transaction would keep some.
     JobDatabase db(dir_, size + 200'000);
-    // 100 results of 12 KB: SQLite refuses to grow the file (SQLITE_FULL, max_page_count).
+    // 100 results of 12 KB: their payloads' file counts, and is not written at all.
+    const std::uintmax_t payload_bytes = fs::file_size(dir_ / "results" / std::to_string(running));
     for (int i = 0; i < 100; ++i)
       db.append_result(running, 2 + i, awkward_values(i, 3072), {}, "w");
     try {
@@ -428,9 +429,10 @@ TEST_F(JobDatabaseTest, AFullStoreFailsTheWriteAndKeepsWhatItHeld) {
       FAIL() << "the results were written over the limit";
     } catch (const StoreError& e) {
       EXPECT_EQ(e.jobs(), (std::vector<std::int64_t>{running}));
-      EXPECT_NE(e.cause().find("full"), std::string::npos) << e.what();
+      EXPECT_NE(e.cause().find("over its limit"), std::string::npos) << e.what();
     }
     EXPECT_EQ(db.queued(), 0u);
+    EXPECT_EQ(fs::file_size(dir_ / "results" / std::to_string(running)), payload_bytes);
     // A bundle that fits SQLite's pages but not the byte budget: the store's own check.
     try {
       db.add_job(make_request(std::string(300'000, 'x')), at_seconds(3));
@@ -483,6 +485,121 @@ TEST_F(JobDatabaseTest, FlushOfAHundredUnitResultsFitsATick) {
       seconds[2] * 1e3, slowest * 1e3, per_result);
   EXPECT_LT(slowest, 0.25);
   EXPECT_LT(per_result, 1.1 * 12288);
+}
+
+std::int64_t file_bytes(const fs::path& file) {
+  return static_cast<std::int64_t>(fs::file_size(file));
+}
+
+// Payloads go to one file per job (schema version 3), which the budget counts whole.
+TEST_F(JobDatabaseTest, PayloadsAreInTheJobsFileWhichTheBudgetCounts) {
+  JobDatabase db(dir_);
+  std::int64_t id = db.add_job(make_request(), at_seconds(0));
+  const std::int64_t empty = db.size_bytes();
+  for (int i = 0; i < 3; ++i) db.append_result(id, i, awkward_values(i, 3000), {}, "w");
+  db.flush();
+  const fs::path file = dir_ / "results" / std::to_string(id);
+  EXPECT_EQ(file_bytes(file), 3 * 12'000);
+  // The rows are small: the database grew by a page or two, not by the payloads again.
+  EXPECT_GE(db.size_bytes() - empty, 3 * 12'000);
+  EXPECT_LE(db.size_bytes() - empty, 3 * 12'000 + 2 * 4096);
+}
+
+// A crash between writing the payloads and committing their rows leaves bytes past the
+// committed ones: the next open cuts them off, and the job's next payloads go where they were.
+TEST_F(JobDatabaseTest, APayloadTailACrashLeftIsCutOffAtOpen) {
+  std::int64_t id = 0;
+  const fs::path file = dir_ / "results" / "1";
+  {
+    JobDatabase db(dir_);
+    id = db.add_job(make_request(), at_seconds(0));
+    for (int i = 0; i < 2; ++i) db.append_result(id, i, awkward_values(i, 300), {}, "w");
+    db.flush();
+  }
+  ASSERT_EQ(file, dir_ / "results" / std::to_string(id));
+  write_file_atomically(file, read_whole_file(file) + std::string(5000, '\x7f'));  // torn tail
+  JobDatabase db(dir_);
+  EXPECT_EQ(file_bytes(file), 2 * 1200);
+  db.append_result(id, 2, awkward_values(2, 300), {}, "w");
+  db.flush();
+  std::vector<StoredJob> jobs = db.load_all();
+  ASSERT_EQ(jobs[0].results.size(), 3u);
+  for (int i = 0; i < 3; ++i)
+    EXPECT_TRUE(same_bytes(jobs[0].results[i].values, awkward_values(i, 300))) << i;
+  EXPECT_EQ(file_bytes(file), 3 * 1200);
+}
+
+// A row whose payload the file no longer holds (damaged, cut short or deleted from outside the
+// store) is left out of its job, whose unit is then rendered again; the rest load as stored.
+TEST_F(JobDatabaseTest, AResultWhosePayloadIsMissingOrDamagedIsLeftOut) {
+  JobDatabase db(dir_);
+  std::int64_t id = db.add_job(make_request(), at_seconds(0));
+  for (int i = 0; i < 3; ++i) db.append_result(id, 10 + i, awkward_values(i, 300), {}, "w");
+  db.flush();
+  const fs::path file = dir_ / "results" / std::to_string(id);
+  auto units = [&] {
+    std::vector<int> out;
+    const std::vector<StoredJob> jobs = db.load_all();
+    for (const StoredResult& result : jobs.at(0).results) out.push_back(result.unit);
+    return out;
+  };
+  std::string bytes = read_whole_file(file);
+  bytes[1200 + 700] ^= 0x10;  // one bit of the second payload
+  write_file_atomically(file, bytes);
+  EXPECT_EQ(units(), (std::vector<int>{10, 12}));
+  fs::resize_file(file, 2 * 1200 + 600);  // the third cut short
+  EXPECT_EQ(units(), (std::vector<int>{10}));
+  fs::remove(file);
+  EXPECT_TRUE(units().empty());
+  // The job goes on after its stored sequence.
+  EXPECT_EQ(db.append_result(id, 11, awkward_values(1, 300), {}, "w"), 3);
+  db.flush();
+  EXPECT_EQ(units(), (std::vector<int>{11}));
+}
+
+// A result stored before schema version 3, its payload inline in its row, loads as it did, in
+// sequence with the job's later results in its file.
+TEST_F(JobDatabaseTest, AResultStoredInlineBeforeVersion3StillLoads) {
+  std::int64_t id = 0;
+  {
+    JobDatabase db(dir_);
+    id = db.add_job(make_request(), at_seconds(0));
+  }
+  {
+    sqlite::Connection raw((dir_ / "tessera.db").string());
+    const std::vector<float> values = awkward_values(0, 300);
+    sqlite::Statement(raw,
+                      "INSERT INTO results (job_id, sequence, unit, payload, stats, worker) "
+                      "VALUES (?, 0, 4, ?, '{}', 'old')")
+        .bind(1, id)
+        .bind_blob(2, std::as_bytes(std::span(values)))
+        .run();
+  }
+  JobDatabase db(dir_);
+  EXPECT_EQ(db.append_result(id, 5, awkward_values(1, 300), {}, "new"), 1);
+  db.flush();
+  std::vector<StoredJob> jobs = db.load_all();
+  ASSERT_EQ(jobs[0].results.size(), 2u);
+  EXPECT_EQ(jobs[0].results[0].worker, "old");
+  EXPECT_TRUE(same_bytes(jobs[0].results[0].values, awkward_values(0, 300)));
+  EXPECT_TRUE(same_bytes(jobs[0].results[1].values, awkward_values(1, 300)));
+}
+
+// A deleted job's payload file goes with it; one a crash left without its job goes at open.
+TEST_F(JobDatabaseTest, AJobsPayloadFileGoesWithIt) {
+  {
+    JobDatabase db(dir_);
+    std::int64_t id = db.add_job(make_request(), at_seconds(0));
+    db.append_result(id, 0, awkward_values(0, 300), {}, "w");
+    db.flush();
+    EXPECT_EQ(files_in("results"), 1u);
+    db.finish_job(id, "done", "", at_seconds(1), {});
+    db.prune(at_seconds(100), 10s, JobDatabase::kUnlimited);
+    EXPECT_EQ(files_in("results"), 0u);
+  }
+  write_file_atomically(dir_ / "results" / "77", "payloads of a job deleted before its file");
+  JobDatabase db(dir_);
+  EXPECT_EQ(files_in("results"), 0u);
 }
 
 // Waits until the store's thread has finished a flush after `before` of them.
