@@ -15,7 +15,7 @@
 //    the torus' gradient direction; points on the axis (the horn torus' pinch, the spindle's
 //    cusps), where the gradient vanishes, keep the root's point and get a finite normal;
 //  - a hit closer to the ray's origin than a few times its error bound is not reported, so a
-//    ray leaving the surface from offset_ray_origin() cannot find it again at t ~ 0.
+//    ray leaving the surface from offset_ray_origin() cannot find it again at t ~ 0;
 //  - a shadow ray (occluded_torus) needs no hit, only proof of one: a sign change of the
 //    quartic between two split points of the root search whose whole span passes the tests a
 //    hit would, so it gets the nearest-hit query's answer without the polish or re-projection.
