@@ -194,6 +194,8 @@ bool occluded_instance(const Instance& instance, const Ray& world_ray, double t_
   const Ray ray = object_ray_inline(instance, world_ray);
   if (std::holds_alternative<MeshShape>(instance.geometry))
     return instance.mesh != nullptr && occluded_mesh(*instance.mesh, ray, t_max, counters);
+  if (const auto* torus = std::get_if<Torus>(&instance.geometry))
+    return occluded_torus(*torus, ray, t_max);
   // The other shapes stop at their nearest root anyway; what is saved is the world hit.
   LocalHit local;
   return std::visit(LocalIntersect{instance, world_ray, ray, t_max, local, counters},

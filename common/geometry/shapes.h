@@ -23,6 +23,9 @@ bool intersect_cube(const Ray& ray, double t_max, LocalHit& hit);
 bool intersect_tapered_cylinder(const TaperedCylinder& shape, const Ray& ray, double t_max,
                                 LocalHit& hit);
 bool intersect_torus(const Torus& shape, const Ray& ray, double t_max, LocalHit& hit);
+// Whether the ray hits the torus with t in (0, t_max): always intersect_torus' answer, most
+// often without polishing the hit (shadow rays).
+bool occluded_torus(const Torus& shape, const Ray& ray, double t_max);
 // Meshes go through their own BVH (common/accel/mesh_accel.h).
 bool intersect_mesh(const MeshAccel& mesh, bool interpolate_normals, const Ray& ray, double t_max,
                     LocalHit& hit, IntersectionCounters& counters);

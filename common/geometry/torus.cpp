@@ -15,7 +15,10 @@
 //    the torus' gradient direction; points on the axis (the horn torus' pinch, the spindle's
 //    cusps), where the gradient vanishes, keep the root's point and get a finite normal;
 //  - a hit closer to the ray's origin than a few times its error bound is not reported, so a
-//    ray leaving the surface from offset_ray_origin() cannot find it again at t ~ 0.
+//    ray leaving the surface from offset_ray_origin() cannot find it again at t ~ 0;
+//  - a shadow ray (occluded_torus) needs no hit, only proof of one: a sign change of the
+//    quartic between two split points of the root search whose whole span passes the tests a
+//    hit would, so it gets the nearest-hit query's answer without the polish or re-projection.
 #include <algorithm>
 #include <cmath>
 #include <vector>
@@ -46,6 +49,13 @@ bool box_span(const Vec3& o, const Vec3& d, double e, double h, double& t_enter,
   return t_enter <= t_exit;
 }
 
+// surface_hit's error bounds on the hit point, per coordinate: a few roundings of quantities of
+// size R + r; on the axis, the square root of the rounding (see there).
+double off_axis_point_error(double big_r, double r) { return gamma_bound(12) * (big_r + r); }
+double on_axis_point_error(double big_r, double r) {
+  return 4 * std::sqrt(kMachineEpsilon) * (big_r + r);
+}
+
 // The hit at point p (computed as o' + s u): re-projected onto the surface, with its error
 // bound and the gradient's direction as normal.
 LocalHit surface_hit(double big_r, double r, const Vec3& p, const Vec3& u) {
@@ -68,8 +78,7 @@ LocalHit surface_hit(double big_r, double r, const Vec3& p, const Vec3& u) {
     const double b = (p.z / d) * r;
     const double rho_on = (inner ? -big_r : big_r) + a;
     hit.point = {rho_on * cx, rho_on * cy, b};
-    // A few roundings of quantities of size R + r.
-    const double e = gamma_bound(12) * (big_r + r);
+    const double e = off_axis_point_error(big_r, r);
     hit.point_error = {e, e, e};
     // The gradient of the torus function is f(-) grad f(+) on the outer circle, where
     // f(-) > 0, and f(+) grad f(-) on the inner one, where f(+) < 0: away from the +R centre,
@@ -80,7 +89,7 @@ LocalHit surface_hit(double big_r, double r, const Vec3& p, const Vec3& u) {
     // On the axis: the horn torus' pinch or a spindle torus' cusp, where the gradient vanishes
     // and the root is a multiple one, resolved only to about the square root of the rounding.
     hit.point = p;
-    const double e = 4 * std::sqrt(kMachineEpsilon) * (big_r + r);
+    const double e = on_axis_point_error(big_r, r);
     hit.point_error = {e, e, e};
     hit.normal = p.z != 0 ? Vec3{0, 0, p.z > 0 ? 1.0 : -1.0} : -u;
   }
@@ -88,23 +97,31 @@ LocalHit surface_hit(double big_r, double r, const Vec3& p, const Vec3& u) {
   return hit;
 }
 
+// What a search for the ray's hits is for: every hit, in order; or only whether there is one,
+// which a sign change of the quartic between two split points of the root search well inside
+// the accepted span shows without polishing the root or re-projecting it.
+enum class HitSearch { kInOrder, kAnyHit };
+
 // The roots of the ray's quartic with t in (0, t_max), ascending, as hits handed to
 // take(hit, touching) until it returns false: the search stops there, so a caller that needs
-// only the first hit pays only for it.
+// only the first hit pays only for it. Returns false when the search was ended: by take, or
+// (kAnyHit) at a root proven to be a hit that take was not given.
 template <class Take>
-void visit_torus_hits(const Torus& torus, const Ray& ray, double t_max, const Take& take) {
+bool visit_torus_hits(const Torus& torus, const Ray& ray, double t_max, HitSearch search,
+                      const Take& take) {
   const double big_r = torus.torus_radius, r = torus.tube_radius;
   const Vec3& o = ray.origin;
   const Vec3& d = ray.direction;
   const double dd = dot(d, d);
-  if (!is_finite(o) || !is_finite(d) || !(dd > 0) || !std::isfinite(dd) || !(t_max > 0)) return;
+  if (!is_finite(o) || !is_finite(d) || !(dd > 0) || !std::isfinite(dd) || !(t_max > 0))
+    return true;
 
   // The span through the box, padded so that it certainly holds the rounded surface.
   double t_enter = 0, t_exit = 0;
   const double pad = 1 + 1e-9;
-  if (!box_span(o, d, (big_r + r) * pad, r * pad, t_enter, t_exit)) return;
+  if (!box_span(o, d, (big_r + r) * pad, r * pad, t_enter, t_exit)) return true;
   const double t_lo = std::max(t_enter, 0.0), t_hi = std::min(t_exit, t_max);
-  if (!(t_lo < t_hi)) return;
+  if (!(t_lo < t_hi)) return true;
 
   // The frame: origin at the line's point nearest the centre, unit direction; s = (t - t0) |d|.
   const double len = std::sqrt(dd);
@@ -125,10 +142,10 @@ void visit_torus_hits(const Torus& torus, const Ray& ray, double t_max, const Ta
   };
   const double pad2 = pad * pad;
   const double s_nearest = P > 0 ? std::clamp(-Q / P, s_lo, s_hi) : s_lo;
-  if (axis_distance2(s_nearest) > (big_r + r) * (big_r + r) * pad2) return;
+  if (axis_distance2(s_nearest) > (big_r + r) * (big_r + r) * pad2) return true;
   if (big_r > r &&
       std::max(axis_distance2(s_lo), axis_distance2(s_hi)) < (big_r - r) * (big_r - r) / pad2)
-    return;
+    return true;
 
   // F(f + s u) = (A s^2 + B s + C)^2 - 4 R^2 (P s^2 + 2 Q s + S).
   const double big_r2 = big_r * big_r;
@@ -143,27 +160,49 @@ void visit_torus_hits(const Torus& torus, const Ray& ray, double t_max, const Ta
   quartic.c[0] = ((rho - big_r) * (rho - big_r) + f.z * f.z - r * r) *
                  ((rho + big_r) * (rho + big_r) + f.z * f.z - r * r);
 
+  const auto t_at = [&](double s) { return t0 + s / len; };
+  // Within a few error bounds of the origin: the surface the ray is leaving.
+  const auto leaves_the_origin = [&](double t, const Vec3& point_error) {
+    return t * len > 4 * length(point_error);
+  };
   const auto at_root = [&](const PolynomialRoot& root) {
-    const double t = t0 + root.x / len;
+    const double t = t_at(root.x);
     if (!(t > 0 && t < t_max)) return true;
     LocalHit hit = surface_hit(big_r, r, f + u * root.x, u);
-    // Within a few error bounds of the origin: the surface the ray is leaving.
-    if (!(t * len > 4 * length(hit.point_error))) return true;
+    if (!leaves_the_origin(t, hit.point_error)) return true;
     hit.t = t;
     return take(hit, root.touching);
   };
-  visit_real_roots(quartic, s_lo, s_hi, at_root);
+  if (search == HitSearch::kInOrder) return visit_real_roots(quartic, s_lo, s_hi, at_root);
+
+  // The root polished in [a, b] would have t in [t_at(a), t_at(b)], every rounded operation
+  // being monotone, and an error bound no larger than the larger of surface_hit's: when both
+  // ends pass at_root's tests, so does the root. Otherwise the root is polished and tested.
+  const double e = std::max(off_axis_point_error(big_r, r), on_axis_point_error(big_r, r));
+  const Vec3 largest_point_error{e, e, e};
+  const auto is_hit_bracket = [&](double a, double b) {
+    const double t_a = t_at(a);
+    return t_a > 0 && t_at(b) < t_max && leaves_the_origin(t_a, largest_point_error);
+  };
+  return visit_real_roots(quartic, s_lo, s_hi, at_root, is_hit_bracket);
 }
 
 }  // namespace
 
 bool intersect_torus(const Torus& torus, const Ray& ray, double t_max, LocalHit& hit) {
-  return nearest_ordered_hit([&](const auto& take) { visit_torus_hits(torus, ray, t_max, take); },
-                             hit);
+  return nearest_ordered_hit(
+      [&](const auto& take) { visit_torus_hits(torus, ray, t_max, HitSearch::kInOrder, take); },
+      hit);
+}
+
+bool occluded_torus(const Torus& torus, const Ray& ray, double t_max) {
+  const auto any_hit_ends_the_search = [](const LocalHit&, bool) { return false; };
+  return !visit_torus_hits(torus, ray, t_max, HitSearch::kAnyHit, any_hit_ends_the_search);
 }
 
 std::vector<LocalHit> torus_crossings(const Torus& torus, const Ray& ray, double t_max) {
-  return ordered_crossings([&](const auto& take) { visit_torus_hits(torus, ray, t_max, take); });
+  return ordered_crossings(
+      [&](const auto& take) { visit_torus_hits(torus, ray, t_max, HitSearch::kInOrder, take); });
 }
 
 }  // namespace tessera

@@ -109,11 +109,16 @@ bool visit_low_degree_roots(const Polynomial& p, double lo, double hi, const Vis
   return true;
 }
 
+// The bracket test of a search that polishes every root: the derivatives' roots, and the
+// roots of visit_real_roots without one.
+constexpr auto kPolishEveryRoot = [](double, double) { return false; };
+
 // visit_real_roots for the polynomial c[0..N] of degree exactly N >= 3 and lo < hi. The
 // degree is a template argument so that the recursion through the derivatives, and the Horner
 // loops, are compiled for each degree with no indirect calls between them.
-template <int N, class Visit>
-bool visit_roots(const double* c, double lo, double hi, const Visit& visit) {
+template <int N, class Visit, class EndsSearch>
+bool visit_roots(const double* c, double lo, double hi, const Visit& visit,
+                 const EndsSearch& ends_search) {
   double dc[N];
   for (int i = 1; i <= N; ++i) dc[i - 1] = i * c[i];
 
@@ -130,8 +135,10 @@ bool visit_roots(const double* c, double lo, double hi, const Visit& visit) {
       zero_pending = false;
       if (!visit(PolynomialRoot{x_before, sign(value_before_zero) * sign(value) > 0})) return false;
     }
+    // bracketed_root's result lies in [x_before, x].
     if (sign(value_before) * sign(value) < 0 &&
-        !visit(PolynomialRoot{bracketed_root<N>(c, dc, x_before, x, value_before), false}))
+        (ends_search(x_before, x) ||
+         !visit(PolynomialRoot{bracketed_root<N>(c, dc, x_before, x, value_before), false})))
       return false;
     if (interior && value == 0) {
       zero_pending = true;
@@ -153,7 +160,7 @@ bool visit_roots(const double* c, double lo, double hi, const Visit& visit) {
     for (int i = 0; i <= 2; ++i) derivative_of_degree_2.c[i] = dc[i];
     complete = visit_low_degree_roots(derivative_of_degree_2, lo, hi, at_critical_point);
   } else {
-    complete = visit_roots<N - 1>(dc, lo, hi, at_critical_point);
+    complete = visit_roots<N - 1>(dc, lo, hi, at_critical_point, kPolishEveryRoot);
   }
   if (!complete) return false;
   return split_at(hi, horner(c, N, hi), false);
@@ -194,13 +201,28 @@ double evaluate(const Polynomial& p, double x) { return horner(p.c, p.degree, x)
 
 double evaluation_error(const Polynomial& p, double x) { return horner_error(p.c, p.degree, x); }
 
-bool visit_real_roots(const Polynomial& p_in, double lo, double hi, RootVisitor visit) {
+namespace {
+
+template <class EndsSearch>
+bool visit_roots_of_any_degree(const Polynomial& p_in, double lo, double hi, RootVisitor visit,
+                               const EndsSearch& ends_search) {
   Polynomial p = p_in;
   p.degree = effective_degree(p_in);
   if (p.degree == 0 || !(lo < hi)) return true;
-  if (p.degree == 3) return visit_roots<3>(p.c, lo, hi, visit);
-  if (p.degree == 4) return visit_roots<4>(p.c, lo, hi, visit);
+  if (p.degree == 3) return visit_roots<3>(p.c, lo, hi, visit, ends_search);
+  if (p.degree == 4) return visit_roots<4>(p.c, lo, hi, visit, ends_search);
   return visit_low_degree_roots(p, lo, hi, visit);
+}
+
+}  // namespace
+
+bool visit_real_roots(const Polynomial& p, double lo, double hi, RootVisitor visit) {
+  return visit_roots_of_any_degree(p, lo, hi, visit, kPolishEveryRoot);
+}
+
+bool visit_real_roots(const Polynomial& p, double lo, double hi, RootVisitor visit,
+                      BracketTest ends_search) {
+  return visit_roots_of_any_degree(p, lo, hi, visit, ends_search);
 }
 
 int real_roots(const Polynomial& p, double lo, double hi,

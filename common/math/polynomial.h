@@ -36,22 +36,31 @@ struct PolynomialRoot {
   bool touching = false;  // the polynomial does not change sign there (even multiplicity)
 };
 
-// Receives roots one at a time; returns false to end the search. (A non-owning reference to a
-// callable, so that callers need no templates and no allocation; the search itself, through the
-// derivatives, is compiled for each degree and calls it only to hand over a root.)
-class RootVisitor {
+// A non-owning reference to a callable, so that callers need no templates and no allocation;
+// the search itself, through the derivatives, is compiled for each degree and calls it only to
+// hand over a root or ask about a bracket.
+template <class Signature>
+class CallableRef;
+template <class R, class... Args>
+class CallableRef<R(Args...)> {
  public:
   template <class F>
-  RootVisitor(const F& f)  // NOLINT(google-explicit-constructor): lambdas convert where passed
-      : context_(&f), call_([](const void* c, const PolynomialRoot& r) {
-          return (*static_cast<const F*>(c))(r);
+  CallableRef(const F& f)  // NOLINT(google-explicit-constructor): lambdas convert where passed
+      : context_(&f), call_([](const void* c, Args... args) -> R {
+          return (*static_cast<const F*>(c))(args...);
         }) {}
-  bool operator()(const PolynomialRoot& root) const { return call_(context_, root); }
+  R operator()(Args... args) const { return call_(context_, args...); }
 
  private:
   const void* context_;
-  bool (*call_)(const void*, const PolynomialRoot&);
+  R (*call_)(const void*, Args...);
 };
+
+// Receives roots one at a time; returns false to end the search.
+using RootVisitor = CallableRef<bool(const PolynomialRoot&)>;
+// Asked about a simple root's sign-change bracket [a, b] before the root is polished in it;
+// returns true to end the search there, the root neither polished nor visited.
+using BracketTest = CallableRef<bool(double a, double b)>;
 
 // The real roots of p in the open interval (lo, hi), ascending, each handed to `visit` as soon
 // as it is found; returns false when `visit` ended the search. Roots beyond the one that ends
@@ -59,6 +68,14 @@ class RootVisitor {
 // costs less than asking for all. lo and hi must be finite. A polynomial that is zero
 // everywhere has no isolated roots, and none are reported.
 bool visit_real_roots(const Polynomial& p, double lo, double hi, RootVisitor visit);
+// The same search, for a caller that needs only to know whether an acceptable root exists (is a
+// shadow ray blocked?): before polishing a simple root, it asks ends_search(a, b) about the
+// bracket [a, b] that the polished root would lie in, on the same split points as the search
+// above, so a caller that can accept every point of the bracket answers what it would have
+// answered from the root, without polishing it. Returns false when visit or ends_search ended
+// the search. Roots of degree 1 and 2 polynomials, found in closed form, are only visited.
+bool visit_real_roots(const Polynomial& p, double lo, double hi, RootVisitor visit,
+                      BracketTest ends_search);
 
 // Every real root of p in (lo, hi), ascending, as visit_real_roots finds them; returns how many
 // (at most p.degree).

@@ -2,6 +2,7 @@
 // where the construction itself could round.
 #include <gtest/gtest.h>
 
+#include <array>
 #include <cmath>
 #include <random>
 
@@ -276,6 +277,71 @@ TEST(Torus, SpawnedRaysDoNotFindTheirOwnHit) {
     }
   }
   EXPECT_GT(tested, 2000);
+}
+
+// occluded_torus answers "is there a hit with t in (0, t_max)" mostly from a sign change of the
+// quartic, without the hit: always what intersect_torus answers, on rays from far away and
+// from near, grazing the tube, leaving the surface (offset as spawned rays are, not offset, and
+// from just behind it), and
+// with t_max just before, at and just after the nearest hit, where the answer turns.
+TEST(Torus, OcclusionAnswersAsTheNearestHit) {
+  std::mt19937_64 rng(47);
+  std::uniform_real_distribution<double> unit(0, 1);
+  int compared = 0, occluded = 0;
+  for (const Torus& torus : {kRing, kHorn, kSpindle, Torus{0.01, 1}}) {
+    const double big_r = torus.torus_radius, r = torus.tube_radius;
+    const auto expect_same_answer = [&](const Ray& ray, double t_max) {
+      LocalHit hit;
+      const bool blocked = intersect_torus(torus, ray, t_max, hit);
+      ASSERT_EQ(occluded_torus(torus, ray, t_max), blocked)
+          << "torus " << r << " " << big_r << " origin " << ray.origin.x << " " << ray.origin.y
+          << " " << ray.origin.z << " t_max " << t_max;
+      ++compared;
+      occluded += blocked;
+    };
+    // Every ray with t_max unbounded, and around its nearest hit; from each hit, rays leave.
+    const auto expect_same_answers = [&](const Ray& ray, bool from_hits) {
+      expect_same_answer(ray, kInfinity);
+      LocalHit hit;
+      if (!intersect_torus(torus, ray, kInfinity, hit)) return;
+      for (double t_max : {hit.t, std::nextafter(hit.t, 0.0), std::nextafter(hit.t, kInfinity),
+                           hit.t * (1 - 1e-9), hit.t * (1 + 1e-9)})
+        expect_same_answer(ray, t_max);
+      if (!from_hits) return;
+      for (int k = 0; k < 4; ++k) {
+        // Not of unit length, so that t's rounding differs from s's.
+        const Vec3 w = testing::random_unit(rng) * (0.1 + 10 * unit(rng));
+        expect_same_answer({hit.point, w}, kInfinity);
+        // Just behind the surface, within the distance at which its own hit is not reported.
+        const Vec3 behind = hit.point - w * (4 * length(hit.point_error) * unit(rng));
+        expect_same_answer({behind, w}, kInfinity);
+        if (dot(w, hit.normal) == 0) continue;
+        expect_same_answer({offset_ray_origin(hit.point, hit.point_error, hit.normal, w), w},
+                           kInfinity);
+      }
+    };
+    const Bounds3 box = object_bounds(torus, nullptr);
+    for (int i = 0; i < 3000; ++i) {
+      // Aimed into the box (every tenth ray through the centre, for the pinch and cusps), from
+      // near, from far and from very far.
+      const Vec3 target = i % 10 == 0
+                              ? Vec3{}
+                              : box.lo + mul(box.diagonal(), Vec3{unit(rng), unit(rng), unit(rng)});
+      const double distance = std::array{1.0, 5.0, 1e4}[i % 3] * (big_r + r);
+      const Vec3 origin = target + testing::random_unit(rng) * (distance * (0.5 + unit(rng)));
+      expect_same_answers({origin, (target - origin) * (0.1 + 10 * unit(rng))}, true);
+      // Grazing: tangent to the outer equator, or to the top of the tube, from a random angle,
+      // within delta.
+      const double delta = std::pow(10.0, -15 * unit(rng)) * r;
+      const double angle = 2 * M_PI * unit(rng), c = std::cos(angle), s = std::sin(angle);
+      const double rho = big_r + r - delta;
+      expect_same_answers({{rho * c - 3 * s, rho * s + 3 * c, 0}, {s, -c, 0}}, false);
+      expect_same_answers({{big_r * c - 3 * s, big_r * s + 3 * c, r - delta}, {s, -c, 0}}, false);
+    }
+  }
+  EXPECT_GT(compared, 100000);
+  EXPECT_GT(occluded, compared / 4);
+  EXPECT_LT(occluded, compared * 3 / 4);
 }
 
 // For CSG: a ray from outside crosses a closed surface an even number of times (touching roots

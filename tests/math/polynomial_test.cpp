@@ -7,6 +7,7 @@
 #include <cmath>
 #include <initializer_list>
 #include <random>
+#include <utility>
 #include <vector>
 
 #include "common/math/float_error.h"
@@ -136,6 +137,41 @@ TEST(Polynomial, VisitingStopsWhereTheVisitorSays) {
     const auto every = [&](const PolynomialRoot&) { return ++count > 0; };
     EXPECT_TRUE(visit_real_roots(p, -10, 10, every));
     EXPECT_EQ(count, n);
+  }
+}
+
+// The bracket test is asked about each simple root before it is polished, with a bracket that
+// holds the polished root; it is not asked about touching roots, and answering true ends the
+// search there without the root.
+TEST(Polynomial, BracketTestSeesEachSimpleRootsBracketFirst) {
+  for (const Polynomial& p : {from_roots({-1.5, -0.5, 0.5, 1.5}), from_roots({-2, 0.3, 0.3, 4}),
+                              from_roots({0.25, 0.25, 3}), from_roots({-1, 2, 7})}) {
+    std::vector<PolynomialRoot> seen;
+    std::vector<std::pair<double, double>> brackets;
+    const auto take = [&](const PolynomialRoot& root) {
+      seen.push_back(root);
+      return true;
+    };
+    const auto record = [&](double a, double b) {
+      brackets.emplace_back(a, b);
+      return false;
+    };
+    EXPECT_TRUE(visit_real_roots(p, -10, 10, take, record));
+    std::vector<PolynomialRoot> simple;
+    for (const PolynomialRoot& root : seen)
+      if (!root.touching) simple.push_back(root);
+    ASSERT_EQ(brackets.size(), simple.size());
+    for (std::size_t i = 0; i < simple.size(); ++i) {
+      EXPECT_LE(brackets[i].first, simple[i].x);
+      EXPECT_GE(brackets[i].second, simple[i].x);
+    }
+    // Ending at the first bracket: no root visited, nor any bracket after it.
+    seen.clear();
+    int asked = 0;
+    const auto first_ends = [&](double, double) { return ++asked > 0; };
+    EXPECT_FALSE(visit_real_roots(p, -10, 10, take, first_ends));
+    EXPECT_EQ(asked, 1);
+    for (const PolynomialRoot& root : seen) EXPECT_TRUE(root.touching);
   }
 }
 
