@@ -6,13 +6,24 @@
 namespace tessera {
 
 Ray CameraFrame::ray_through(double px, double py, int width, int height) const {
-  const double aspect = static_cast<double>(width) / height;
-  double tan_half = tan_half_height;
-  if (angle_on_smaller_side && width < height) tan_half *= static_cast<double>(height) / width;
-  const double sx = (2 * px / width - 1) * aspect * tan_half;
-  const double sy = (1 - 2 * py / height) * tan_half;
-  const Vec3 d = forward + right * sx + up * sy;
-  return Ray{eye, d / length(d), 0};
+  return ImageRays(*this, width, height).through(px, py);
+}
+
+ImageRays::ImageRays(const CameraFrame& frame, int width, int height)
+    : frame_(frame),
+      width_(width),
+      height_(height),
+      aspect_(static_cast<double>(width) / height),
+      tan_half_(frame.tan_half_height) {
+  if (frame.angle_on_smaller_side && width < height)
+    tan_half_ *= static_cast<double>(height) / width;
+}
+
+Ray ImageRays::through(double px, double py) const {
+  const double sx = (2 * px / width_ - 1) * aspect_ * tan_half_;
+  const double sy = (1 - 2 * py / height_) * tan_half_;
+  const Vec3 d = frame_.forward + frame_.right * sx + frame_.up * sy;
+  return Ray{frame_.eye, d / length(d), 0};
 }
 
 }  // namespace tessera

@@ -28,7 +28,23 @@ struct CameraFrame {
   bool angle_on_smaller_side = false;
   // The primary ray through image position (px, py) in pixels, (0, 0) the top-left corner of
   // the image and (width, height) the bottom-right one.
+  // One ray; ImageRays spares a render the size's factors at every sample.
   Ray ray_through(double px, double py, int width, int height) const;
+};
+
+// The primary rays of an image of one size, with what depends on the size alone (the aspect
+// ratio, the angle widened for a portrait image) worked out once instead of for every sample:
+// each ray is CameraFrame::ray_through's, bit for bit.
+class ImageRays {
+ public:
+  ImageRays(const CameraFrame& frame, int width, int height);
+  Ray through(double px, double py) const;
+
+ private:
+  CameraFrame frame_;
+  double width_, height_;
+  double aspect_;    // width / height
+  double tan_half_;  // of the vertical angle
 };
 
 class PreparedScene {

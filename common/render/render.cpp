@@ -50,8 +50,9 @@ double shutter_time(double length, int j, int count, double jitter, double u) {
 // keys its random numbers (without motion blur T is 1: p * A + k). `tracer` counts into `stats`.
 // Throws RenderInterrupted when `interrupt` (null when the render has none) has fired by the
 // time the pixel starts.
-Rgb trace_pixel(const PreparedScene& scene, const RenderSettings& settings, Tracer& tracer, int x,
-                int y, int pass, RenderStats& stats, const RenderInterrupt* interrupt) {
+Rgb trace_pixel(const PreparedScene& scene, const RenderSettings& settings, const ImageRays& camera,
+                Tracer& tracer, int x, int y, int pass, RenderStats& stats,
+                const RenderInterrupt* interrupt) {
   if (interrupt && interrupt->requested()) throw RenderInterrupted();
   const std::span<const SampleOffset> offsets = regular_sample_offsets(settings.aa_samples);
   const auto aa = static_cast<std::uint32_t>(offsets.size());
@@ -74,7 +75,7 @@ Rgb trace_pixel(const PreparedScene& scene, const RenderSettings& settings, Trac
         px += (rng.next() - 0.5) * settings.jitter;
         py += (rng.next() - 0.5) * settings.jitter;
       }
-      Ray ray = scene.camera().ray_through(px, py, settings.width, settings.height);
+      Ray ray = camera.through(px, py);
       if (moving) ray.time = shutter_time(shutter, j, times, settings.jitter, rng.next());
       ++stats.camera_rays;
       Rgb c = tracer.trace(ray, RayKind::Camera, 0, 1.0, air, rng);
@@ -119,20 +120,23 @@ void render_pass(const PreparedScene& scene, const RenderSettings& settings, con
   // One tracer for all the pixels: building it (it works out the render's effects) per pixel
   // cost 0.5 % of a render at one sample per pixel.
   Tracer tracer(scene, settings, stats, interrupt);
+  const ImageRays camera(scene.camera(), settings.width, settings.height);
   const RenderInterrupt* per_pixel = interrupt.armed() ? &interrupt : nullptr;
   std::size_t i = 0;
   for (int y = rect.y0; y < rect.y1; ++y)
     for (int x = rect.x0; x < rect.x1; ++x)
-      out[i++] = trace_pixel(scene, settings, tracer, x, y, pass, stats, per_pixel);
+      out[i++] = trace_pixel(scene, settings, camera, tracer, x, y, pass, stats, per_pixel);
 }
 
 void render_pixels(const PreparedScene& scene, const RenderSettings& settings,
                    std::span<const PixelCoord> pixels, int pass, std::span<Rgb> out,
                    RenderStats& stats, const RenderInterrupt& interrupt) {
   Tracer tracer(scene, settings, stats, interrupt);
+  const ImageRays camera(scene.camera(), settings.width, settings.height);
   const RenderInterrupt* per_pixel = interrupt.armed() ? &interrupt : nullptr;
   for (std::size_t i = 0; i < pixels.size(); ++i)
-    out[i] = trace_pixel(scene, settings, tracer, pixels[i].x, pixels[i].y, pass, stats, per_pixel);
+    out[i] = trace_pixel(scene, settings, camera, tracer, pixels[i].x, pixels[i].y, pass, stats,
+                         per_pixel);
 }
 
 Image render_image(const PreparedScene& scene, const RenderSettings& settings, int threads,
