@@ -32,14 +32,18 @@ inline double next_up(double x) {
 }
 inline double next_down(double x) { return -next_up(-x); }
 
-// Moves `p` (with per-component error bound `p_error`) off the surface with geometric normal
-// `n`, to the side that `direction` points into. The result is rounded away from the surface
-// so that it is strictly on that side. `min_offset` is a lower bound on the offset distance
-// (SDL's epsilon keywords).
-inline Vec3 offset_ray_origin(const Vec3& p, const Vec3& p_error, const Vec3& n,
-                              const Vec3& direction, double min_offset = 0) {
-  const double d = std::max(dot(abs(n), p_error), min_offset);
-  Vec3 offset = n * d;
+// How far rays leave a surface with geometric normal `n` at a point with per-component error
+// bound `p_error`: n times the larger of that bound's extent along n and `min_offset` (SDL's
+// epsilon keywords). The same for every ray leaving the point, whatever its direction, so that
+// a hit's shadow feelers (one per light) take it once.
+inline Vec3 surface_offset(const Vec3& p_error, const Vec3& n, double min_offset = 0) {
+  return n * std::max(dot(abs(n), p_error), min_offset);
+}
+
+// Moves `p` by its surface's `offset` (surface_offset) to the side of the surface, with
+// geometric normal `n`, that `direction` points into. The result is rounded away from the
+// surface so that it is strictly on that side.
+inline Vec3 offset_ray_origin_by(const Vec3& p, Vec3 offset, const Vec3& n, const Vec3& direction) {
   if (dot(direction, n) < 0) offset = -offset;
   Vec3 po = p + offset;
   for (int i = 0; i < 3; ++i) {
@@ -49,6 +53,13 @@ inline Vec3 offset_ray_origin(const Vec3& p, const Vec3& p_error, const Vec3& n,
       po[i] = next_down(po[i]);
   }
   return po;
+}
+
+// Moves `p` (with per-component error bound `p_error`) off the surface with geometric normal
+// `n`, to the side that `direction` points into: the two steps above at once.
+inline Vec3 offset_ray_origin(const Vec3& p, const Vec3& p_error, const Vec3& n,
+                              const Vec3& direction, double min_offset = 0) {
+  return offset_ray_origin_by(p, surface_offset(p_error, n, min_offset), n, direction);
 }
 
 }  // namespace tessera

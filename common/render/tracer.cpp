@@ -156,12 +156,16 @@ double Tracer::shadow_factor(const Feeler& feeler) {
   return factor;
 }
 
-Vec3 Tracer::spawn_origin(const Hit& hit, const Vec3& direction, double epsilon) const {
+Vec3 Tracer::spawn_offset(const Hit& hit, double epsilon) const {
   const SceneGlobals& g = scene_.scene().globals;
   if (std::holds_alternative<MeshShape>(scene_.instances()[hit.world.object].geometry))
     epsilon = std::max(epsilon, g.mesh_epsilon);
-  return offset_ray_origin(hit.world.point, hit.world.point_error, hit.world.normal, direction,
-                           epsilon);
+  return surface_offset(hit.world.point_error, hit.world.normal, epsilon);
+}
+
+Vec3 Tracer::spawn_origin(const Hit& hit, const Vec3& direction, double epsilon) const {
+  return offset_ray_origin_by(hit.world.point, spawn_offset(hit, epsilon), hit.world.normal,
+                              direction);
 }
 
 Tracer::Crossing Tracer::cross_interface(const Ray& ray, Hit& hit, const MediumStack& media) {
@@ -225,19 +229,20 @@ Tracer::Crossing Tracer::cross_interface(const Ray& ray, Hit& hit, const MediumS
   return crossing;
 }
 
-inline Tracer::Feeler Tracer::feeler(const Hit& hit, bool directional, const Vec3& d,
-                                     const Vec3& target) const {
-  const Vec3 origin = spawn_origin(hit, d, scene_.scene().globals.shadow_feeler_epsilon);
+inline Tracer::Feeler Tracer::feeler(const Hit& hit, const Vec3& offset, bool directional,
+                                     const Vec3& d, const Vec3& target) const {
+  const Vec3 origin = offset_ray_origin_by(hit.world.point, offset, hit.world.normal, d);
   // A point light's feeler ends at t = 1, on the light; a directional light's never ends.
   if (directional) return {Ray{origin, d, hit.time}, kInfinity};
   return {Ray{origin, target - origin, hit.time}, 1.0};
 }
 
-double Tracer::soft_visibility(const Hit& hit, const Light& light, const Vec3& l, double distance,
-                               SampleStream& rng) {
+double Tracer::soft_visibility(const Hit& hit, const Vec3& offset, const Light& light,
+                               const Vec3& l, double distance, SampleStream& rng) {
   const int count = cones_within_budget() ? cone_samples_ : 1;
   return Cone(l, shadow_cone_radius_).mean<double>(count, rng, [&](const Vec3& d) {
-    return shadow_factor(feeler(hit, light.is_directional, d, hit.world.point + d * distance));
+    return shadow_factor(
+        feeler(hit, offset, light.is_directional, d, hit.world.point + d * distance));
   });
 }
 
@@ -253,6 +258,10 @@ Rgb Tracer::local_illumination(const Hit& hit, const Material& m, const SurfaceC
   if (!m.retain_ambient_color) ambient *= opacity;
   color += ambient;
   if (!colours.lit) return color;
+  // Every feeler leaves the hit by the same offset; only its side depends on the light.
+  Vec3 feeler_offset;
+  if constexpr (kShadows != ShadowMode::None)
+    feeler_offset = spawn_offset(hit, g.shadow_feeler_epsilon);
 
   const double diffuse_scale = m.retain_diffuse_color ? 1 : opacity;
   const double specular_scale = m.retain_specular_reflection ? 1 : opacity;
@@ -293,9 +302,11 @@ Rgb Tracer::local_illumination(const Hit& hit, const Material& m, const SurfaceC
 
     double shadow = 1;  // eq. 4.24-4.26: the share of the light that reaches the hit
     if constexpr (kShadows == ShadowMode::Hard) {
-      if (light.casts_shadows) shadow = shadow_factor(feeler(hit, directional, l, light.position));
+      if (light.casts_shadows)
+        shadow = shadow_factor(feeler(hit, feeler_offset, directional, l, light.position));
     } else if constexpr (kShadows == ShadowMode::Soft) {
-      if (light.casts_shadows) shadow = soft_visibility(hit, light, l, distance, rng);
+      if (light.casts_shadows)
+        shadow = soft_visibility(hit, feeler_offset, light, l, distance, rng);
     }
     if (shadow <= 0) continue;
     const double cone = light.is_spot && light.spot.exponent != 0

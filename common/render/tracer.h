@@ -71,15 +71,18 @@ class Tracer {
     Ray ray;
     double t_max;
   };
-  // The feeler from the hit (at its time) along unit `d` towards a light, directional or with
-  // `target` the point on it the feeler aims at.
-  Feeler feeler(const Hit& hit, bool directional, const Vec3& d, const Vec3& target) const;
+  // The feeler from the hit (at its time, pushed off its surface by `offset`, the hit's
+  // spawn_offset for feelers) along unit `d` towards a light, directional or with `target` the
+  // point on it the feeler aims at.
+  Feeler feeler(const Hit& hit, const Vec3& offset, bool directional, const Vec3& d,
+                const Vec3& target) const;
   // Eq. 4.24: the product of the transparencies of everything along the feeler.
   double shadow_factor(const Feeler& feeler);
   // Eq. 4.25-4.26: the share of `light` (unit direction `l`, `distance` away, infinite for a
   // directional light) that reaches the hit under soft shadows: the mean over a cone of feelers.
-  double soft_visibility(const Hit& hit, const Light& light, const Vec3& l, double distance,
-                         SampleStream& rng);
+  // `offset` as for feeler().
+  double soft_visibility(const Hit& hit, const Vec3& offset, const Light& light, const Vec3& l,
+                         double distance, SampleStream& rng);
   // Eq. 4.4-4.12 and 4.24 at a hit: emissive, ambient, and every light's diffuse and specular.
   // `colours` are the material's after texturing (§4.3). Compiled for each shadow mode, and
   // for scenes with and without directional lights, so that the loop over the lights holds
@@ -98,6 +101,9 @@ class Tracer {
                    SampleStream& rng);
   // Eq. 4.20-4.23: depth cueing and fog over the distance the ray travelled.
   Rgb apply_atmosphere(const Rgb& color, double distance) const;
+  // How far rays leave the hit's surface (surface_offset), at least `epsilon`, or a mesh's
+  // epsilon when that is larger; and the origin of one such ray along `direction`.
+  Vec3 spawn_offset(const Hit& hit, double epsilon) const;
   Vec3 spawn_origin(const Hit& hit, const Vec3& direction, double epsilon) const;
   std::uint64_t secondary_rays() const {
     return stats_.shadow_rays + stats_.reflection_rays + stats_.refraction_rays;
