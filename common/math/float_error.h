@@ -24,11 +24,13 @@ constexpr double gamma_bound(int n) { return (n * kMachineEpsilon) / (1 - n * kM
 // nextafter cost 3 % of a render. The same value as std::nextafter for every input
 // (tests/math/float_error_test.cpp): the bit pattern of a finite non-zero double, read as an
 // integer, moves one step away from zero (or towards it) per representable value.
+// Without a branch on the sign: one step is +1 for a positive pattern and -1 for a negative one
+// (the sign bit, spread by the arithmetic shift, or 1), and x + 0 turns -0 into +0, whose
+// successor is denorm_min (every other x, NaN included, is its own sum with +0).
 inline double next_up(double x) {
   if (!(x < std::numeric_limits<double>::infinity())) return x;  // +infinity or NaN
-  if (x == 0) return std::numeric_limits<double>::denorm_min();
-  const auto bits = std::bit_cast<std::uint64_t>(x);
-  return std::bit_cast<double>(x > 0 ? bits + 1 : bits - 1);
+  const auto bits = std::bit_cast<std::int64_t>(x + 0.0);
+  return std::bit_cast<double>(bits + ((bits >> 63) | 1));
 }
 inline double next_down(double x) { return -next_up(-x); }
 
