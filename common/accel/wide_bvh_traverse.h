@@ -4,9 +4,7 @@
 // descends into the child the ray enters first and keeps the others with their entry distances, the
 // nearer ones on top; a kept child is skipped when a closer hit found meanwhile lies before its
 // entry. The order only decides how soon t_max shrinks: callers choose among hits at equal t by
-// primitive index, so results do not depend on it. Any-hit queries (shadow rays) gain nothing
-// from a near-first order, whose t_max never shrinks: they take the children in slot order and
-// skip the sort, whose data-dependent branches mispredict.
+// primitive index, so results do not depend on it.
 #pragma once
 
 #include <bit>
@@ -20,9 +18,8 @@ namespace tessera {
 // `visit_leaf(first, count, t_max)` gets the leaf's range [first, first + count) of
 // Bvh::primitive_order and returns the possibly shrunk t_max (closest hit) or a negative value to
 // stop the traversal (any-hit queries). Counts the boxes tested in `nodes_visited` (four per
-// wide node). `order` says whether nearer children come first (closest-hit queries) or not.
-enum class WideBvhOrder { NearestFirst, Any };
-template <WideBvhOrder order = WideBvhOrder::NearestFirst, typename VisitLeaf>
+// wide node).
+template <typename VisitLeaf>
 void traverse_wide_bvh_leaves(const Bvh& bvh, const Ray& ray, double t_max,
                               std::uint64_t& nodes_visited, VisitLeaf&& visit_leaf) {
   if (bvh.nodes.empty()) return;
@@ -64,29 +61,18 @@ void traverse_wide_bvh_leaves(const Bvh& bvh, const Ray& ray, double t_max,
           current = {node.child[c], node.count[c], entry[c]};
           continue;
         }
-        if constexpr (order == WideBvhOrder::Any) {
-          // The lowest slot now, the others from the highest down, so the next lowest is on top.
-          const int first = std::countr_zero(hits);
-          for (unsigned rest = hits & (hits - 1); rest != 0;) {
-            const int c = 31 - std::countl_zero(rest);
-            rest &= ~(1u << c);
-            stack[size++] = {node.child[c], node.count[c], entry[c]};
-          }
-          current = {node.child[first], node.count[first], entry[first]};
-          continue;
-        }
         // The children hit, nearest first (the lower slot on a tie): an insertion sort of at
         // most four.
-        int sorted[4], n = 0;
+        int order[4], n = 0;
         for (unsigned rest = hits; rest != 0; rest &= rest - 1) {
           const int c = std::countr_zero(rest);
           int i = n++;
-          for (; i > 0 && entry[sorted[i - 1]] > entry[c]; --i) sorted[i] = sorted[i - 1];
-          sorted[i] = c;
+          for (; i > 0 && entry[order[i - 1]] > entry[c]; --i) order[i] = order[i - 1];
+          order[i] = c;
         }
         for (int i = n - 1; i > 0; --i)
-          stack[size++] = {node.child[sorted[i]], node.count[sorted[i]], entry[sorted[i]]};
-        current = {node.child[sorted[0]], node.count[sorted[0]], entry[sorted[0]]};
+          stack[size++] = {node.child[order[i]], node.count[order[i]], entry[order[i]]};
+        current = {node.child[order[0]], node.count[order[0]], entry[order[0]]};
         continue;
       }
     }

@@ -46,20 +46,19 @@ bool occluded_mesh(const MeshAccel& accel, const Ray& ray, double t_max,
   const TriangleRay triangle_ray = prepare_triangle_ray(ray);
   const Vec3* corners = accel.leaf_corners.data();
   bool found = false;
-  traverse_wide_bvh_leaves<WideBvhOrder::Any>(
-      accel.bvh, ray, t_max, counters.bvh_nodes,
-      [&](std::uint32_t first, std::uint32_t count, double t_limit) {
-        for (std::uint32_t i = first; i < first + count; ++i) {
-          ++counters.triangle_tests;
-          const Vec3* p = corners + 3 * static_cast<std::size_t>(i);
-          TriangleHit h;
-          if (intersect_triangle(p[0], p[1], p[2], triangle_ray, t_limit, h)) {
-            found = true;
-            return -1.0;  // any hit will do
-          }
-        }
-        return t_limit;
-      });
+  traverse_wide_bvh_leaves(accel.bvh, ray, t_max, counters.bvh_nodes,
+                           [&](std::uint32_t first, std::uint32_t count, double t_limit) {
+                             for (std::uint32_t i = first; i < first + count; ++i) {
+                               ++counters.triangle_tests;
+                               const Vec3* p = corners + 3 * static_cast<std::size_t>(i);
+                               TriangleHit h;
+                               if (intersect_triangle(p[0], p[1], p[2], triangle_ray, t_limit, h)) {
+                                 found = true;
+                                 return -1.0;  // any hit will do
+                               }
+                             }
+                             return t_limit;
+                           });
   return found;
 }
 
