@@ -1,10 +1,10 @@
 // The traversal of a mesh's BVH (common/accel/bvh.h, Bvh::wide): depth-first with an explicit
-// stack over the wide nodes, after the root's own box (Bvh::wide_root). A step tests a node's (up
-// to) four children's boxes in float (float_child_boxes.h, conservative: it reaches every leaf the
-// double slab test would), descends into the child the ray enters first and keeps the others with
-// their entry distances, the nearer ones on top; a kept child is skipped when a closer hit found
-// meanwhile lies before its entry. The order only decides how soon t_max shrinks: callers choose
-// among hits at equal t by primitive index, so results do not depend on it.
+// stack over the wide nodes. A step tests a node's (up to) four children's boxes in float
+// (float_child_boxes.h, conservative: it reaches every leaf the double slab test would),
+// descends into the child the ray enters first and keeps the others with their entry distances, the
+// nearer ones on top; a kept child is skipped when a closer hit found meanwhile lies before its
+// entry. The order only decides how soon t_max shrinks: callers choose among hits at equal t by
+// primitive index, so results do not depend on it.
 #pragma once
 
 #include <bit>
