@@ -408,10 +408,7 @@ void make_bvh_pairs(Bvh& bvh) {
 
 void make_bvh_wide(Bvh& bvh) {
   bvh.wide.clear();
-  bvh.wide_root = empty_float_child_boxes();
-  if (bvh.nodes.empty()) return;
-  set_float_child_box(bvh.wide_root, 0, bvh.nodes[0].bounds);
-  if (bvh.nodes[0].count > 0) return;
+  if (bvh.nodes.empty() || bvh.nodes[0].count > 0) return;
   const auto second_child = [&](std::size_t n) { return bvh.nodes[n].first_or_second_child; };
   // Wide nodes are made in the order they are reached (the root first); `pending` holds a
   // wide node still to fill and the binary node it stands for.

@@ -59,9 +59,6 @@ struct Bvh {
   // The form a traversal reads, made from nodes; [0] is the root's, if interior. Either one:
   std::vector<BvhPair> pairs;     // make_bvh_pairs (build_bvh), for bvh_traverse.h
   std::vector<BvhWideNode> wide;  // make_bvh_wide, for wide_bvh_traverse.h
-  // The root's box in slot 0 (make_bvh_wide, also when the root is a leaf), for the wide
-  // traversal's first test: in float like the others, without the double test's branches.
-  FloatChildBoxes wide_root = empty_float_child_boxes();
 };
 
 // The binary tree (nodes and primitive_order), without a traversal form. `threads` (the

@@ -24,17 +24,17 @@ void traverse_wide_bvh_leaves(const Bvh& bvh, const Ray& ray, double t_max,
                               std::uint64_t& nodes_visited, VisitLeaf&& visit_leaf) {
   if (bvh.nodes.empty()) return;
   ++nodes_visited;
-  const FloatBoxRay box_ray(ray);
-  float far_limit = float_far_limit(t_max);
-  {
-    alignas(16) float entry[4];
-    if ((intersect_float_child_boxes(bvh.wide_root, box_ray, far_limit, entry) & 1u) == 0) return;
-  }
   const BvhNode& root = bvh.nodes[0];
+  {
+    const Vec3 inv_dir{1 / ray.direction.x, 1 / ray.direction.y, 1 / ray.direction.z};
+    if (!intersect_bounds(root.bounds, ray.origin, inv_dir, t_max)) return;
+  }
   if (root.count > 0) {
     visit_leaf(root.first_or_second_child, root.count, t_max);
     return;
   }
+  const FloatBoxRay box_ray(ray);
+  float far_limit = float_far_limit(t_max);
   // A child to visit: an interior one (count 0, index into bvh.wide) or a leaf's range.
   struct Pending {
     std::uint32_t index;
