@@ -9,41 +9,13 @@
 #pragma once
 
 #include <cstdint>
-#include <cstdlib>
-#include <new>
-#include <utility>
 #include <vector>
 
 #include "common/image/image.h"
 #include "common/math/pixel_rect.h"
+#include "common/render/zeroed_allocator.h"
 
 namespace tessera {
-
-// An allocator for numbers whose zero is all zero bits: memory comes from calloc, so a new
-// vector of zeros costs no pass over its bytes. A large calloc is fresh pages the kernel
-// zeroes as they are first written: a coordinator job's frame buffer (14 bytes a pixel, 56 MB
-// at 2048x2048) is then paid for as its pixels merge, not all at once on the io thread when
-// the job is created, and a region job never touches the rest.
-template <typename T>
-struct CallocAllocator {
-  using value_type = T;
-  CallocAllocator() = default;
-  template <typename U>
-  CallocAllocator(const CallocAllocator<U>&) {}
-  T* allocate(std::size_t n) {
-    if (void* p = std::calloc(n, sizeof(T))) return static_cast<T*>(p);
-    throw std::bad_alloc();
-  }
-  void deallocate(T* p, std::size_t) { std::free(p); }
-  // A value-initialized element is already there: calloc's zero bits.
-  template <typename U>
-  void construct(U*) {}
-  template <typename U, typename... Args>
-  void construct(U* p, Args&&... args) {
-    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
-  }
-  friend bool operator==(const CallocAllocator&, const CallocAllocator&) { return true; }
-};
 
 class FrameBuffer {
  public:
@@ -88,8 +60,8 @@ class FrameBuffer {
   std::size_t idx(int x, int y) const { return static_cast<std::size_t>(y) * width_ + x; }
   [[noreturn]] static void throw_full();
   int width_, height_;
-  std::vector<float, CallocAllocator<float>> sums_;  // 3 per pixel
-  std::vector<std::uint16_t, CallocAllocator<std::uint16_t>> counts_;
+  std::vector<float, ZeroedAllocator<float>> sums_;  // 3 per pixel
+  std::vector<std::uint16_t, ZeroedAllocator<std::uint16_t>> counts_;
 };
 
 }  // namespace tessera

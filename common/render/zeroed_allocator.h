@@ -1,0 +1,69 @@
+// An allocator for numbers whose zero is all zero bits, for large buffers that fill up as work
+// arrives (a coordinator job's frame buffer: 14 bytes a pixel, 56 MB at 2048x2048). A new
+// vector of zeros costs no pass over its bytes: memory comes zeroed from the kernel as it is
+// first written, so it is paid for as pixels merge, not all at once when the job is created, and
+// a region job never touches the rest.
+//
+// Buffers of 2 MB and more are mapped directly and advised to use transparent huge pages
+// (Linux): one fault then zeroes 2 MB instead of 4 kB, and the merge's scattered rows miss the
+// TLB far less. With 4 kB pages a first read maps the shared zero page and the first write
+// faults again to copy it; that pair of faults per 4 kB was a fifth of the coordinator's merging
+// time (docs/SCALING.md). Where huge pages are off the advice does nothing.
+#pragma once
+
+#include <cstddef>
+#include <cstdlib>
+#include <limits>
+#include <new>
+#include <utility>
+
+#if defined(__linux__)
+#include <sys/mman.h>
+#endif
+
+namespace tessera {
+
+template <typename T>
+struct ZeroedAllocator {
+  using value_type = T;
+  // At and above this size a buffer is mapped, with the huge-page advice.
+  static constexpr std::size_t kMappedBytes = std::size_t{2} << 20;
+
+  ZeroedAllocator() = default;
+  template <typename U>
+  ZeroedAllocator(const ZeroedAllocator<U>&) {}
+
+  T* allocate(std::size_t n) {
+    if (n > std::numeric_limits<std::size_t>::max() / sizeof(T)) throw std::bad_alloc();
+#if defined(__linux__)
+    const std::size_t bytes = n * sizeof(T);
+    if (bytes >= kMappedBytes) {
+      void* p = mmap(nullptr, bytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+      if (p == MAP_FAILED) throw std::bad_alloc();
+      madvise(p, bytes, MADV_HUGEPAGE);  // advice: refused, the buffer keeps 4 kB pages
+      return static_cast<T*>(p);
+    }
+#endif
+    if (void* p = std::calloc(n, sizeof(T))) return static_cast<T*>(p);
+    throw std::bad_alloc();
+  }
+  void deallocate(T* p, std::size_t n) {
+#if defined(__linux__)
+    if (n * sizeof(T) >= kMappedBytes) {
+      munmap(p, n * sizeof(T));
+      return;
+    }
+#endif
+    std::free(p);
+  }
+  // A value-initialized element is already there: zero bits.
+  template <typename U>
+  void construct(U*) {}
+  template <typename U, typename... Args>
+  void construct(U* p, Args&&... args) {
+    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+  }
+  friend bool operator==(const ZeroedAllocator&, const ZeroedAllocator&) { return true; }
+};
+
+}  // namespace tessera
