@@ -34,21 +34,25 @@ namespace tessera {
 
 namespace {
 
+// The ray's span [t_near, t_far] between the planes at -half and +half on one axis (o, d: the
+// origin's and direction's components), narrowing [t_enter, t_exit]; false when the ray is
+// parallel to the planes and outside them. The same divisions in the same order for each sign
+// of d, without a branch on it.
+bool narrow_to_slab(double o, double d, double half, double& t_enter, double& t_exit) {
+  if (d == 0) return std::fabs(o) <= half;
+  const double near_plane = d < 0 ? half : -half;
+  const double t_near = (near_plane - o) / d, t_far = (-near_plane - o) / d;
+  t_enter = std::max(t_enter, t_near);
+  t_exit = std::min(t_exit, t_far);
+  return true;
+}
+
 // Entry and exit of the ray through the box [-e, e]^2 x [-h, h]; false when it misses.
 bool box_span(const Vec3& o, const Vec3& d, double e, double h, double& t_enter, double& t_exit) {
-  const double half[3] = {e, e, h};
   t_enter = -kInfinity, t_exit = kInfinity;
-  for (int a = 0; a < 3; ++a) {
-    if (d[a] == 0) {
-      if (!(std::fabs(o[a]) <= half[a])) return false;
-      continue;
-    }
-    double t_near = (-half[a] - o[a]) / d[a], t_far = (half[a] - o[a]) / d[a];
-    if (d[a] < 0) std::swap(t_near, t_far);
-    t_enter = std::max(t_enter, t_near);
-    t_exit = std::min(t_exit, t_far);
-  }
-  return t_enter <= t_exit;
+  return narrow_to_slab(o.x, d.x, e, t_enter, t_exit) &&
+         narrow_to_slab(o.y, d.y, e, t_enter, t_exit) &&
+         narrow_to_slab(o.z, d.z, h, t_enter, t_exit) && t_enter <= t_exit;
 }
 
 // surface_hit's error bounds on the hit point, per coordinate: a few roundings of quantities of
