@@ -38,7 +38,8 @@ namespace {
 // origin's and direction's components), narrowing [t_enter, t_exit]; false when the ray is
 // parallel to the planes and outside them. The same divisions in the same order for each sign
 // of d, without a branch on it.
-bool narrow_to_slab(double o, double d, double half, double& t_enter, double& t_exit) {
+[[gnu::always_inline]] inline bool narrow_to_slab(double o, double d, double half, double& t_enter,
+                                                  double& t_exit) {
   if (d == 0) return std::fabs(o) <= half;
   const double near_plane = d < 0 ? half : -half;
   const double t_near = (near_plane - o) / d, t_far = (-near_plane - o) / d;
@@ -48,7 +49,8 @@ bool narrow_to_slab(double o, double d, double half, double& t_enter, double& t_
 }
 
 // Entry and exit of the ray through the box [-e, e]^2 x [-h, h]; false when it misses.
-bool box_span(const Vec3& o, const Vec3& d, double e, double h, double& t_enter, double& t_exit) {
+[[gnu::always_inline]] inline bool box_span(const Vec3& o, const Vec3& d, double e, double h,
+                                            double& t_enter, double& t_exit) {
   t_enter = -kInfinity, t_exit = kInfinity;
   return narrow_to_slab(o.x, d.x, e, t_enter, t_exit) &&
          narrow_to_slab(o.y, d.y, e, t_enter, t_exit) &&
