@@ -280,10 +280,11 @@ TEST(Torus, SpawnedRaysDoNotFindTheirOwnHit) {
 }
 
 // occluded_torus answers "is there a hit with t in (0, t_max)" mostly from a sign change of the
-// quartic, without the hit: always what intersect_torus answers, on rays from far away and
-// from near, grazing the tube, leaving the surface (offset as spawned rays are, not offset, and
-// from just behind it), and
-// with t_max just before, at and just after the nearest hit, where the answer turns.
+// quartic, without the hit, or from a proof that there is none (quartic_miss_proof.h, which the
+// grazing rays here test at its margins): always what intersect_torus answers, on rays from far
+// away and from near, grazing the tube, leaving the surface (offset as spawned rays are, not
+// offset, and from just behind it), and with t_max just before, at and just after the nearest hit,
+// where the answer turns.
 TEST(Torus, OcclusionAnswersAsTheNearestHit) {
   std::mt19937_64 rng(47);
   std::uniform_real_distribution<double> unit(0, 1);

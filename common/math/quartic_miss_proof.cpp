@@ -1,0 +1,99 @@
+// The quartic miss proof (quartic_miss_proof.h).
+//
+// What the search reports, and so what must be ruled out. visit_real_roots on a quartic p
+// splits (lo, hi) at the roots of its derivative, as a cubic search on dc = (i c[i]) finds
+// them, and reports a root where p's computed value changes sign between split points, or where
+// it is within horner_error of zero at an interior one. So it reports nothing when p's computed
+// value at lo is positive (checked as the search computes it) and either
+//  (b1) p exceeds T4 = 18 eps S everywhere on [lo, hi], or
+//  (b2) the exact dc-cubic exceeds T3 = 15 eps S3 on [lo, hi] and p exceeds T4 on its last
+//       4 eps m,
+// writing S and S3 for the sums sum |c_i| m^i and sum |dc_i| m^i, with m >= |x| on [lo, hi].
+// Above T4, p's computed value (Horner's error is at most gamma(8) S) is positive and above
+// horner_error (gamma(9) times the computed sum); likewise the cubic's above T3. Under (b2) the
+// cubic search reports no critical point short of the last stretch: its values there are
+// positive and not near zero, and a bracketed Newton search does not stop at a point of value
+// above 6.1 eps S3 (its step, at least that over |dc'| <= 3 S3 / |x|, exceeds the 2 eps |x| it
+// stops at), nor within an ulp of one unless its neighbour is below the margin. Then every
+// split point has a positive value: no sign change, no touching root. (bracketed_root's cap of
+// 200 steps, never reached on a simple root, aside.) (b2) is the case of a ray leaving the
+// surface, whose value at lo is within rounding of zero but rising.
+//
+// Both are shown on p's Bernstein coefficients over [lo, lo + w] (w >= hi - lo): p is a weighted
+// mean of them there, and its derivative 4 / w times one of their successive differences. They
+// are formed from the power form by a Taylor shift to lo and the change of basis, with a
+// rounding error of at most gamma(17) S; with T4, and T3 w / 4 <= 15 eps S (S3 <= 4 S / m,
+// w <= m, plus the rounding of 3 c[3] in dc), every test below uses one margin, gamma(128) S.
+#include "common/math/quartic_miss_proof.h"
+
+#include <cmath>
+
+#include "common/math/float_error.h"
+
+namespace tessera {
+
+namespace {
+
+constexpr int kDegree = 4;
+
+// p's Bernstein coefficients over [lo, lo + w], from q, p's Taylor coefficients at lo.
+struct Bernstein {
+  double b[kDegree + 1];
+};
+Bernstein bernstein_over(const double* q, double w) {
+  const double w2 = w * w;
+  const double a1 = q[1] * w, a2 = q[2] * w2, a3 = q[3] * (w2 * w), a4 = q[4] * (w2 * w2);
+  return {{q[0], q[0] + a1 * 0.25, q[0] + a1 * 0.5 + a2 * (1.0 / 6),
+           q[0] + a1 * 0.75 + a2 * 0.5 + a3 * 0.25, q[0] + a1 + a2 + a3 + a4}};
+}
+
+// (b1). (Bitwise and: no branch per coefficient.)
+bool above_margin(const Bernstein& p, double margin) {
+  const double* b = p.b;
+  return (b[0] > margin) & (b[1] > margin) & (b[2] > margin) & (b[3] > margin) & (b[4] > margin);
+}
+
+// (b2): the successive differences above the margin, and p's value at lo + w above it by as
+// much as p can rise over the last 4 eps m: 4 / w times the largest difference, which is below
+// their sum b[4] - b[0] (by 5 eps m, for the rounding of this bound; multiplied out by w).
+bool rises_clear(const Bernstein& p, double w, double m, double margin) {
+  const double* b = p.b;
+  return (b[1] - b[0] > margin) & (b[2] - b[1] > margin) & (b[3] - b[2] > margin) &
+         (b[4] - b[3] > margin) &
+         ((b[4] - margin) * w > 5 * kMachineEpsilon * m * kDegree * (b[4] - b[0] + margin));
+}
+
+}  // namespace
+
+bool quartic_proven_root_free(const Polynomial& p, double lo, double hi) {
+  if (p.degree != kDegree || p.c[kDegree] == 0 || !(lo < hi)) return false;
+  // p's Taylor coefficients at lo (synthetic division). The first pass is Horner's rule at lo,
+  // the search's own operations in the same order (up to the order of each product's and sum's
+  // operands), so q[0] is the value it computes there.
+  const double* c = p.c;
+  double q[kDegree + 1] = {0, 0, 0, 0, c[4]};
+  q[3] = c[3] + lo * q[4];
+  q[2] = c[2] + lo * q[3];
+  q[1] = c[1] + lo * q[2];
+  q[0] = c[0] + lo * q[1];
+  if (!(q[0] > 0)) return false;
+  q[3] += lo * q[4];
+  q[2] += lo * q[3];
+  q[1] += lo * q[2];
+  q[3] += lo * q[4];
+  q[2] += lo * q[3];
+  q[3] += lo * q[4];
+  // Rounded up, so that [lo, lo + width] holds [lo, hi].
+  const double width = next_up(hi - lo);
+  const double m = std::fabs(lo) + width;
+  const double s =
+      (((std::fabs(c[4]) * m + std::fabs(c[3])) * m + std::fabs(c[2])) * m + std::fabs(c[1])) * m +
+      std::fabs(c[0]);
+  // Far from underflow and overflow, where the relative bounds above hold (and not NaN).
+  if (!(s > 1e-100 && s < 1e100) || !std::isfinite(m)) return false;
+  const double margin = gamma_bound(128) * s;
+  const Bernstein b = bernstein_over(q, width);
+  return above_margin(b, margin) || rises_clear(b, width, m, margin);
+}
+
+}  // namespace tessera
