@@ -44,7 +44,8 @@ rm -rf "$tmp"
 echo "ok: the image rendered by two worker containers is bit-identical to tessera-render"
 for c in docker_coordinator_1 docker_worker_1; do
   $sudo podman healthcheck run "$c" 2>/dev/null || { echo "FAIL: $c is not healthy"; exit 1; }
-  user=$($sudo podman exec "$c" id -un)
+  # The main process's user as podman sees it (the worker's image has no `id` to run inside).
+  user=$($sudo podman top "$c" user | awk 'NR == 2 { print $1 }')
   [ "$user" != root ] || { echo "FAIL: $c runs as root"; exit 1; }
   echo "ok: $c is healthy and runs as $user"
 done

@@ -161,7 +161,11 @@ def main():
                for row in doc_table(doc, "## Secrets")}
 
     # The image's user (docker/Dockerfile) and the data directory (docker/entrypoint.sh).
-    uid = int(re.search(r"--uid (\d+)", open(src("docker", "Dockerfile")).read()).group(1))
+    dockerfile = open(src("docker", "Dockerfile")).read()
+    uid = int(re.search(r"--uid (\d+)", dockerfile).group(1))
+    worker_uid = int(re.search(r"collect-root\.sh /worker-root (\d+)", dockerfile).group(1))
+    check(worker_uid == uid, "the worker image's user is %d, the coordinator's %d" %
+          (worker_uid, uid))
     data_dir = re.search(r"TESSERA_DATA_DIR:-([^}]+)}",
                          open(src("docker", "entrypoint.sh")).read()).group(1)
 
