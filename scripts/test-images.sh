@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Builds the images, starts docker/compose.yaml (a coordinator and two workers in containers),
 # renders the demo scene through it and checks the image is bit-identical to tessera-render on
-# the host; checks both containers' health and that they run as a non-root user.
+# the host; checks both containers' health, that they run as a non-root user, and that the
+# worker's image is under 150 MB.
 #   scripts/test-images.sh      (needs root or sudo; about 6 minutes the first time)
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -42,6 +43,10 @@ build/worker/tessera-render scenes/demo.sdl -o "$tmp/host.exr" --width 320 --hei
 build/tests/service/exr_equal "$tmp/containers.exr" "$tmp/host.exr"
 rm -rf "$tmp"
 echo "ok: the image rendered by two worker containers is bit-identical to tessera-render"
+# The worker's image is the program and what it loads (docker/collect-root.sh): under 150 MB.
+worker_bytes=$($sudo podman image inspect localhost/tessera-worker --format '{{.Size}}')
+[ "$worker_bytes" -lt 150000000 ] || { echo "FAIL: the worker's image is $worker_bytes bytes"; exit 1; }
+echo "ok: the worker's image is $((worker_bytes / 1000000)) MB"
 for c in docker_coordinator_1 docker_worker_1; do
   $sudo podman healthcheck run "$c" 2>/dev/null || { echo "FAIL: $c is not healthy"; exit 1; }
   # The main process's user as podman sees it (the worker's image has no `id` to run inside).
