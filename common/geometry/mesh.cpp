@@ -3,9 +3,9 @@
 #include <utility>
 
 #include "common/accel/wide_bvh_traverse.h"
+#include "common/geometry/intersect_triangle_pair.h"
 #include "common/geometry/shapes.h"
 #include "common/geometry/triangle.h"
-#include "common/geometry/triangle_pair.h"
 #include "common/math/float_error.h"
 
 namespace tessera {
@@ -13,7 +13,7 @@ namespace tessera {
 bool intersect_mesh(const MeshAccel& accel, bool interpolate_normals, const Ray& ray, double t_max,
                     LocalHit& hit, IntersectionCounters& counters) {
   if (accel.mesh == nullptr) return false;
-  const TriangleRay triangle_ray = prepare_triangle_ray(ray);
+  const TrianglePairRay pair_ray = prepare_triangle_pair_ray(ray);
   bool found = false;
   std::uint32_t found_triangle = 0;
   TriangleHit nearest;
@@ -33,7 +33,7 @@ bool intersect_mesh(const MeshAccel& accel, bool interpolate_normals, const Ray&
           const TrianglePair& pair = accel.leaf_pairs[i / 2];
           const double limit = found ? next_up(t_limit) : t_limit;
           TrianglePairHits hits;
-          const unsigned lanes = intersect_triangle_pair(pair, triangle_ray, limit, hits);
+          const unsigned lanes = intersect_triangle_pair(pair, pair_ray, limit, hits);
           if (lanes == 0) continue;
           if ((lanes & 1) != 0) take(hits.lane(0), i);
           if ((lanes & 2) == 0) continue;
@@ -43,7 +43,7 @@ bool intersect_mesh(const MeshAccel& accel, bool interpolate_normals, const Ray&
           TriangleHit h = hits.lane(1);
           if (limit_after == limit ||
               intersect_triangle(pair_corner(pair, 0, 1), pair_corner(pair, 1, 1),
-                                 pair_corner(pair, 2, 1), triangle_ray, limit_after, h))
+                                 pair_corner(pair, 2, 1), pair_ray.ray, limit_after, h))
             take(h, i + 1);
         }
         return t_limit;
@@ -56,7 +56,7 @@ bool intersect_mesh(const MeshAccel& accel, bool interpolate_normals, const Ray&
 bool occluded_mesh(const MeshAccel& accel, const Ray& ray, double t_max,
                    IntersectionCounters& counters) {
   if (accel.mesh == nullptr) return false;
-  const TriangleRay triangle_ray = prepare_triangle_ray(ray);
+  const TrianglePairRay pair_ray = prepare_triangle_pair_ray(ray);
   bool found = false;
   traverse_wide_bvh_leaves(accel.bvh, ray, t_max, counters.bvh_nodes,
                            [&](std::uint32_t first, std::uint32_t count, double t_limit) {
@@ -64,7 +64,7 @@ bool occluded_mesh(const MeshAccel& accel, const Ray& ray, double t_max,
                              for (std::uint32_t i = first; i < end; i += 2) {
                                TrianglePairHits hits;
                                const unsigned lanes = intersect_triangle_pair(
-                                   accel.leaf_pairs[i / 2], triangle_ray, t_limit, hits);
+                                   accel.leaf_pairs[i / 2], pair_ray, t_limit, hits);
                                if (lanes != 0) {
                                  // Counted as one at a time: up to the first triangle hit.
                                  counters.triangle_tests += i - first + ((lanes & 1) != 0 ? 1 : 2);
@@ -83,7 +83,7 @@ std::vector<LocalHit> mesh_crossings(const MeshAccel& accel, bool interpolate_no
   std::vector<LocalHit> crossings;
   if (accel.mesh == nullptr) return crossings;
   const Mesh& mesh = *accel.mesh;
-  const TriangleRay triangle_ray = prepare_triangle_ray(ray);
+  const TrianglePairRay pair_ray = prepare_triangle_pair_ray(ray);
   std::vector<std::pair<TriangleHit, std::uint32_t>> hits;
   traverse_wide_bvh_leaves(
       accel.bvh, ray, t_max, counters.bvh_nodes,
@@ -92,7 +92,7 @@ std::vector<LocalHit> mesh_crossings(const MeshAccel& accel, bool interpolate_no
         for (std::uint32_t i = first; i < first + count; i += 2) {
           TrianglePairHits pair_hits;
           const unsigned lanes =
-              intersect_triangle_pair(accel.leaf_pairs[i / 2], triangle_ray, limit, pair_hits);
+              intersect_triangle_pair(accel.leaf_pairs[i / 2], pair_ray, limit, pair_hits);
           for (int lane = 0; lane < 2; ++lane)
             if ((lanes >> lane & 1) != 0)
               hits.emplace_back(pair_hits.lane(lane), accel.bvh.primitive_order[i + lane]);

@@ -3,7 +3,7 @@
 // so that images do not depend on the CPU. Rays graze edges and vertices, start on or near the
 // triangles' planes (where the t error bound decides), meet t_max at the hit's exact t, and
 // lanes hold NaN corners (the padding of odd leaves) or huge coordinates.
-#include "common/geometry/triangle_pair.h"
+#include "common/geometry/intersect_triangle_pair.h"
 
 #include <gtest/gtest.h>
 
@@ -39,9 +39,10 @@ void expect_same_bits(double a, double b, const char* what) {
 // Returns the lanes hit.
 unsigned expect_paths_agree(const Corners& a, const Corners& b, const Ray& ray, double t_max) {
   const TrianglePair pair = make_pair(a, b);
-  const TriangleRay triangle_ray = prepare_triangle_ray(ray);
+  const TrianglePairRay pair_ray = prepare_triangle_pair_ray(ray);
+  const TriangleRay& triangle_ray = pair_ray.ray;
   TrianglePairHits fast, scalar;
-  const unsigned fast_lanes = intersect_triangle_pair(pair, triangle_ray, t_max, fast);
+  const unsigned fast_lanes = intersect_triangle_pair(pair, pair_ray, t_max, fast);
   const unsigned scalar_lanes = intersect_triangle_pair_scalar(pair, triangle_ray, t_max, scalar);
   EXPECT_EQ(fast_lanes, scalar_lanes);
   const Corners* lanes[2] = {&a, &b};
