@@ -1,22 +1,31 @@
 // A mesh prepared for tracing: its triangles' data and their own BVH.
 #pragma once
 
+#include <cstdint>
+#include <limits>
 #include <vector>
 
 #include "common/accel/bvh.h"
+#include "common/geometry/triangle_pair.h"
 #include "common/scene/mesh.h"
 
 namespace tessera {
 
 struct MeshAccel {
+  // bvh.primitive_order's entries between leaves (see leaf_pairs), which name no triangle.
+  static constexpr std::uint32_t kNoTriangle = std::numeric_limits<std::uint32_t>::max();
+
   const Mesh* mesh = nullptr;
   Bvh bvh;
   Bounds3 bounds;
-  // The corners of the triangle at each position of bvh.primitive_order, three in a row, so
-  // that a leaf's triangles lie together in memory. A degenerate triangle's corners are NaN,
-  // which the triangle test rejects (its determinant is not finite): the SAH tree leaves such
-  // triangles out, but the flat "acceleration off" keeps every one.
-  std::vector<Vec3> leaf_corners;
+  // The corners of the triangle at each position i of bvh.primitive_order, in lane i % 2 of
+  // leaf_pairs[i / 2], so that a leaf's triangles lie together in memory and are tested two at a
+  // time (triangle_pair.h). Every leaf starts at an even position: a leaf of odd size is followed
+  // by a gap in primitive_order (kNoTriangle), whose lane's corners are NaN, as are a
+  // degenerate triangle's: the triangle test rejects them (their determinant is not finite).
+  // The SAH tree leaves degenerate triangles out, but the flat "acceleration off" keeps every
+  // one.
+  std::vector<TrianglePair> leaf_pairs;
 };
 
 // `threads` as for build_bvh.

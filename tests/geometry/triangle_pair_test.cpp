@@ -1,0 +1,142 @@
+// The two-at-a-time triangle test of mesh leaves: the SSE2 path (where the build has it) gives
+// bit for bit the hits of the scalar path, which is the one-triangle test of triangle.h per lane,
+// so that images do not depend on the CPU. Rays graze edges and vertices, start on or near the
+// triangles' planes (where the t error bound decides), meet t_max at the hit's exact t, and
+// lanes hold NaN corners (the padding of odd leaves) or huge coordinates.
+#include "common/geometry/intersect_triangle_pair.h"
+
+#include <gtest/gtest.h>
+
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <random>
+
+#include "common/math/float_error.h"
+
+namespace tessera {
+namespace {
+
+struct Corners {
+  Vec3 p[3];
+};
+
+TrianglePair make_pair(const Corners& a, const Corners& b) {
+  TrianglePair pair;
+  for (int c = 0; c < 3; ++c) {
+    set_pair_corner(pair, c, 0, a.p[c]);
+    set_pair_corner(pair, c, 1, b.p[c]);
+  }
+  return pair;
+}
+
+void expect_same_bits(double a, double b, const char* what) {
+  EXPECT_EQ(std::bit_cast<std::uint64_t>(a), std::bit_cast<std::uint64_t>(b)) << what;
+}
+
+// Both paths on one pair and ray; also checks lane by lane against the one-triangle test.
+// Returns the lanes hit.
+unsigned expect_paths_agree(const Corners& a, const Corners& b, const Ray& ray, double t_max) {
+  const TrianglePair pair = make_pair(a, b);
+  const TrianglePairRay pair_ray = prepare_triangle_pair_ray(ray);
+  const TriangleRay& triangle_ray = pair_ray.ray;
+  TrianglePairHits fast, scalar;
+  const unsigned fast_lanes = intersect_triangle_pair(pair, pair_ray, t_max, fast);
+  const unsigned scalar_lanes = intersect_triangle_pair_scalar(pair, triangle_ray, t_max, scalar);
+  EXPECT_EQ(fast_lanes, scalar_lanes);
+  const Corners* lanes[2] = {&a, &b};
+  for (int lane = 0; lane < 2; ++lane) {
+    TriangleHit single;
+    const bool hit = intersect_triangle(lanes[lane]->p[0], lanes[lane]->p[1], lanes[lane]->p[2],
+                                        triangle_ray, t_max, single);
+    EXPECT_EQ(hit, (scalar_lanes >> lane & 1) != 0);
+    if (!hit || (fast_lanes >> lane & 1) == 0) continue;
+    expect_same_bits(fast.t[lane], single.t, "t");
+    expect_same_bits(fast.b0[lane], single.b0, "b0");
+    expect_same_bits(fast.b1[lane], single.b1, "b1");
+    expect_same_bits(fast.b2[lane], single.b2, "b2");
+  }
+  return scalar_lanes;
+}
+
+Vec3 random_point(std::mt19937_64& rng, double scale) {
+  std::uniform_real_distribution<double> u(-1, 1);
+  return Vec3{u(rng), u(rng), u(rng)} * scale;
+}
+
+TEST(TrianglePair, PathsAgreeOnRandomTrianglesAndRays) {
+  std::mt19937_64 rng(18);
+  std::uniform_real_distribution<double> u(0, 1);
+  int hits = 0, tight = 0;
+  for (int i = 0; i < 20000; ++i) {
+    const double scale = std::pow(10.0, 6 * u(rng) - 3);  // 1e-3 to 1e3
+    const Vec3 centre = random_point(rng, std::pow(10.0, 5 * u(rng)));
+    Corners a, b;
+    for (Vec3& p : a.p) p = centre + random_point(rng, scale);
+    for (Vec3& p : b.p) p = centre + random_point(rng, scale);
+    // Aim at a random point of lane 0's triangle, its edge or its vertex.
+    const double w0 = u(rng), w1 = (1 - w0) * u(rng);
+    const int kind = i % 3;
+    const double v0 = kind == 2 ? 1 : w0, v1 = kind == 2 ? 0 : kind == 1 ? 1 - w0 : w1;
+    const Vec3 target = a.p[0] * v0 + a.p[1] * v1 + a.p[2] * (1 - v0 - v1);
+    const Vec3 origin = centre + random_point(rng, 4 * scale);
+    const Ray ray{origin, (target - origin) * std::pow(10.0, 4 * u(rng) - 2)};
+    const unsigned lanes = expect_paths_agree(a, b, ray, kInfinity);
+    hits += std::popcount(lanes);
+    // t_max at the hit's t and one step either side: the limit's comparisons.
+    TriangleHit h;
+    if (intersect_triangle(a.p[0], a.p[1], a.p[2], ray, kInfinity, h)) {
+      for (const double limit : {h.t, next_up(h.t), next_down(h.t)})
+        tight += std::popcount(expect_paths_agree(a, b, ray, limit));
+    }
+  }
+  EXPECT_GT(hits, 10000);  // the cases above must hit often to show anything
+  EXPECT_GT(tight, 5000);
+}
+
+TEST(TrianglePair, PathsAgreeForOriginsOnAndNearThePlane) {
+  // Rays leaving a triangle's surface: t is within its error bound of zero, which decides.
+  std::mt19937_64 rng(5);
+  std::uniform_real_distribution<double> u(0, 1);
+  int hits = 0, misses = 0;
+  for (int i = 0; i < 20000; ++i) {
+    const Vec3 centre = random_point(rng, 1e4 * u(rng));
+    Corners a, b;
+    for (Vec3& p : a.p) p = centre + random_point(rng, 1);
+    for (Vec3& p : b.p) p = centre + random_point(rng, 1);
+    const double w0 = u(rng), w1 = (1 - w0) * u(rng);
+    const Vec3 on = a.p[0] * w0 + a.p[1] * w1 + a.p[2] * (1 - w0 - w1);
+    const Vec3 normal = cross(a.p[1] - a.p[0], a.p[2] - a.p[0]);
+    const double offset = (u(rng) - 0.5) * std::pow(10.0, -16 * u(rng)) * (length(centre) + 1);
+    const Ray ray{on + normal * offset, random_point(rng, 1)};
+    const unsigned lanes = expect_paths_agree(a, b, ray, kInfinity);
+    (lanes & 1) != 0 ? ++hits : ++misses;
+  }
+  EXPECT_GT(hits, 100);
+  EXPECT_GT(misses, 100);
+}
+
+TEST(TrianglePair, NaNLanesAndSpecialRaysAgree) {
+  constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
+  const Corners triangle{{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}};
+  const Corners padding{{{kNaN, kNaN, kNaN}, {kNaN, kNaN, kNaN}, {kNaN, kNaN, kNaN}}};
+  const Corners huge{{{-1e300, -1e300, 0}, {1e300, -1e300, 0}, {0, 1e300, 0}}};
+  const Corners flat{{{0, 0, 0}, {1, 1, 0}, {2, 2, 0}}};
+  const Ray down{{0.25, 0.25, 1}, {0, 0, -1}};
+  EXPECT_EQ(expect_paths_agree(triangle, padding, down, kInfinity), 1u);
+  EXPECT_EQ(expect_paths_agree(padding, triangle, down, kInfinity), 2u);
+  EXPECT_EQ(expect_paths_agree(padding, padding, down, kInfinity), 0u);
+  expect_paths_agree(huge, triangle, down, kInfinity);
+  EXPECT_EQ(expect_paths_agree(flat, triangle, down, kInfinity), 2u);
+  EXPECT_EQ(expect_paths_agree(triangle, triangle, down, 1.0), 0u);  // t = 1 is not below 1
+  for (const Ray& ray :
+       {Ray{{0.25, 0.25, 1}, {0, 0, 0}}, Ray{{0.25, 0.25, 1}, {0, kNaN, -1}},
+        Ray{{0.25, 0.25, 1}, {0, 0, -kInfinity}}, Ray{{0.25, 0.25, 0}, {0, 0, 1}},
+        Ray{{-1, 0.25, 0}, {1, 0, 0}}, Ray{{0.5, 0.5, 1}, {0, 0, -1}}, Ray{{0, 0, 1}, {0, 0, -1}},
+        Ray{{0.25, 0.25, 1e-300}, {1e-300, 1e-300, -1}}})
+    expect_paths_agree(triangle, huge, ray, kInfinity);
+}
+
+}  // namespace
+}  // namespace tessera
