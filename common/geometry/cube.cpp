@@ -79,16 +79,13 @@ struct SlabSpan {
   return hit;
 }
 
-}  // namespace
-
-bool intersect_cube(const Ray& ray, double t_max, LocalHit& hit) {
-  const Vec3& o = ray.origin;
+// The nearest face the ray meets with t in (0, t_max): where, on which axis, and whether it is
+// the face towards +axis; false when it meets none.
+[[gnu::always_inline]] inline bool nearest_face(const Ray& ray, double t_max, double& t, int& axis,
+                                                bool& positive_face) {
   const Vec3& d = ray.direction;
   SlabSpan span;
-  if (!slab_span(o, d, span)) return false;
-  double t = 0;
-  int axis = -1;
-  bool positive_face = false;
+  if (!slab_span(ray.origin, d, span)) return false;
   if (span.t_enter > 0 && span.enter_axis >= 0) {
     t = span.t_enter, axis = span.enter_axis, positive_face = d[axis] < 0;
   } else if (span.t_exit > 0 && span.exit_axis >= 0) {
@@ -96,9 +93,25 @@ bool intersect_cube(const Ray& ray, double t_max, LocalHit& hit) {
   } else {
     return false;
   }
-  if (!(t < t_max)) return false;
-  hit = face_hit(o, d, t, axis, positive_face);
+  return t < t_max;
+}
+
+}  // namespace
+
+bool intersect_cube(const Ray& ray, double t_max, LocalHit& hit) {
+  double t = 0;
+  int axis = -1;
+  bool positive_face = false;
+  if (!nearest_face(ray, t_max, t, axis, positive_face)) return false;
+  hit = face_hit(ray.origin, ray.direction, t, axis, positive_face);
   return true;
+}
+
+bool occluded_cube(const Ray& ray, double t_max) {
+  double t = 0;
+  int axis = -1;
+  bool positive_face = false;
+  return nearest_face(ray, t_max, t, axis, positive_face);
 }
 
 std::vector<LocalHit> cube_crossings(const Ray& ray, double t_max) {

@@ -86,6 +86,30 @@ struct LocalIntersect {
   bool operator()(const CsgShape&) const { return false; }
 };
 
+// Whether the object-space ray meets the shape in (0, t_max), for occluded_instance: the shapes
+// with an occlusion test of their own answer without building the hit (a sphere's and a cube's
+// saves the stores of a LocalHit and its zeroing, a torus skips polishing its root, a mesh
+// stops at its first triangle); the others stop at their nearest hit anyway.
+struct LocalOcclusion {
+  const Instance& instance;
+  const Ray& world_ray;
+  const Ray& ray;  // in object space
+  double t_max;
+  IntersectionCounters& counters;
+
+  bool operator()(const Sphere&) const { return occluded_sphere(ray, t_max); }
+  bool operator()(const Cube&) const { return occluded_cube(ray, t_max); }
+  bool operator()(const Torus& t) const { return occluded_torus(t, ray, t_max); }
+  bool operator()(const MeshShape&) const {
+    return instance.mesh != nullptr && occluded_mesh(*instance.mesh, ray, t_max, counters);
+  }
+  template <typename Shape>
+  bool operator()(const Shape& shape) const {
+    LocalHit local;
+    return LocalIntersect{instance, world_ray, ray, t_max, local, counters}(shape);
+  }
+};
+
 // The bodies of object_ray and to_world_hit, forced inline so that the nearest-hit path below
 // (every shape test of every render) keeps them in its own body, as before CSG shared them:
 // called out of line they cost a scene without boolean objects some 0.5 % more instructions
@@ -192,14 +216,7 @@ bool occluded_instance(const Instance& instance, const Ray& world_ray, double t_
   ++counters.shape_tests;
   object = instance.object;
   const Ray ray = object_ray_inline(instance, world_ray);
-  if (std::holds_alternative<MeshShape>(instance.geometry))
-    return instance.mesh != nullptr && occluded_mesh(*instance.mesh, ray, t_max, counters);
-  if (const auto* torus = std::get_if<Torus>(&instance.geometry))
-    return occluded_torus(*torus, ray, t_max);
-  // The other shapes stop at their nearest root anyway; what is saved is the world hit.
-  LocalHit local;
-  return std::visit(LocalIntersect{instance, world_ray, ray, t_max, local, counters},
-                    instance.geometry);
+  return std::visit(LocalOcclusion{instance, world_ray, ray, t_max, counters}, instance.geometry);
 }
 
 }  // namespace tessera
