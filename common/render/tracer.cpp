@@ -229,8 +229,9 @@ Tracer::Crossing Tracer::cross_interface(const Ray& ray, Hit& hit, const MediumS
   return crossing;
 }
 
-inline Tracer::Feeler Tracer::feeler(const Hit& hit, const Vec3& offset, bool directional,
-                                     const Vec3& d, const Vec3& target) const {
+[[gnu::always_inline]] inline Tracer::Feeler Tracer::feeler(const Hit& hit, const Vec3& offset,
+                                                            bool directional, const Vec3& d,
+                                                            const Vec3& target) const {
   const Vec3 origin = offset_ray_origin_by(hit.world.point, offset, hit.world.normal, d);
   // A point light's feeler ends at t = 1, on the light; a directional light's never ends.
   if (directional) return {Ray{origin, d, hit.time}, kInfinity};
