@@ -61,13 +61,18 @@ inline bool same_bits(const Vec3& a, const Vec3& b) {
          gamma_bound(11);
 }
 
-struct LocalIntersect {
+// What a shape's routines are asked: the world ray, taken into the instance's object space,
+// and the limit on t.
+struct ShapeQuery {
   const Instance& instance;
   const Ray& world_ray;
   const Ray& ray;  // in object space
   double t_max;
-  LocalHit& hit;
   IntersectionCounters& counters;
+};
+
+struct LocalIntersect : ShapeQuery {
+  LocalHit& hit;
 
   bool operator()(const Sphere&) const { return intersect_sphere(ray, t_max, hit); }
   bool operator()(const Cube&) const { return intersect_cube(ray, t_max, hit); }
@@ -93,13 +98,7 @@ struct LocalIntersect {
 // with an occlusion test of their own answer without building the hit (a sphere's and a cube's
 // saves the stores of a LocalHit and its zeroing, a torus skips polishing its root, a mesh
 // stops at its first triangle); the others stop at their nearest hit anyway.
-struct LocalOcclusion {
-  const Instance& instance;
-  const Ray& world_ray;
-  const Ray& ray;  // in object space
-  double t_max;
-  IntersectionCounters& counters;
-
+struct LocalOcclusion : ShapeQuery {
   bool operator()(const Sphere&) const { return occluded_sphere(ray, t_max); }
   bool operator()(const Cube&) const { return occluded_cube(ray, t_max); }
   bool operator()(const Torus& t) const { return occluded_torus(t, ray, t_max); }
@@ -109,7 +108,7 @@ struct LocalOcclusion {
   template <typename Shape>
   bool operator()(const Shape& shape) const {
     LocalHit local;
-    return LocalIntersect{instance, world_ray, ray, t_max, local, counters}(shape);
+    return LocalIntersect{*this, local}(shape);
   }
 };
 
@@ -196,7 +195,7 @@ bool intersect_instance(const Instance& instance, const Ray& world_ray, double t
   ++counters.shape_tests;
   const Ray ray = object_ray_inline(instance, world_ray);
   LocalHit local;
-  if (!std::visit(LocalIntersect{instance, world_ray, ray, t_max, local, counters},
+  if (!std::visit(LocalIntersect{{instance, world_ray, ray, t_max, counters}, local},
                   instance.geometry))
     return false;
   to_world_hit_inline(instance, local, hit);
@@ -219,7 +218,7 @@ bool occluded_instance(const Instance& instance, const Ray& world_ray, double t_
   ++counters.shape_tests;
   object = instance.object;
   const Ray ray = object_ray_inline(instance, world_ray);
-  return std::visit(LocalOcclusion{instance, world_ray, ray, t_max, counters}, instance.geometry);
+  return std::visit(LocalOcclusion{{instance, world_ray, ray, t_max, counters}}, instance.geometry);
 }
 
 }  // namespace tessera
