@@ -53,42 +53,36 @@ struct SlabSpan {
   return span.t_enter <= span.t_exit;  // also rejects NaN
 }
 
-// The hit at t on the face of `axis` that faces +axis when `positive_face`.
-[[gnu::always_inline]] inline LocalHit face_hit(const Vec3& o, const Vec3& d, double t, int axis,
-                                                bool positive_face) {
-  Vec3 p;
-  Vec3 error;
-  for (int a = 0; a < 3; ++a) {
-    if (a == axis) {
-      p[a] = positive_face ? 1 : -1;
-      error[a] = 0;
-    } else {
-      p[a] = std::clamp(o[a] + t * d[a], -1.0, 1.0);
-      error[a] = gamma_bound(3) * std::fabs(p[a]);
-    }
-  }
-  Vec3 n;
-  n[axis] = positive_face ? 1 : -1;
-  LocalHit hit;
+// The hit at t on the face of `axis` that faces +axis when `positive_face`, written into `hit`.
+// Each vector is built whole from its three components, not written by index: a Vec3 stored a
+// component at a time and read back two at a time stalls the load (store forwarding fails),
+// which was most of a cube hit's time.
+[[gnu::always_inline]] inline void face_hit(const Vec3& o, const Vec3& d, double t, int axis,
+                                            bool positive_face, LocalHit& hit) {
+  const double face = positive_face ? 1 : -1;
+  const auto coordinate = [&](int a, double oa, double da) {
+    return a == axis ? face : std::clamp(oa + t * da, -1.0, 1.0);
+  };
+  const Vec3 p{coordinate(0, o.x, d.x), coordinate(1, o.y, d.y), coordinate(2, o.z, d.z)};
+  const auto error = [&](int a, double pa) {
+    return a == axis ? 0.0 : gamma_bound(3) * std::fabs(pa);
+  };
+  const Vec3 n{axis == 0 ? face : 0.0, axis == 1 ? face : 0.0, axis == 2 ? face : 0.0};
   hit.t = t;
   hit.point = p;
-  hit.point_error = error;
+  hit.point_error = {error(0, p.x), error(1, p.y), error(2, p.z)};
   hit.normal = n;
   hit.shading_normal = n;
   hit.part = face_index(axis, positive_face);
-  return hit;
 }
 
-}  // namespace
-
-bool intersect_cube(const Ray& ray, double t_max, LocalHit& hit) {
-  const Vec3& o = ray.origin;
+// The nearest face the ray meets with t in (0, t_max): where, on which axis, and whether it is
+// the face towards +axis; false when it meets none.
+[[gnu::always_inline]] inline bool nearest_face(const Ray& ray, double t_max, double& t, int& axis,
+                                                bool& positive_face) {
   const Vec3& d = ray.direction;
   SlabSpan span;
-  if (!slab_span(o, d, span)) return false;
-  double t = 0;
-  int axis = -1;
-  bool positive_face = false;
+  if (!slab_span(ray.origin, d, span)) return false;
   if (span.t_enter > 0 && span.enter_axis >= 0) {
     t = span.t_enter, axis = span.enter_axis, positive_face = d[axis] < 0;
   } else if (span.t_exit > 0 && span.exit_axis >= 0) {
@@ -96,9 +90,25 @@ bool intersect_cube(const Ray& ray, double t_max, LocalHit& hit) {
   } else {
     return false;
   }
-  if (!(t < t_max)) return false;
-  hit = face_hit(o, d, t, axis, positive_face);
+  return t < t_max;
+}
+
+}  // namespace
+
+bool intersect_cube(const Ray& ray, double t_max, LocalHit& hit) {
+  double t = 0;
+  int axis = -1;
+  bool positive_face = false;
+  if (!nearest_face(ray, t_max, t, axis, positive_face)) return false;
+  face_hit(ray.origin, ray.direction, t, axis, positive_face, hit);
   return true;
+}
+
+bool occluded_cube(const Ray& ray, double t_max) {
+  double t = 0;
+  int axis = -1;
+  bool positive_face = false;
+  return nearest_face(ray, t_max, t, axis, positive_face);
 }
 
 std::vector<LocalHit> cube_crossings(const Ray& ray, double t_max) {
@@ -111,9 +121,9 @@ std::vector<LocalHit> cube_crossings(const Ray& ray, double t_max) {
   if (span.enter_axis < 0 || span.exit_axis < 0) return crossings;
   const int enter = span.enter_axis, exit = span.exit_axis;
   if (span.t_enter > 0 && span.t_enter < t_max)
-    crossings.push_back(face_hit(o, d, span.t_enter, enter, d[enter] < 0));
+    face_hit(o, d, span.t_enter, enter, d[enter] < 0, crossings.emplace_back());
   if (span.t_exit > 0 && span.t_exit < t_max)
-    crossings.push_back(face_hit(o, d, span.t_exit, exit, d[exit] > 0));
+    face_hit(o, d, span.t_exit, exit, d[exit] > 0, crossings.emplace_back());
   return crossings;
 }
 

@@ -30,11 +30,13 @@ namespace {
 
 // |lin(a)| v: the linear part's absolute values applied to a non-negative vector. Forced
 // inline: called twice for every hit, GCC kept it out of line (0.7 % of the demo's instructions).
+// Each component is built whole, not written by index, so that reading the result two
+// components at a time does not wait for separate stores (a store-forwarding stall).
 [[gnu::always_inline]] inline Vec3 abs_linear(const Affine& a, const Vec3& v) {
-  Vec3 out;
-  for (int r = 0; r < 3; ++r)
-    out[r] = std::fabs(a.m[r][0]) * v.x + std::fabs(a.m[r][1]) * v.y + std::fabs(a.m[r][2]) * v.z;
-  return out;
+  const auto row = [&](int r) {
+    return std::fabs(a.m[r][0]) * v.x + std::fabs(a.m[r][1]) * v.y + std::fabs(a.m[r][2]) * v.z;
+  };
+  return {row(0), row(1), row(2)};
 }
 
 Vec3 abs_translation(const Affine& a) {
@@ -47,7 +49,8 @@ inline bool same_bits(const Vec3& a, const Vec3& b) {
 }
 
 // Part 3 above, for a world point of magnitude `magnitude` (componentwise |p| plus its error).
-inline Vec3 round_trip_error(const Instance& instance, const Vec3& magnitude) {
+[[gnu::always_inline]] inline Vec3 round_trip_error(const Instance& instance,
+                                                    const Vec3& magnitude) {
   // |M^-1| |p| + |t^-1|: the size of the terms to_object adds up for this point.
   const Vec3 object_terms =
       abs_linear(instance.to_object, magnitude) + abs_translation(instance.to_object);
@@ -58,13 +61,18 @@ inline Vec3 round_trip_error(const Instance& instance, const Vec3& magnitude) {
          gamma_bound(11);
 }
 
-struct LocalIntersect {
+// What a shape's routines are asked: the world ray, taken into the instance's object space,
+// and the limit on t.
+struct ShapeQuery {
   const Instance& instance;
   const Ray& world_ray;
   const Ray& ray;  // in object space
   double t_max;
-  LocalHit& hit;
   IntersectionCounters& counters;
+};
+
+struct LocalIntersect : ShapeQuery {
+  LocalHit& hit;
 
   bool operator()(const Sphere&) const { return intersect_sphere(ray, t_max, hit); }
   bool operator()(const Cube&) const { return intersect_cube(ray, t_max, hit); }
@@ -84,6 +92,24 @@ struct LocalIntersect {
   // Boolean objects have no object space of their own: intersect_instance hands them to
   // intersect_csg before this point.
   bool operator()(const CsgShape&) const { return false; }
+};
+
+// Whether the object-space ray meets the shape in (0, t_max), for occluded_instance: the shapes
+// with an occlusion test of their own answer without building the hit (a sphere's and a cube's
+// saves the stores of a LocalHit and its zeroing, a torus skips polishing its root, a mesh
+// stops at its first triangle); the others stop at their nearest hit anyway.
+struct LocalOcclusion : ShapeQuery {
+  bool operator()(const Sphere&) const { return occluded_sphere(ray, t_max); }
+  bool operator()(const Cube&) const { return occluded_cube(ray, t_max); }
+  bool operator()(const Torus& t) const { return occluded_torus(t, ray, t_max); }
+  bool operator()(const MeshShape&) const {
+    return instance.mesh != nullptr && occluded_mesh(*instance.mesh, ray, t_max, counters);
+  }
+  template <typename Shape>
+  bool operator()(const Shape& shape) const {
+    LocalHit local;
+    return LocalIntersect{*this, local}(shape);
+  }
 };
 
 // The bodies of object_ray and to_world_hit, forced inline so that the nearest-hit path below
@@ -169,7 +195,7 @@ bool intersect_instance(const Instance& instance, const Ray& world_ray, double t
   ++counters.shape_tests;
   const Ray ray = object_ray_inline(instance, world_ray);
   LocalHit local;
-  if (!std::visit(LocalIntersect{instance, world_ray, ray, t_max, local, counters},
+  if (!std::visit(LocalIntersect{{instance, world_ray, ray, t_max, counters}, local},
                   instance.geometry))
     return false;
   to_world_hit_inline(instance, local, hit);
@@ -192,14 +218,7 @@ bool occluded_instance(const Instance& instance, const Ray& world_ray, double t_
   ++counters.shape_tests;
   object = instance.object;
   const Ray ray = object_ray_inline(instance, world_ray);
-  if (std::holds_alternative<MeshShape>(instance.geometry))
-    return instance.mesh != nullptr && occluded_mesh(*instance.mesh, ray, t_max, counters);
-  if (const auto* torus = std::get_if<Torus>(&instance.geometry))
-    return occluded_torus(*torus, ray, t_max);
-  // The other shapes stop at their nearest root anyway; what is saved is the world hit.
-  LocalHit local;
-  return std::visit(LocalIntersect{instance, world_ray, ray, t_max, local, counters},
-                    instance.geometry);
+  return std::visit(LocalOcclusion{{instance, world_ray, ray, t_max, counters}}, instance.geometry);
 }
 
 }  // namespace tessera

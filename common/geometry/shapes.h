@@ -20,6 +20,10 @@ namespace tessera {
 
 bool intersect_sphere(const Ray& ray, double t_max, LocalHit& hit);
 bool intersect_cube(const Ray& ray, double t_max, LocalHit& hit);
+// Whether the ray hits the sphere (the cube) with t in (0, t_max): intersect_sphere's
+// (intersect_cube's) answer, without building the hit (shadow rays).
+bool occluded_sphere(const Ray& ray, double t_max);
+bool occluded_cube(const Ray& ray, double t_max);
 bool intersect_tapered_cylinder(const TaperedCylinder& shape, const Ray& ray, double t_max,
                                 LocalHit& hit);
 bool intersect_torus(const Torus& shape, const Ray& ray, double t_max, LocalHit& hit);

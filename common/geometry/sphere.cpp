@@ -79,15 +79,24 @@ struct SphereRoots {
   return true;
 }
 
+// The point of root i (ascending) of the ray with direction `d`, before its re-projection onto
+// the sphere, and its distance from the centre; false when it cannot be re-projected.
+[[gnu::always_inline]] inline bool sphere_point(const SphereRoots& r, const Vec3& d, int i, Vec3& p,
+                                                double& len) {
+  // From the line's point nearest the centre, which keeps the digits of a far origin when
+  // the line is exactly representable (an axis-parallel ray, say); o + t d would not.
+  p = r.closest + d * ((i == 0 ? -r.root : r.root) / r.a);
+  len = length(p);
+  return len > 0 && std::isfinite(len);
+}
+
 // The hit at root i (ascending) of the ray with direction `d`; false when its point cannot be
 // re-projected onto the sphere.
 [[gnu::always_inline]] inline bool sphere_hit(const SphereRoots& r, const Vec3& d, int i,
                                               LocalHit& hit) {
-  // From the line's point nearest the centre, which keeps the digits of a far origin when
-  // the line is exactly representable (an axis-parallel ray, say); o + t d would not.
-  Vec3 p = r.closest + d * ((i == 0 ? -r.root : r.root) / r.a);
-  const double len = length(p);
-  if (!(len > 0) || !std::isfinite(len)) return false;
+  Vec3 p;
+  double len = 0;
+  if (!sphere_point(r, d, i, p, len)) return false;
   p = p * (1 / len);  // re-project onto the sphere
   hit.t = r.t[i];
   hit.point = p;
@@ -107,6 +116,20 @@ bool intersect_sphere(const Ray& ray, double t_max, LocalHit& hit) {
     if (!(r.t[i] > r.error[i])) continue;  // not certainly in front of the origin (or NaN)
     if (!(r.t[i] < t_max)) return false;
     return sphere_hit(r, ray.direction, i, hit);
+  }
+  return false;
+}
+
+bool occluded_sphere(const Ray& ray, double t_max) {
+  SphereRoots r;
+  if (!sphere_roots(ray, r)) return false;
+  for (int i = 0; i < 2; ++i) {
+    if (!(r.t[i] > r.error[i])) continue;
+    if (!(r.t[i] < t_max)) return false;
+    // intersect_sphere's answer, without the hit: the re-projection's check alone.
+    Vec3 p;
+    double len = 0;
+    return sphere_point(r, ray.direction, i, p, len);
   }
   return false;
 }

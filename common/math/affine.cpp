@@ -134,18 +134,4 @@ bool Affine::is_finite() const {
   return true;
 }
 
-Vec3 Affine::point_error(const Vec3& p, const Vec3& p_error) const {
-  // pbrt-v3 §3.9.4: the rounding of the matrix-vector product and translation, plus the
-  // incoming error carried through the linear part (itself rounded).
-  Vec3 out;
-  for (int r = 0; r < 3; ++r) {
-    const double magnitude = std::fabs(m[r][0] * p.x) + std::fabs(m[r][1] * p.y) +
-                             std::fabs(m[r][2] * p.z) + std::fabs(m[r][3]);
-    const double carried = std::fabs(m[r][0]) * p_error.x + std::fabs(m[r][1]) * p_error.y +
-                           std::fabs(m[r][2]) * p_error.z;
-    out[r] = gamma_bound(3) * magnitude + (gamma_bound(3) + 1) * carried;
-  }
-  return out;
-}
-
 }  // namespace tessera

@@ -229,8 +229,9 @@ Tracer::Crossing Tracer::cross_interface(const Ray& ray, Hit& hit, const MediumS
   return crossing;
 }
 
-inline Tracer::Feeler Tracer::feeler(const Hit& hit, const Vec3& offset, bool directional,
-                                     const Vec3& d, const Vec3& target) const {
+[[gnu::always_inline]] inline Tracer::Feeler Tracer::feeler(const Hit& hit, const Vec3& offset,
+                                                            bool directional, const Vec3& d,
+                                                            const Vec3& target) const {
   const Vec3 origin = offset_ray_origin_by(hit.world.point, offset, hit.world.normal, d);
   // A point light's feeler ends at t = 1, on the light; a directional light's never ends.
   if (directional) return {Ray{origin, d, hit.time}, kInfinity};
@@ -403,22 +404,26 @@ Rgb Tracer::trace(const Ray& ray_in, RayKind kind, int depth, double weight,
   const SceneGlobals& g = scene.globals;
   const EffectSet& effects = effects_;
 
-  Ray ray = ray_in;
+  // The ray itself until it passes a false interface, then its continuation. Not copied up
+  // front: its caller has just written its origin a component at a time, and a copy reads it
+  // two at a time, which waits for those stores to reach the cache (store forwarding fails).
+  const Ray* ray = &ray_in;
+  std::optional<Ray> continued;
   MediumStack media = media_in;
   double travelled = 0;
   Hit hit;
   const Material* m = nullptr;
   Crossing crossing;
   for (int skipped = 0;; ++skipped) {
-    if (!closest_hit(ray, hit)) {
+    if (!closest_hit(*ray, hit)) {
       if (kind == RayKind::Reflected) return Rgb{};  // eq. 4.2
-      return effects.has(Effect::SkyGradient) ? g.sky->colour(unit_or_zero(ray.direction))
+      return effects.has(Effect::SkyGradient) ? g.sky->colour(unit_or_zero(ray->direction))
                                               : g.background;
     }
     travelled += hit.world.t;
     m = &scene.objects[hit.world.object].material;
     if (!effects.has(Effect::Refraction) || !(m->transparency > g.min_transparency)) break;
-    crossing = cross_interface(ray, hit, media);
+    crossing = cross_interface(*ray, hit, media);
     m = &scene.objects[hit.world.object].material;
     // A transparent surface whose crossing leaves the governing medium unchanged is a false
     // interface: it neither shades nor refracts.
@@ -426,7 +431,8 @@ Rgb Tracer::trace(const Ray& ray_in, RayKind kind, int depth, double weight,
         crossing.after.top().instance != media.top().instance)
       break;
     media = crossing.after;
-    ray.origin = spawn_origin(hit, ray.direction, g.transparency_epsilon);
+    ray = &continued.emplace(spawn_origin(hit, ray->direction, g.transparency_epsilon),
+                             ray->direction, ray->time);
   }
 
   Vec3 normal = hit.world.shading_normal;
@@ -439,12 +445,12 @@ Rgb Tracer::trace(const Ray& ray_in, RayKind kind, int depth, double weight,
     if (!texture.empty())
       colours = textured_colours(texture, scene_.instances()[hit.world.object], hit.world, colours);
   }
-  Rgb color = (this->*illuminate_)(hit, *m, colours, normal, ray.direction, rng);
+  Rgb color = (this->*illuminate_)(hit, *m, colours, normal, ray->direction, rng);
   if (depth < g.max_recursion_depth) {
     if (effects.has(Effect::Reflection) && weight * m->reflectivity > g.min_reflectivity)
-      color += reflection(ray, hit, *m, normal, depth, weight, media, rng);
+      color += reflection(*ray, hit, *m, normal, depth, weight, media, rng);
     if (effects.has(Effect::Refraction) && weight * m->transparency > g.min_transparency)
-      color += transmission(ray, hit, *m, normal, depth, weight, media, crossing, rng);
+      color += transmission(*ray, hit, *m, normal, depth, weight, media, crossing, rng);
   }
   if (effects.has(Effect::AtmosphericAttenuation) || effects.has(Effect::Fog))
     color = apply_atmosphere(color, travelled);
