@@ -6,7 +6,6 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
-#include <functional>
 #include <stdexcept>
 #include <string>
 #include <thread>
@@ -18,7 +17,6 @@
 
 #include "common/protocol/handshake.h"
 #include "common/protocol/tls.h"
-#include "common/render/zeroed_allocator.h"
 #include "coordinator/http/api.h"
 #include "coordinator/metrics/service_metrics.h"
 #include "coordinator/options.h"
@@ -77,21 +75,7 @@ int main(int argc, char** argv) {
     JobStore jobs(options.limits.max_jobs);
     MetricsRegistry registry;
     ServiceMetrics metrics(registry);
-    // A few submissions may wait for a thread; beyond that they get 503 at once.
-    IntakePool intake(io, options.intake_threads, options.intake_threads + 8);
-    // A job that starts running has the pages of its frame buffer made on an intake thread, so
-    // that the io thread's merges do not wait for the kernel to zero them (56 MB at 2048²).
-    const auto make_frame_buffer_pages = [&intake](const Job& job) {
-      intake.submit(
-          [memory = job.memory_to_merge_into()] {
-            for (const MemoryRange& range : memory) populate_for_writing(range);
-            return std::function<void()>();
-          },
-          true);
-    };
-    Scheduler scheduler({.max_job_seconds = options.limits.max_job_seconds,
-                         .metrics = &metrics,
-                         .on_started = make_frame_buffer_pages});
+    Scheduler scheduler({.max_job_seconds = options.limits.max_job_seconds, .metrics = &metrics});
     registry.add_collector([&] {
       std::map<JobState, int> by_state;
       for (JobState state : {JobState::Queued, JobState::Running, JobState::Done, JobState::Failed,
@@ -126,6 +110,8 @@ int main(int argc, char** argv) {
         [&metrics](bool sent, std::optional<MessageType> type, std::size_t bytes) {
           metrics.count_worker_frame(sent, type, bytes);
         });
+    // A few submissions may wait for a thread; beyond that they get 503 at once.
+    IntakePool intake(io, options.intake_threads, options.intake_threads + 8);
     Api api(io, jobs, scheduler, intake, metrics,
             {options.limits, options.scenes_dir, options.web_dir, options.submit,
              static_cast<double>(options.max_intake_seconds), options.max_jobs_per_client,

@@ -95,12 +95,6 @@ void Job::apply_result(int unit_index, std::span<const float> values, const Rend
   if (on_changed) on_changed(*this);
 }
 
-std::array<MemoryRange, 2> Job::memory_to_merge_into() const {
-  const std::optional<PixelRect>& region = spec.settings.region;
-  return frame_buffer_.memory_of_rows(region ? region->y0 : 0,
-                                      region ? region->y1 : frame_buffer_.height());
-}
-
 void Job::finish(JobState state, std::string error, Clock::time_point now) {
   state_ = state;
   error_ = std::move(error);

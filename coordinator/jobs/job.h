@@ -9,7 +9,6 @@
 // (fail_unstored). The scheduler decides what runs where.
 #pragma once
 
-#include <array>
 #include <chrono>
 #include <cstdint>
 #include <deque>
@@ -164,9 +163,6 @@ class Job {
   std::size_t delta_bytes() const { return delta_bytes_; }
   std::size_t tiles_next() const { return tiles_first_ + tiles_.size(); }
   const FrameBuffer& frame_buffer() const { return frame_buffer_; }
-  // The frame buffer's memory that results will merge into: the rows of the job's region, or
-  // of the whole image (for populate_for_writing when the job starts running).
-  std::array<MemoryRange, 2> memory_to_merge_into() const;
   // What the tile records from delta_first on read their values from: the frame buffer, or a
   // done job's final pixels until its image is encoded (then no record gives pixels).
   const FrameBuffer& tile_pixels() const { return final_pixels_ ? *final_pixels_ : frame_buffer_; }

@@ -265,7 +265,6 @@ void Scheduler::send_unit(WorkerSlot& w, JobRun& run, int unit) {
   update_load(w);
   if (!job.record_dispatch(wu.stage, now)) return;
   spdlog::info("job {} running", job.id);
-  if (options_.on_started) options_.on_started(job);
   if (observer_) observer_->state_changed(job);
 }
 

@@ -41,9 +41,6 @@ struct SchedulerOptions {
   // Where the scheduler reads the time: tests step a clock of their own so deadlines do not
   // depend on how busy the machine is.
   std::function<Clock::time_point()> clock = [] { return Clock::now(); };
-  // Called on the io thread when a job starts running (its first unit is dispatched): the
-  // coordinator has its frame buffer's pages made on an intake thread (coordinator/main.cpp).
-  std::function<void(const Job&)> on_started = nullptr;
 };
 
 struct WorkerHello {

@@ -135,27 +135,6 @@ TEST_F(SchedulerTest, KeepsThreadsPlusPrefetchInFlight) {
   EXPECT_EQ(w.units.size(), 6u);  // 4 threads + 2 prefetch
 }
 
-// The coordinator makes a job's frame buffer pages when the job starts (coordinator/main.cpp):
-// once, at its first dispatch, and not for a job still queued.
-class StartedJobsTest : public SchedulerTest {
- protected:
-  StartedJobsTest()
-      : SchedulerTest({.on_started = [this](const Job& job) { started.push_back(job.id); }}) {}
-  std::vector<std::int64_t> started;
-};
-
-TEST_F(StartedJobsTest, AJobIsReportedStartedOnceAtItsFirstDispatch) {
-  const Job& job = add_job(64, 64, 1);
-  EXPECT_TRUE(started.empty());
-  FakeWorker& w = add_worker(2);
-  drain();
-  ASSERT_FALSE(w.units.empty());
-  EXPECT_EQ(started, std::vector<std::int64_t>{job.id});
-  add_worker(2);
-  drain();
-  EXPECT_EQ(started, std::vector<std::int64_t>{job.id});
-}
-
 TEST_F(SchedulerTest, ALostWorkersUnitsGoToOthers) {
   const Job& job = add_job(64, 64, 1);
   FakeWorker& a = add_worker(2);
