@@ -36,18 +36,24 @@ struct BoxRay {
   __m128d inv_dir_lanes[3];
 #endif
 
-  explicit BoxRay(const Ray& ray)
-      : origin(ray.origin),
-        inv_dir{1 / ray.direction.x, 1 / ray.direction.y, 1 / ray.direction.z},
-        near_side{inv_dir.x >= 0 ? 0 : 1, inv_dir.y >= 0 ? 0 : 1, inv_dir.z >= 0 ? 0 : 1} {
+  explicit BoxRay(const Ray& ray) : origin(ray.origin) {
 #if defined(__SSE2__)
+    // x and y inverted by one divpd, whose lanes round as divsd does: the same quotients for
+    // one division's latency less (the divisions start each ray's traversal, which waits on
+    // them). GCC loads x and y together; unlike the origin's, that load did not measure slower
+    // than two (forced by an empty asm: 1.5 % more CPU time for the demo).
+    const __m128d inv_xy = _mm_div_pd(_mm_set1_pd(1), _mm_set_pd(ray.direction.y, ray.direction.x));
+    inv_dir_lanes[0] = _mm_unpacklo_pd(inv_xy, inv_xy);
+    inv_dir_lanes[1] = _mm_unpackhi_pd(inv_xy, inv_xy);
+    inv_dir = {_mm_cvtsd_f64(inv_xy), _mm_cvtsd_f64(inv_dir_lanes[1]), 1 / ray.direction.z};
+    inv_dir_lanes[2] = _mm_set1_pd(inv_dir.z);
     origin_lanes[0] = _mm_set1_pd(origin.x);
     origin_lanes[1] = _mm_set1_pd(origin.y);
     origin_lanes[2] = _mm_set1_pd(origin.z);
-    inv_dir_lanes[0] = _mm_set1_pd(inv_dir.x);
-    inv_dir_lanes[1] = _mm_set1_pd(inv_dir.y);
-    inv_dir_lanes[2] = _mm_set1_pd(inv_dir.z);
+#else
+    inv_dir = {1 / ray.direction.x, 1 / ray.direction.y, 1 / ray.direction.z};
 #endif
+    for (int a = 0; a < 3; ++a) near_side[a] = inv_dir[a] >= 0 ? 0 : 1;
   }
 };
 

@@ -22,11 +22,13 @@ void expect_same_as_scalar(const Bounds3& first, const Bounds3& second, const Ra
   const BoxRay box_ray(ray);
   double entry[2] = {-1, -1};
   const unsigned hits = intersect_child_boxes(boxes, box_ray, t_max, entry);
+  // The scalar test's own inverse, not the one BoxRay made (with divpd under SSE2).
+  const Vec3 inv_dir{1 / ray.direction.x, 1 / ray.direction.y, 1 / ray.direction.z};
   const Bounds3* children[2] = {&first, &second};
   for (int c = 0; c < 2; ++c) {
     double scalar_entry = -1;
     const bool scalar_hit =
-        intersect_bounds(*children[c], box_ray.origin, box_ray.inv_dir, t_max, scalar_entry);
+        intersect_bounds(*children[c], ray.origin, inv_dir, t_max, scalar_entry);
     ASSERT_EQ((hits >> c) & 1u, scalar_hit ? 1u : 0u) << "child " << c;
     ASSERT_EQ(std::bit_cast<std::uint64_t>(entry[c]), std::bit_cast<std::uint64_t>(scalar_entry))
         << "child " << c << ": " << entry[c] << " vs " << scalar_entry;
