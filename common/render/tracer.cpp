@@ -431,8 +431,10 @@ Rgb Tracer::trace(const Ray& ray_in, RayKind kind, int depth, double weight,
         crossing.after.top().instance != media.top().instance)
       break;
     media = crossing.after;
-    ray = &continued.emplace(spawn_origin(hit, ray->direction, g.transparency_epsilon),
-                             ray->direction, ray->time);
+    // A whole Ray, made before emplace replaces what `ray` may point to (Clang 14 has no
+    // parenthesized aggregate initialization either).
+    ray = &continued.emplace(
+        Ray{spawn_origin(hit, ray->direction, g.transparency_epsilon), ray->direction, ray->time});
   }
 
   Vec3 normal = hit.world.shading_normal;
