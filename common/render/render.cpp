@@ -12,6 +12,7 @@
 #include "common/render/frame_buffer.h"
 #include "common/render/pixel_samples.h"
 #include "common/render/post_normalization.h"
+#include "common/render/sample_lattice.h"
 #include "common/render/tracer.h"
 
 namespace tessera {
@@ -45,51 +46,100 @@ double shutter_time(double length, int j, int count, double jitter, double u) {
   return length * ((j + 0.5 + std::min(jitter, 1.0) * (u - 0.5)) / count - 0.5);
 }
 
-// One pass of one pixel: the mean of its samples. With T motion-blur times and A samples per
-// pixel, sample k at time j of pass p has the global sample index (p * T + j) * A + k, which
-// keys its random numbers (without motion blur T is 1: p * A + k). `tracer` counts into `stats`.
-// Throws RenderInterrupted when `interrupt` (null when the render has none) has fired by the
-// time the pixel starts.
-Rgb trace_pixel(const PreparedScene& scene, const RenderSettings& settings, const ImageRays& camera,
-                Tracer& tracer, int x, int y, int pass, RenderStats& stats,
-                const RenderInterrupt* interrupt) {
-  if (interrupt && interrupt->requested()) throw RenderInterrupted();
-  const std::span<const SampleOffset> offsets = regular_sample_offsets(settings.aa_samples);
-  const auto aa = static_cast<std::uint32_t>(offsets.size());
-  const int times = time_samples(scene, settings);
-  const bool moving = scene.effects().has(Effect::MotionBlur);
-  const double shutter = scene.scene().globals.motion_blur_frame_length;
-  // Camera rays start in air. Default-initialized, not MediumStack{}: value-initializing zeroes
-  // all its entries (264 bytes) for every sample.
+// One camera sample along `ray`, which starts in air; a value the image cannot keep counts in
+// stats.nan_samples and becomes black.
+Rgb trace_camera_sample(Tracer& tracer, const Ray& ray, SampleStream& rng, RenderStats& stats) {
+  // Default-initialized, not MediumStack{}: value-initializing zeroes all its entries (264
+  // bytes) for every sample.
   MediumStack air;
+  ++stats.camera_rays;
+  const Rgb c = tracer.trace(ray, RayKind::Camera, 0, 1.0, air, rng);
+  if (fits_float(c)) return c;
+  ++stats.nan_samples;  // counted and reported, never written into the image
+  return Rgb{};
+}
+
+// One pass of one pixel: the mean of sample(j, k), sample k at motion-blur time j, added in
+// that order whoever traced them.
+template <class Sample>
+Rgb pixel_mean(std::uint32_t aa, int times, RenderStats& stats, Sample&& sample) {
   Rgb sum;
-  for (int j = 0; j < times; ++j) {
-    const auto first = (static_cast<std::uint32_t>(pass) * static_cast<std::uint32_t>(times) +
-                        static_cast<std::uint32_t>(j)) *
-                       aa;
-    for (std::uint32_t k = 0; k < aa; ++k) {
-      SampleStream rng(settings.seed, static_cast<std::uint32_t>(x), static_cast<std::uint32_t>(y),
-                       first + k);
-      double px = x + offsets[k].dx, py = y + offsets[k].dy;
-      if (settings.stochastic) {
-        px += (rng.next() - 0.5) * settings.jitter;
-        py += (rng.next() - 0.5) * settings.jitter;
-      }
-      Ray ray = camera.through(px, py);
-      if (moving) ray.time = shutter_time(shutter, j, times, settings.jitter, rng.next());
-      ++stats.camera_rays;
-      Rgb c = tracer.trace(ray, RayKind::Camera, 0, 1.0, air, rng);
-      if (!fits_float(c)) {
-        ++stats.nan_samples;  // counted and reported, never written into the image
-        c = Rgb{};
-      }
-      sum += c;
-    }
-  }
+  for (int j = 0; j < times; ++j)
+    for (std::uint32_t k = 0; k < aa; ++k) sum += sample(j, k);
   const std::size_t count = static_cast<std::size_t>(aa) * static_cast<std::size_t>(times);
   stats.samples += count;
   ++stats.pixels;
   return sum * (1.0 / static_cast<double>(count));
+}
+
+// What every pixel of one pass shares: the tracer, the camera, the sample grid.
+struct PassContext {
+  const PreparedScene& scene;
+  const RenderSettings& settings;
+  const ImageRays& camera;
+  Tracer& tracer;
+  int pass;
+  RenderStats& stats;
+  std::span<const SampleOffset> offsets;
+};
+
+// A pixel that traces its own samples. With T motion-blur times and A samples per pixel,
+// sample k at time j of pass p has the global sample index (p * T + j) * A + k, which keys its
+// random numbers (without motion blur T is 1: p * A + k).
+Rgb trace_pixel(const PassContext& c, int x, int y) {
+  const auto aa = static_cast<std::uint32_t>(c.offsets.size());
+  const int times = time_samples(c.scene, c.settings);
+  const bool moving = c.scene.effects().has(Effect::MotionBlur);
+  const double shutter = c.scene.scene().globals.motion_blur_frame_length;
+  return pixel_mean(aa, times, c.stats, [&](int j, std::uint32_t k) {
+    const auto first = (static_cast<std::uint32_t>(c.pass) * static_cast<std::uint32_t>(times) +
+                        static_cast<std::uint32_t>(j)) *
+                       aa;
+    SampleStream rng(c.settings.seed, static_cast<std::uint32_t>(x), static_cast<std::uint32_t>(y),
+                     first + k);
+    double px = x + c.offsets[k].dx, py = y + c.offsets[k].dy;
+    if (c.settings.stochastic) {
+      px += (rng.next() - 0.5) * c.settings.jitter;
+      py += (rng.next() - 0.5) * c.settings.jitter;
+    }
+    Ray ray = c.camera.through(px, py);
+    if (moving) ray.time = shutter_time(shutter, j, times, c.settings.jitter, rng.next());
+    return trace_camera_sample(c.tracer, ray, rng, c.stats);
+  });
+}
+
+// A pixel whose samples are points of `lattice`, traced by the first pixel that needs them.
+// Only for samples that depend on their position alone, so no random number is drawn from the
+// stream a sample is given.
+Rgb shared_pixel(const PassContext& c, SampleLattice& lattice, int x, int y) {
+  const auto aa = static_cast<std::uint32_t>(c.offsets.size());
+  return pixel_mean(aa, 1, c.stats, [&](int, std::uint32_t k) {
+    return lattice.at(x, y, c.offsets[k], [&](double px, double py) {
+      SampleStream unused(c.settings.seed, static_cast<std::uint32_t>(x),
+                          static_cast<std::uint32_t>(y), k);
+      return trace_camera_sample(c.tracer, c.camera.through(px, py), unused, c.stats);
+    });
+  });
+}
+
+// The smallest rectangle that holds every pixel of `pixels`.
+PixelRect bounds_of(std::span<const PixelCoord> pixels) {
+  PixelRect r{pixels.front().x, pixels.front().y, pixels.front().x + 1, pixels.front().y + 1};
+  for (const PixelCoord& p : pixels) {
+    r.x0 = std::min(r.x0, p.x);
+    r.y0 = std::min(r.y0, p.y);
+    r.x1 = std::max(r.x1, p.x + 1);
+    r.y1 = std::max(r.y1, p.y + 1);
+  }
+  return r;
+}
+
+// Whether the pixels share enough of their samples for a lattice to pay: more than one sample
+// a pixel, and pixels that fill at least half of their bounds (a unit of sparse anchors shares
+// no sample and would only pay for the lattice's memory).
+bool worth_a_lattice(std::span<const PixelCoord> pixels, const PixelRect& bounds,
+                     std::size_t samples) {
+  return samples > 1 && 2 * static_cast<long long>(pixels.size()) >= bounds.area();
 }
 
 }  // namespace
@@ -117,26 +167,41 @@ EffectSet render_effects(const PreparedScene& scene, const RenderSettings& setti
 void render_pass(const PreparedScene& scene, const RenderSettings& settings, const PixelRect& rect,
                  int pass, std::span<Rgb> out, RenderStats& stats,
                  const RenderInterrupt& interrupt) {
-  // One tracer for all the pixels: building it (it works out the render's effects) per pixel
-  // cost 0.5 % of a render at one sample per pixel.
-  Tracer tracer(scene, settings, stats, interrupt);
-  const ImageRays camera(scene.camera(), settings.width, settings.height);
-  const RenderInterrupt* per_pixel = interrupt.armed() ? &interrupt : nullptr;
-  std::size_t i = 0;
+  std::vector<PixelCoord> pixels;
+  pixels.reserve(static_cast<std::size_t>(rect.area()));
   for (int y = rect.y0; y < rect.y1; ++y)
-    for (int x = rect.x0; x < rect.x1; ++x)
-      out[i++] = trace_pixel(scene, settings, camera, tracer, x, y, pass, stats, per_pixel);
+    for (int x = rect.x0; x < rect.x1; ++x) pixels.push_back({x, y});
+  render_pixels(scene, settings, pixels, pass, out, stats, interrupt);
 }
 
 void render_pixels(const PreparedScene& scene, const RenderSettings& settings,
                    std::span<const PixelCoord> pixels, int pass, std::span<Rgb> out,
                    RenderStats& stats, const RenderInterrupt& interrupt) {
+  if (pixels.empty()) return;
+  // One tracer for all the pixels: building it (it works out the render's effects) per pixel
+  // cost 0.5 % of a render at one sample per pixel.
   Tracer tracer(scene, settings, stats, interrupt);
   const ImageRays camera(scene.camera(), settings.width, settings.height);
-  const RenderInterrupt* per_pixel = interrupt.armed() ? &interrupt : nullptr;
-  for (std::size_t i = 0; i < pixels.size(); ++i)
-    out[i] = trace_pixel(scene, settings, camera, tracer, pixels[i].x, pixels[i].y, pass, stats,
-                         per_pixel);
+  const PassContext context{
+      scene, settings, camera, tracer, pass, stats, regular_sample_offsets(settings.aa_samples)};
+  // Checked before each pixel starts (the tracer also looks during long pixels).
+  const auto check_interrupt = [&] {
+    if (interrupt.armed() && interrupt.requested()) throw RenderInterrupted();
+  };
+  const PixelRect bounds = bounds_of(pixels);
+  if (samples_depend_on_position_only(render_effects(scene, settings), settings) &&
+      worth_a_lattice(pixels, bounds, context.offsets.size())) {
+    SampleLattice lattice(bounds);
+    for (std::size_t i = 0; i < pixels.size(); ++i) {
+      check_interrupt();
+      out[i] = shared_pixel(context, lattice, pixels[i].x, pixels[i].y);
+    }
+    return;
+  }
+  for (std::size_t i = 0; i < pixels.size(); ++i) {
+    check_interrupt();
+    out[i] = trace_pixel(context, pixels[i].x, pixels[i].y);
+  }
 }
 
 Image render_image(const PreparedScene& scene, const RenderSettings& settings, int threads,

@@ -1,0 +1,126 @@
+// Neighbouring pixels share the regular samples on their common corners and edges
+// (render/sample_lattice.h): each is traced once, and every pixel's value stays what it is when
+// the pixel traces all its own samples.
+#include <gtest/gtest.h>
+
+#include "common/render/sample_lattice.h"
+#include "tests/render/scene_builder.h"
+
+namespace tessera::test {
+namespace {
+
+// Reflections, refraction, shadows and a specular highlight, but nothing drawn at random: a
+// sample's value depends on its position alone.
+Scene scene_without_randomness() {
+  Scene scene;
+  scene.camera = camera_on_z(40);
+  scene.globals.background = {0.1, 0.2, 0.3};
+  Material shiny;
+  shiny.specular = {0.6, 0.6, 0.6};
+  shiny.specular_exponent = 20;
+  shiny.reflectivity = 0.4;
+  scene.objects.push_back(object(Sphere{}, Affine::translation({-0.8, 0, 0}), shiny));
+  Material glass;
+  glass.transparency = 0.7;
+  glass.speed_of_light = 0.7;
+  scene.objects.push_back(
+      object(Cube{}, Affine::translation({1, 0.3, 0}) * Affine::scaling({0.6, 0.6, 0.6}), glass));
+  scene.lights.push_back(point_light({3, 4, 5}, {1, 1, 1}));
+  return scene;
+}
+
+RenderSettings grid_settings(int aa) {
+  RenderSettings s = settings(48, 36);
+  s.aa_samples = aa;
+  return s;
+}
+
+// Every other pixel of every other row in `rect`: they fill a quarter of their bounds, too few
+// to share samples, so each traces its own.
+std::vector<PixelCoord> sparse_pixels(const PixelRect& rect) {
+  std::vector<PixelCoord> pixels;
+  for (int y = rect.y0; y < rect.y1; y += 2)
+    for (int x = rect.x0; x < rect.x1; x += 2) pixels.push_back({x, y});
+  return pixels;
+}
+
+class SharedSamples : public ::testing::TestWithParam<int> {};
+
+TEST_P(SharedSamples, APixelSharingItsSamplesEqualsThePixelTracingItsOwnBitForBit) {
+  const Scene scene = scene_without_randomness();
+  const RenderSettings s = grid_settings(GetParam());
+  const PreparedScene prepared(scene, s.bvh);
+  const PixelRect rect{5, 3, 45, 33};
+  std::vector<Rgb> shared(static_cast<std::size_t>(rect.area()));
+  RenderStats shared_stats;
+  render_pass(prepared, s, rect, 0, shared, shared_stats);
+
+  const std::vector<PixelCoord> own = sparse_pixels(rect);
+  std::vector<Rgb> traced(own.size());
+  RenderStats own_stats;
+  render_pixels(prepared, s, own, 0, traced, own_stats);
+  ASSERT_EQ(own_stats.camera_rays, own.size() * static_cast<std::size_t>(s.aa_samples));
+  for (std::size_t i = 0; i < own.size(); ++i) {
+    const std::size_t at =
+        static_cast<std::size_t>((own[i].y - rect.y0) * rect.width() + (own[i].x - rect.x0));
+    ASSERT_EQ(shared[at], traced[i]) << own[i].x << "," << own[i].y;
+  }
+}
+
+TEST_P(SharedSamples, EachLatticePointIsTracedOnce) {
+  const Scene scene = scene_without_randomness();
+  const RenderSettings s = grid_settings(GetParam());
+  const PreparedScene prepared(scene, s.bvh);
+  const int w = 10, h = 7;
+  std::vector<Rgb> values(static_cast<std::size_t>(w * h));
+  RenderStats stats;
+  render_pass(prepared, s, {0, 0, w, h}, 0, values, stats);
+  // 3x3: every point of the (2w + 1) x (2h + 1) half-pixel lattice; 5 points: the pixels'
+  // corners and centres.
+  const std::uint64_t points =
+      GetParam() == 9 ? (2 * w + 1) * (2 * h + 1) : (w + 1) * (h + 1) + w * h;
+  EXPECT_EQ(stats.camera_rays, points);
+  EXPECT_EQ(stats.samples, static_cast<std::uint64_t>(w * h * GetParam()));
+  EXPECT_EQ(stats.pixels, static_cast<std::uint64_t>(w * h));
+}
+
+INSTANTIATE_TEST_SUITE_P(Grids, SharedSamples, ::testing::Values(5, 9));
+
+// Jitter moves each sample of each pixel on its own, and a random number drawn during a sample
+// is keyed by its pixel: such samples are never shared.
+TEST(SharedSamples, SamplesThatDrawRandomNumbersAreNotShared) {
+  Scene scene = scene_without_randomness();
+  const int w = 6, h = 5;
+  const auto camera_rays = [&](const Scene& sc, const RenderSettings& s) {
+    const PreparedScene prepared(sc, s.bvh);
+    std::vector<Rgb> values(static_cast<std::size_t>(w * h));
+    RenderStats stats;
+    render_pass(prepared, s, {0, 0, w, h}, 0, values, stats);
+    return stats.camera_rays;
+  };
+  RenderSettings jittered = grid_settings(9);
+  jittered.stochastic = true;
+  EXPECT_EQ(camera_rays(scene, jittered), 9u * w * h);
+
+  scene.objects[0].material.surface_roughness = 0.05;  // perturbs normals at random
+  EXPECT_EQ(camera_rays(scene, grid_settings(9)), 9u * w * h);
+}
+
+TEST(SharedSamples, OnlyRendersWithoutJitterOrRandomEffectsQualify) {
+  RenderSettings s = grid_settings(9);
+  EffectSet effects;
+  effects.add(Effect::HardShadows);
+  effects.add(Effect::Reflection);
+  EXPECT_TRUE(samples_depend_on_position_only(effects, s));
+  for (Effect random : {Effect::MotionBlur, Effect::SurfaceRoughness, Effect::Gloss,
+                        Effect::Translucency, Effect::SoftShadows}) {
+    EffectSet with = effects;
+    with.add(random);
+    EXPECT_FALSE(samples_depend_on_position_only(with, s)) << static_cast<int>(random);
+  }
+  s.stochastic = true;
+  EXPECT_FALSE(samples_depend_on_position_only(effects, s));
+}
+
+}  // namespace
+}  // namespace tessera::test
