@@ -27,6 +27,7 @@
 #include "common/geometry/ordered_hits.h"
 #include "common/geometry/shapes.h"
 #include "common/math/float_error.h"
+#include "common/math/hypot.h"
 #include "common/math/polynomial.h"
 #include "common/math/quartic_miss_proof.h"
 
@@ -69,14 +70,14 @@ double on_axis_point_error(double big_r, double r) {
 LocalHit surface_hit(double big_r, double r, const Vec3& p, const Vec3& u) {
   LocalHit hit;
   hit.part = 0;
-  const double rho = std::hypot(p.x, p.y);
-  const double d_outer = std::hypot(rho - big_r, p.z);  // to the circle around +R
+  const double rho = hypot_inline(p.x, p.y);
+  const double d_outer = hypot_inline(rho - big_r, p.z);  // to the circle around +R
   // The circle around -R is nearer to the tube's surface only when |d_inner - r| is the smaller
   // of the two. d_inner >= rho + R (up to hypot's ulp, which the margin covers), so on most hits
   // (every one on a ring torus) rho + R - r alone shows that it is not, and its hypot is spared.
   const bool inner_possible =
       !((rho + big_r) * (1 - 8 * kMachineEpsilon) - r > std::fabs(d_outer - r));
-  const double d_inner = inner_possible ? std::hypot(rho + big_r, p.z) : 0;
+  const double d_inner = inner_possible ? hypot_inline(rho + big_r, p.z) : 0;
   const bool inner = inner_possible && std::fabs(d_inner - r) < std::fabs(d_outer - r);
   const double d = inner ? d_inner : d_outer;
   if (rho > 0 && d > 0 && std::isfinite(rho)) {
@@ -158,7 +159,7 @@ bool visit_torus_hits(const Torus& torus, const Ray& ray, double t_max, HitSearc
   // F(f + s u) = (A s^2 + B s + C)^2 - 4 R^2 (P s^2 + 2 Q s + S).
   const double big_r2 = big_r * big_r;
   const double A = dot(u, u), B = 2 * dot(f, u), C = dot(f, f) + big_r2 - r * r;
-  const double rho = std::hypot(f.x, f.y);
+  const double rho = hypot_inline(f.x, f.y);
   Polynomial quartic;
   quartic.degree = 4;
   quartic.c[4] = A * A;
