@@ -19,7 +19,8 @@
 //  - a shadow ray (occluded_torus) needs no hit, only proof of one: a sign change of the
 //    quartic between two split points of the root search whose whole span passes the tests a
 //    hit would, so it gets the nearest-hit query's answer without the polish or re-projection;
-//    and when it misses, a cheap proof of that (quartic_miss_proof.h) usually spares the search.
+//    and cheap proofs usually spare the search: of a miss (quartic_miss_proof.h), or of a sign
+//    change between a point outside the tube and one inside it (quartic_crossing_proof.h).
 #include <algorithm>
 #include <cmath>
 #include <vector>
@@ -27,7 +28,9 @@
 #include "common/geometry/ordered_hits.h"
 #include "common/geometry/shapes.h"
 #include "common/math/float_error.h"
+#include "common/math/hypot.h"
 #include "common/math/polynomial.h"
+#include "common/math/quartic_crossing_proof.h"
 #include "common/math/quartic_miss_proof.h"
 
 namespace tessera {
@@ -69,14 +72,14 @@ double on_axis_point_error(double big_r, double r) {
 LocalHit surface_hit(double big_r, double r, const Vec3& p, const Vec3& u) {
   LocalHit hit;
   hit.part = 0;
-  const double rho = std::hypot(p.x, p.y);
-  const double d_outer = std::hypot(rho - big_r, p.z);  // to the circle around +R
+  const double rho = hypot_inline(p.x, p.y);
+  const double d_outer = hypot_inline(rho - big_r, p.z);  // to the circle around +R
   // The circle around -R is nearer to the tube's surface only when |d_inner - r| is the smaller
   // of the two. d_inner >= rho + R (up to hypot's ulp, which the margin covers), so on most hits
   // (every one on a ring torus) rho + R - r alone shows that it is not, and its hypot is spared.
   const bool inner_possible =
       !((rho + big_r) * (1 - 8 * kMachineEpsilon) - r > std::fabs(d_outer - r));
-  const double d_inner = inner_possible ? std::hypot(rho + big_r, p.z) : 0;
+  const double d_inner = inner_possible ? hypot_inline(rho + big_r, p.z) : 0;
   const bool inner = inner_possible && std::fabs(d_inner - r) < std::fabs(d_outer - r);
   const double d = inner ? d_inner : d_outer;
   if (rho > 0 && d > 0 && std::isfinite(rho)) {
@@ -103,6 +106,54 @@ LocalHit surface_hit(double big_r, double r, const Vec3& p, const Vec3& u) {
   }
   hit.shading_normal = hit.normal;
   return hit;
+}
+
+// Whether a shadow ray is shown blocked without the search (quartic_crossing_proof.h): the
+// quartic clearly changes sign between two points a < b of its span whose stretch, widened by the
+// proof's slack, passes the tests of a hit (stretch_is_hit), so that the search would report a
+// hit there if it had not at an earlier root. For a ray from outside (the quartic clearly
+// positive at the span's start), the points tried for the inside of the tube are where the ray
+// crosses the torus' plane and its core cylinder (rho = R), usually deep in the tube, then the
+// span's quarter points; for a ray leaving the surface (its start within rounding of zero), most
+// often into the tube and out of its far side, the quarter points in order.
+template <class StretchIsHit>
+bool proven_blocked(const Polynomial& quartic, double s_lo, double s_hi, const Vec3& f,
+                    const Vec3& u, double big_r, double P, double Q,
+                    const StretchIsHit& stretch_is_hit) {
+  const QuarticSignProof signs(quartic, s_lo, s_hi);
+  // No root lies before s_lo: the slack is not needed there.
+  const auto crossing_hits = [&](double a, double b) {
+    return stretch_is_hit(std::max(a - signs.slack(), s_lo), b + signs.slack());
+  };
+  const double w = (s_hi - s_lo) / 4;
+  const double quarter_points[3] = {s_lo + w, s_lo + 2 * w, s_lo + 3 * w};
+  if (signs.clearly_positive(s_lo)) {
+    const auto inside_at = [&](double s) {
+      return s > s_lo && s < s_hi && signs.clearly_negative(s) && crossing_hits(s_lo, s);
+    };
+    if (u.z != 0 && inside_at(-f.z / u.z)) return true;
+    // (f + s u) has rho = R where P s^2 + 2 Q s + (f.x^2 + f.y^2 - R^2) = 0.
+    const double k = f.x * f.x + f.y * f.y - big_r * big_r, disc = Q * Q - P * k;
+    if (P > 0 && disc >= 0) {
+      const double root = std::sqrt(disc);
+      if (inside_at((-Q - root) / P) || inside_at((-Q + root) / P)) return true;
+    }
+    return inside_at(quarter_points[0]) || inside_at(quarter_points[1]) ||
+           inside_at(quarter_points[2]);
+  }
+  // The first quarter point with a clear sign, and a later one with the other.
+  int first_sign = 0;
+  double first = 0;
+  for (const double s : quarter_points) {
+    const int sign = signs.clearly_positive(s) ? 1 : signs.clearly_negative(s) ? -1 : 0;
+    if (first_sign == 0) {
+      first_sign = sign;
+      first = s;
+    } else if (sign == -first_sign) {
+      return crossing_hits(first, s);
+    }
+  }
+  return false;
 }
 
 // What a search for the ray's hits is for: every hit, in order; or only whether there is one,
@@ -158,7 +209,7 @@ bool visit_torus_hits(const Torus& torus, const Ray& ray, double t_max, HitSearc
   // F(f + s u) = (A s^2 + B s + C)^2 - 4 R^2 (P s^2 + 2 Q s + S).
   const double big_r2 = big_r * big_r;
   const double A = dot(u, u), B = 2 * dot(f, u), C = dot(f, f) + big_r2 - r * r;
-  const double rho = std::hypot(f.x, f.y);
+  const double rho = hypot_inline(f.x, f.y);
   Polynomial quartic;
   quartic.degree = 4;
   quartic.c[4] = A * A;
@@ -167,12 +218,6 @@ bool visit_torus_hits(const Torus& torus, const Ray& ray, double t_max, HitSearc
   quartic.c[1] = 2 * B * C - 8 * big_r2 * Q;
   quartic.c[0] = ((rho - big_r) * (rho - big_r) + f.z * f.z - r * r) *
                  ((rho + big_r) * (rho + big_r) + f.z * f.z - r * r);
-
-  // Most shadow rays that form the quartic miss (two thirds on features/torus.sdl, most of them
-  // leaving the torus's own surface): shown here, when it is easy, for less than half the cost
-  // of the search that finds nothing, with its answer. Not for the nearest hit: most of those
-  // rays hit, and the proof's cost outweighed the searches it spared.
-  if (search == HitSearch::kAnyHit && quartic_proven_root_free(quartic, s_lo, s_hi)) return true;
 
   const auto t_at = [&](double s) { return t0 + s / len; };
   // Within a few error bounds of the origin: the surface the ray is leaving.
@@ -189,6 +234,12 @@ bool visit_torus_hits(const Torus& torus, const Ray& ray, double t_max, HitSearc
   };
   if (search == HitSearch::kInOrder) return visit_real_roots(quartic, s_lo, s_hi, at_root);
 
+  // Most shadow rays that form the quartic miss (two thirds on features/torus.sdl, most of them
+  // leaving the torus's own surface): shown here, when it is easy, for less than half the cost
+  // of the search that finds nothing, with its answer. Not for the nearest hit: most of those
+  // rays hit, and the proof's cost outweighed the searches it spared.
+  if (quartic_proven_root_free(quartic, s_lo, s_hi)) return true;
+
   // The root polished in [a, b] would have t in [t_at(a), t_at(b)], every rounded operation
   // being monotone, and an error bound no larger than the larger of surface_hit's: when both
   // ends pass at_root's tests, so does the root. Otherwise the root is polished and tested.
@@ -198,6 +249,11 @@ bool visit_torus_hits(const Torus& torus, const Ray& ray, double t_max, HitSearc
     const double t_a = t_at(a);
     return t_a > 0 && t_at(b) < t_max && leaves_the_origin(t_a, largest_point_error);
   };
+
+  // Most of the others are blocked, and the search would compute critical points up to the
+  // first sign change to say so.
+  if (proven_blocked(quartic, s_lo, s_hi, f, u, big_r, P, Q, is_hit_bracket)) return false;
+
   return visit_real_roots(quartic, s_lo, s_hi, at_root, is_hit_bracket);
 }
 

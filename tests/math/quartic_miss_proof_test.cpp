@@ -8,26 +8,13 @@
 #include <random>
 
 #include "common/math/polynomial.h"
+#include "tests/math/quartic_factors.h"
 
 namespace tessera {
 namespace {
 
-// x^2 - 2 a x + a^2 + e: roots a +- sqrt(-e), a double root at e = 0, none above.
-Polynomial quadratic_about(double a, double e) {
-  Polynomial q;
-  q.degree = 2;
-  q.c[0] = a * a + e;
-  q.c[1] = -2 * a;
-  q.c[2] = 1;
-  return q;
-}
-
-// +-10^-16 to +-1: a quadratic factor's offset from a double root.
-double random_gap(std::mt19937_64& rng) {
-  std::uniform_real_distribution<double> unit(0, 1);
-  const double sign = unit(rng) < 0.5 ? -1 : 1;
-  return sign * std::pow(10.0, -16 * unit(rng));
-}
+using testing::quadratic_about;
+using testing::random_gap;
 
 // x - root.
 Polynomial linear_with_root(double root) {
