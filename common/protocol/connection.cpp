@@ -103,7 +103,7 @@ void FrameConnection::read_head() {
 void FrameConnection::read_rest(const FrameHead& head) {
   header_.resize(head.header_bytes);
   payload_.resize(head.payload_bytes);
-  // One read into both: the payload lands in the buffer the frame borrows.
+  // One read into both: the payload lands in the buffer the frame keeps.
   const std::array<asio::mutable_buffer, 2> parts{asio::buffer(header_), asio::buffer(payload_)};
   asio::async_read(
       stream_, parts,
@@ -120,10 +120,9 @@ void FrameConnection::read_rest(const FrameHead& head) {
           return self->close(e.what());
         }
         if (self->traffic_) self->traffic_(false, frame.type, bytes);
-        if (frame.type != MessageType::Heartbeat && self->on_frame_) self->on_frame_(frame);
-        // The buffer back for the next frame, unless it is a bundle's (up to max_body).
-        if (frame.payload.capacity() <= kKeptPayloadBytes)
-          self->payload_ = std::move(frame.payload);
+        self->payload_ = std::string();
+        if (frame.type != MessageType::Heartbeat && self->on_frame_)
+          self->on_frame_(std::move(frame));
         if (self->open_) self->read_head();
       });
 }

@@ -35,9 +35,7 @@ using FrameTraffic =
 
 class FrameConnection : public std::enable_shared_from_this<FrameConnection> {
  public:
-  // A frame lent for the call: its payload is the connection's read buffer, used again for the
-  // next frame (a handler that keeps bytes copies them, as decoding a message does).
-  using FrameHandler = std::function<void(const Frame&)>;
+  using FrameHandler = std::function<void(Frame)>;
   using CloseHandler = std::function<void(const std::string& reason)>;
 
   FrameConnection(FrameStream stream, FrameLimits limits, ConnectionTiming timing);
@@ -75,9 +73,6 @@ class FrameConnection : public std::enable_shared_from_this<FrameConnection> {
   FrameTraffic traffic_;
   bool open_ = false;
   std::uint8_t head_[kFrameHead] = {};
-  // Kept from frame to frame up to kKeptPayloadBytes: a read into a buffer of the size already
-  // there neither allocates nor zero-fills it first (std::string's resize does when it grows).
-  static constexpr std::size_t kKeptPayloadBytes = std::size_t{1} << 20;
   std::string header_, payload_;
   std::deque<std::string> queue_;
   std::size_t queued_bytes_ = 0;

@@ -32,7 +32,7 @@ WorkerLink::WorkerLink(FrameStream stream, const WorkerAuth& auth, Scheduler& sc
 void WorkerLink::start() {
   auto self = shared_from_this();
   connection_->set_traffic(port_->traffic);
-  connection_->start([self](const Frame& f) { self->on_frame(f); },
+  connection_->start([self](Frame f) { self->on_frame(f); },
                      [self](const std::string& reason) {
                        if (self->stage_ == Stage::Ready) {
                          spdlog::info("worker {}: {}", self->id_, reason);

@@ -67,7 +67,7 @@ class SchedulerTest : public ::testing::Test {
     client.connect(acceptor_.local_endpoint());
     auto connection =
         std::make_shared<FrameConnection>(acceptor_.accept(), FrameLimits{}, ConnectionTiming{});
-    connection->start([](const Frame&) {}, [](const std::string&) {});
+    connection->start([](Frame) {}, [](const std::string&) {});
     auto& w = workers_.emplace_back(std::make_unique<FakeWorker>(std::move(client)));
     w->id = scheduler_.add_worker({"w", "test", threads, std::move(cached)}, connection);
     scheduler_.fill_slots();

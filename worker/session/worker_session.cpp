@@ -57,7 +57,7 @@ void WorkerSession::on_connected(tcp::socket socket) {
       config_.tls ? FrameStream(std::move(socket), config_.tls, config_.host)
                   : FrameStream(std::move(socket)),
       FrameLimits{}, config_.timing);
-  connection_->start([this](const Frame& f) { on_frame(f); },
+  connection_->start([this](Frame f) { on_frame(f); },
                      [this](const std::string& reason) { on_closed(reason); });
   nonce_ = make_nonce();
   stage_ = Stage::Hello;
