@@ -148,10 +148,20 @@ class Synthetic:
                 self.send(writer, frame(HEARTBEAT, {}))
 
 
-def cpu_seconds_of(stat_path):
+def stat_fields(stat_path):
     with open(stat_path) as f:
-        fields = f.read().rsplit(")", 1)[1].split()
+        return f.read().rsplit(")", 1)[1].split()
+
+
+def cpu_seconds_of(stat_path):
+    fields = stat_fields(stat_path)
     return (int(fields[11]) + int(fields[12])) / os.sysconf("SC_CLK_TCK")
+
+
+def page_faults(pid):
+    """Minor page faults so far of a process's main thread (its io thread): each is memory the
+    kernel makes (and zeroes) while the io thread waits."""
+    return int(stat_fields("/proc/%d/task/%d/stat" % (pid, pid))[7])
 
 
 def cpu_seconds(pid):
@@ -325,15 +335,19 @@ async def measure(args, coordinator, report):
         # Throughput.
         units0 = await coordinator.metric("tessera_units_finished_total")
         pixels0 = await coordinator.metric("tessera_pixels_total")
-        # Submission probes the scene's cost on the coordinator (docs/SERVICE.md): counted from
-        # its answer on, so that only the job's scheduling and merging are measured.
+        # Submission probes the scene's cost and makes the job's frame buffer pages on an intake
+        # thread (docs/SERVICE.md): reported apart, so that the throughput counts only the job's
+        # scheduling and merging.
+        cpu = cpu_seconds(pid)
         job = await coordinator.submit(args.size, args.passes, args.scene_text, args.aa,
                                        args.settings)
         start = time.perf_counter()
-        cpu, threads_before = cpu_seconds(pid), thread_cpu_seconds(pid)
+        submission_cpu = cpu_seconds(pid) - cpu
+        cpu, threads_before, faults = cpu_seconds(pid), thread_cpu_seconds(pid), page_faults(pid)
         status = await coordinator.wait_job(job, check_workers)
         elapsed = time.perf_counter() - start
         cpu = cpu_seconds(pid) - cpu
+        faults = page_faults(pid) - faults
         by_thread = sorted(((seconds - threads_before.get(thread, 0), thread[1])
                             for thread, seconds in thread_cpu_seconds(pid).items()), reverse=True)
         if status["state"] != "done":
@@ -345,10 +359,13 @@ async def measure(args, coordinator, report):
                (args.scene or "sphere", args.size, args.size, args.aa, args.passes, units,
                 pixels / units, pixels / 1e6, elapsed, units / elapsed, pixels / elapsed / 1e6))
         cpu = max(cpu, 1e-9)
+        report("submission", "%.2f s of coordinator CPU (the scene's probe, the frame buffer's "
+               "pages) before the job's answer" % submission_cpu)
         report("coordinator CPU", "%.2f s: %.0f units and %.1f M pixel passes per CPU-second; "
-               "%.0f us a unit, %.1f ns a pixel pass; its busiest threads %s" %
+               "%.0f us a unit, %.1f ns a pixel pass; its busiest threads %s; %d page faults on "
+               "the io thread" %
                (cpu, units / cpu, pixels / cpu / 1e6, cpu / units * 1e6, cpu / pixels * 1e9,
-                ", ".join("%s %.2f s" % (name, t) for t, name in by_thread[:3])))
+                ", ".join("%s %.2f s" % (name, t) for t, name in by_thread[:3]), faults))
 
         # Loss: one worker crashes and one hangs while a job runs.
         crash, hang = names[0], names[1]
