@@ -174,7 +174,10 @@ Tracer::Crossing Tracer::cross_interface(const Ray& ray, Hit& hit, const MediumS
   const std::vector<Instance>& instances = scene_.instances();
   const std::vector<SceneObject>& objects = scene_.scene().objects;
 
-  Crossing crossing{media, true};
+  // Assigned, not brace-initialized: GCC zeroed the whole of `crossing{media, true}` (272 bytes,
+  // a `rep stos`) before copying the stack's entries in use, at every transparent hit.
+  Crossing crossing;
+  crossing.after = media;
   const auto cross = [&](const Hit& h) {
     const Material& m = objects[h.world.object].material;
     crossing.after = dot(h.world.normal, ray.direction) < 0
