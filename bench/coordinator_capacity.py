@@ -335,14 +335,11 @@ async def measure(args, coordinator, report):
         # Throughput.
         units0 = await coordinator.metric("tessera_units_finished_total")
         pixels0 = await coordinator.metric("tessera_pixels_total")
-        # Submission probes the scene's cost and makes the job's frame buffer pages on an intake
-        # thread (docs/SERVICE.md): reported apart, so that the throughput counts only the job's
-        # scheduling and merging.
-        cpu = cpu_seconds(pid)
+        # Submission probes the scene's cost on the coordinator (docs/SERVICE.md): counted from
+        # its answer on, so that only the job's scheduling and merging are measured.
         job = await coordinator.submit(args.size, args.passes, args.scene_text, args.aa,
                                        args.settings)
         start = time.perf_counter()
-        submission_cpu = cpu_seconds(pid) - cpu
         cpu, threads_before, faults = cpu_seconds(pid), thread_cpu_seconds(pid), page_faults(pid)
         status = await coordinator.wait_job(job, check_workers)
         elapsed = time.perf_counter() - start
@@ -359,8 +356,6 @@ async def measure(args, coordinator, report):
                (args.scene or "sphere", args.size, args.size, args.aa, args.passes, units,
                 pixels / units, pixels / 1e6, elapsed, units / elapsed, pixels / elapsed / 1e6))
         cpu = max(cpu, 1e-9)
-        report("submission", "%.2f s of coordinator CPU (the scene's probe, the frame buffer's "
-               "pages) before the job's answer" % submission_cpu)
         report("coordinator CPU", "%.2f s: %.0f units and %.1f M pixel passes per CPU-second; "
                "%.0f us a unit, %.1f ns a pixel pass; its busiest threads %s; %d page faults on "
                "the io thread" %

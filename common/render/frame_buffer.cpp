@@ -60,12 +60,6 @@ void FrameBuffer::mean_run(PixelCoord first, int count, int stride, float* out) 
   }
 }
 
-std::array<MemoryRange, 2> FrameBuffer::memory_of_rows(int y0, int y1) const {
-  const std::size_t first = idx(0, y0), count = idx(0, y1) - first;
-  return {MemoryRange{sums_.data() + 3 * first, 3 * count * sizeof(float)},
-          MemoryRange{counts_.data() + first, count * sizeof(std::uint16_t)}};
-}
-
 Image FrameBuffer::resolve() const {
   Image image(width_, height_);
   for (int y = 0; y < height_; ++y)

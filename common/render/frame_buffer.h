@@ -8,7 +8,6 @@
 // relative, far below what a PNG or an EXR's half floats show.
 #pragma once
 
-#include <array>
 #include <cstdint>
 #include <vector>
 
@@ -56,8 +55,6 @@ class FrameBuffer {
   // of each pass (the tile records' 8-bit values).
   void mean_run(PixelCoord first, int count, int stride, float* out) const;
   Image resolve() const;
-  // The memory of rows [y0, y1): the sums', then the counts' (for populate_for_writing).
-  std::array<MemoryRange, 2> memory_of_rows(int y0, int y1) const;
 
  private:
   std::size_t idx(int x, int y) const { return static_cast<std::size_t>(y) * width_ + x; }

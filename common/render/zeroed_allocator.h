@@ -12,7 +12,6 @@
 #pragma once
 
 #include <cstddef>
-#include <cstdint>
 #include <cstdlib>
 #include <limits>
 #include <new>
@@ -20,7 +19,6 @@
 
 #if defined(__linux__)
 #include <sys/mman.h>
-#include <unistd.h>
 #endif
 
 namespace tessera {
@@ -67,28 +65,5 @@ struct ZeroedAllocator {
   }
   friend bool operator==(const ZeroedAllocator&, const ZeroedAllocator&) { return true; }
 };
-
-// Some bytes of a buffer, for populate_for_writing.
-struct MemoryRange {
-  const void* data = nullptr;
-  std::size_t bytes = 0;
-};
-
-// Asks the kernel to back the range's pages now, writable, as its first writes would
-// (MADV_POPULATE_WRITE, Linux 5.14), without changing a byte. Called on a thread that serves
-// nobody, it takes the zeroing of a job's new frame buffer off the io thread that merges into it
-// (coordinator/main.cpp). It changes no content, so it is harmless on memory freed or reused
-// meanwhile; it does nothing where unsupported.
-inline void populate_for_writing(MemoryRange range) {
-#if defined(__linux__) && defined(MADV_POPULATE_WRITE)
-  if (range.bytes == 0) return;
-  const auto page = static_cast<std::uintptr_t>(sysconf(_SC_PAGESIZE));
-  const auto first = reinterpret_cast<std::uintptr_t>(range.data) / page * page;
-  const auto end = reinterpret_cast<std::uintptr_t>(range.data) + range.bytes;
-  madvise(reinterpret_cast<void*>(first), end - first, MADV_POPULATE_WRITE);
-#else
-  (void)range;
-#endif
-}
 
 }  // namespace tessera

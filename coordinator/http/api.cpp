@@ -272,7 +272,6 @@ void Api::submit_job(const std::string& client, HttpRespond& respond,
           [this, read = std::move(read), client, over_cap, too_many, limits = config_.limits,
            scenes = config_.scenes_dir](const IntakeBudget& budget) -> Finish {
             auto parsed = std::make_shared<JobRequest>(admit_job(read(), limits, scenes, budget));
-            make_frame_buffer(*parsed);
             return [this, parsed, client, over_cap, too_many] {
               if (over_cap())
                 throw too_many;  // other submissions of this client finished meanwhile

@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <chrono>
 #include <iterator>
-#include <stdexcept>
 
 #include <malloc.h>
 
@@ -27,8 +26,7 @@ const char* to_string(JobState state) {
   return "unknown";
 }
 
-Job::Job(std::int64_t id_, Bundle bundle_, JobSpec spec_, PlanOptions plan_options_, int priority_,
-         std::optional<FrameBuffer> frame_buffer)
+Job::Job(std::int64_t id_, Bundle bundle_, JobSpec spec_, PlanOptions plan_options_, int priority_)
     : id(id_),
       bundle(std::make_shared<const Bundle>(std::move(bundle_))),
       hash(content_hash(*bundle)),
@@ -40,12 +38,7 @@ Job::Job(std::int64_t id_, Bundle bundle_, JobSpec spec_, PlanOptions plan_optio
           kDeltaLogBytes, static_cast<std::size_t>(kDeltaLogBytesPerPixel * spec.settings.width *
                                                    static_cast<double>(spec.settings.height)))),
       stage_timing_(plan.stages.size()),
-      frame_buffer_(frame_buffer ? std::move(*frame_buffer)
-                                 : FrameBuffer(spec.settings.width, spec.settings.height)) {
-  if (frame_buffer_.width() != spec.settings.width ||
-      frame_buffer_.height() != spec.settings.height)
-    throw std::invalid_argument("a job's frame buffer is not the size of its image");
-}
+      frame_buffer_(spec.settings.width, spec.settings.height) {}
 
 namespace {
 

@@ -69,9 +69,7 @@ class Job {
   // The final image's encodings by format ("png", "exr").
   using Encodings = std::map<std::string, std::shared_ptr<const std::string>>;
 
-  // `frame_buffer`, when given, is the job's (JobRequest::frame_buffer, spec's size).
-  Job(std::int64_t id, Bundle bundle, JobSpec spec, PlanOptions plan_options, int priority,
-      std::optional<FrameBuffer> frame_buffer = std::nullopt);
+  Job(std::int64_t id, Bundle bundle, JobSpec spec, PlanOptions plan_options, int priority);
 
   // What was asked: set at construction, or by JobStore::create and at admission (the
   // prediction) before the job is queued, and never changed after.

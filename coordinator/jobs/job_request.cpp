@@ -131,14 +131,6 @@ void check_scene(const Submission& sub, const std::optional<std::filesystem::pat
 
 }  // namespace
 
-void make_frame_buffer(JobRequest& request) {
-  const RenderSettings& s = request.spec.settings;
-  const FrameBuffer& frame = request.frame_buffer.emplace(s.width, s.height);
-  for (const MemoryRange& range :
-       frame.memory_of_rows(s.region ? s.region->y0 : 0, s.region ? s.region->y1 : s.height))
-    populate_for_writing(range);
-}
-
 void parse_settings(const json& s, const ServiceLimits& limits, JobRequest& out) {
   JobSettings settings;
   for (const auto& [key, value] : s.items()) {

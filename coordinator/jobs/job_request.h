@@ -16,7 +16,6 @@
 #include "common/progressive/plan.h"
 #include "common/protocol/bundle.h"
 #include "common/protocol/job_spec.h"
-#include "common/render/frame_buffer.h"
 #include "coordinator/jobs/intake_budget.h"
 #include "coordinator/jobs/limits.h"
 
@@ -36,9 +35,6 @@ struct JobRequest {
   // neither, and shows its camera setting if any).
   std::optional<Camera> camera;
   std::vector<NamedCamera> viewpoints;
-  // The job's frame buffer, its pages made (make_frame_buffer); none for a job restored from the
-  // store, whose pages the kernel makes as its results first merge.
-  std::optional<FrameBuffer> frame_buffer;
 };
 
 // What a request submits, whatever its content type.
@@ -53,12 +49,6 @@ struct Submission {
 JobRequest admit_job(const Submission& submission, const ServiceLimits& limits,
                      const std::optional<std::filesystem::path>& scenes_dir,
                      const IntakeBudget& budget = {});
-
-// Gives the request its job's frame buffer with the pages of the rows its results merge into
-// made now (56 MB at 2048², zeroed by the kernel), on the intake thread that admits the job: made
-// as the io thread first merged into them, they were a fifth to a third of its time
-// (docs/SCALING.md). A queued job therefore holds its frame buffer's memory.
-void make_frame_buffer(JobRequest& request);
 
 // The settings object of a request ({"width", "height", "aa", ...}); throws ApiError.
 void parse_settings(const nlohmann::json& settings, const ServiceLimits& limits, JobRequest& out);

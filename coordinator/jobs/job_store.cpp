@@ -12,7 +12,7 @@ Job* JobStore::create(JobRequest request, std::string client,
   const std::int64_t id = assign_id ? assign_id(request) : next_id_;
   next_id_ = std::max(next_id_, id + 1);
   auto job = std::make_unique<Job>(id, std::move(request.bundle), request.spec, request.plan,
-                                   request.priority, std::move(request.frame_buffer));
+                                   request.priority);
   job->effects = std::move(request.effects);
   for (std::string& warning : request.warnings) job->add_warning(std::move(warning));
   job->camera = request.camera ? request.camera : request.spec.overrides.camera;

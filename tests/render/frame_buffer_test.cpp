@@ -113,21 +113,5 @@ TEST(FrameBuffer, ANewFrameBufferTakesMemoryOnlyWhereItIsWritten) {
   EXPECT_EQ(frame.mean(4095, 101).g, 0.0);
 }
 
-// The memory results of rows [y0, y1) merge into: those rows' sums (12 bytes a pixel) and counts
-// (2 bytes), which the coordinator populates when a job starts (zeroed_allocator.h).
-TEST(FrameBuffer, TheMemoryOfRowsIsThoseRowsSumsAndCounts) {
-  const FrameBuffer frame(10, 8);
-  const auto all = frame.memory_of_rows(0, 8);
-  const auto middle = frame.memory_of_rows(3, 5);
-  EXPECT_EQ(all[0].bytes, 10u * 8 * 12);
-  EXPECT_EQ(all[1].bytes, 10u * 8 * 2);
-  EXPECT_EQ(middle[0].bytes, 10u * 2 * 12);
-  EXPECT_EQ(middle[1].bytes, 10u * 2 * 2);
-  EXPECT_EQ(static_cast<const char*>(middle[0].data) - static_cast<const char*>(all[0].data),
-            10 * 3 * 12);
-  EXPECT_EQ(static_cast<const char*>(middle[1].data) - static_cast<const char*>(all[1].data),
-            10 * 3 * 2);
-}
-
 }  // namespace
 }  // namespace tessera

@@ -9,11 +9,6 @@
 #include <string>
 #include <vector>
 
-#if defined(__linux__)
-#include <sys/mman.h>
-#include <unistd.h>
-#endif
-
 namespace tessera {
 namespace {
 
@@ -61,28 +56,6 @@ long anon_huge_kb_at(const void* address) {
     }
   }
   return -1;
-}
-
-// The pages of [data, data + bytes) that are resident (mincore).
-std::size_t resident_pages(const void* data, std::size_t bytes) {
-  const auto page = static_cast<std::size_t>(sysconf(_SC_PAGESIZE));
-  std::vector<unsigned char> resident((bytes + page - 1) / page);
-  EXPECT_EQ(mincore(const_cast<void*>(data), bytes, resident.data()), 0);
-  return static_cast<std::size_t>(
-      std::count_if(resident.begin(), resident.end(), [](unsigned char r) { return r & 1; }));
-}
-
-TEST(ZeroedAllocator, PopulatingMakesEveryPageOfTheRangeWithoutChangingIt) {
-  ZeroedVector<float> buffer(std::size_t{4} << 20);  // 16 MB, mapped: no page until written
-  const std::size_t pages =
-      buffer.size() * sizeof(float) / static_cast<std::size_t>(sysconf(_SC_PAGESIZE));
-  EXPECT_EQ(resident_pages(buffer.data(), buffer.size() * sizeof(float)), 0u);
-  buffer[1000] = 7.0f;
-  populate_for_writing({buffer.data() + 100, (buffer.size() - 100) * sizeof(float)});
-  EXPECT_EQ(resident_pages(buffer.data(), buffer.size() * sizeof(float)), pages);
-  EXPECT_EQ(buffer[1000], 7.0f);
-  EXPECT_EQ(buffer[999], 0.0f);
-  EXPECT_EQ(buffer.back(), 0.0f);
 }
 
 // Large buffers ask for transparent huge pages: a frame buffer's first writes then fault once

@@ -6,11 +6,6 @@
 #include <algorithm>
 #include <set>
 
-#if defined(__linux__)
-#include <sys/mman.h>
-#include <unistd.h>
-#endif
-
 #include "common/image/decoded_texture.h"
 #include "common/settings/settings_schema.h"
 #include "coordinator/http/api.h"
@@ -415,44 +410,6 @@ int refusal(const SubmitPolicy& policy, const HttpRequest& request, const std::s
     return http_status(e.refusal());
   }
 }
-
-#if defined(__linux__) && defined(MADV_POPULATE_WRITE)
-// The resident pages (mincore) of [data, data + bytes), whole pages inside it.
-std::size_t resident_pages(const MemoryRange& range) {
-  const auto page = static_cast<std::uintptr_t>(sysconf(_SC_PAGESIZE));
-  const auto first = (reinterpret_cast<std::uintptr_t>(range.data) + page - 1) / page * page;
-  const auto end = (reinterpret_cast<std::uintptr_t>(range.data) + range.bytes) / page * page;
-  if (end <= first) return 0;
-  std::vector<unsigned char> resident((end - first) / page);
-  EXPECT_EQ(mincore(reinterpret_cast<void*>(first), end - first, resident.data()), 0);
-  return static_cast<std::size_t>(
-      std::count_if(resident.begin(), resident.end(), [](unsigned char r) { return r & 1; }));
-}
-
-// The job's frame buffer is made with the pages of its region's rows on the intake thread that
-// admits it (make_frame_buffer), and the job merges into that very buffer: the io thread then
-// faults in none of it. Rows outside the region take no memory.
-TEST(JobMemory, AnAdmittedJobsFrameBufferComesWithItsRegionsPages) {
-  JobRequest r;
-  r.bundle = {"scene.sdl", "sdl", {{"scene.sdl", "sphere"}}};
-  r.spec.settings.width = r.plan.width = 2048;
-  r.spec.settings.height = r.plan.height = 2048;
-  r.spec.settings.region = r.plan.region = PixelRect{0, 1024, 2048, 2048};
-  make_frame_buffer(r);
-  ASSERT_TRUE(r.frame_buffer);
-  const auto region = r.frame_buffer->memory_of_rows(1024, 2048);
-  const auto above = r.frame_buffer->memory_of_rows(0, 512);
-  const auto page = static_cast<std::size_t>(sysconf(_SC_PAGESIZE));
-  for (int i = 0; i < 2; ++i) {
-    EXPECT_EQ(resident_pages(region[i]), region[i].bytes / page);
-    EXPECT_EQ(resident_pages(above[i]), 0u);
-  }
-  JobStore store(4);
-  Job* job = store.create(std::move(r));
-  EXPECT_EQ(job->frame_buffer().memory_of_rows(1024, 2048)[0].data, region[0].data);
-  EXPECT_EQ(job->frame_buffer().passes_at(5, 1500), 0u);
-}
-#endif
 
 TEST(SubmitPolicy, WithoutATokenOnlyLoopbackMaySubmit) {
   const SubmitPolicy closed;
