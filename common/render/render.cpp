@@ -134,14 +134,6 @@ PixelRect bounds_of(std::span<const PixelCoord> pixels) {
   return r;
 }
 
-// Whether the pixels share enough of their samples for a lattice to pay: more than one sample
-// a pixel, and pixels that fill at least half of their bounds (a unit of sparse anchors shares
-// no sample and would only pay for the lattice's memory).
-bool worth_a_lattice(std::span<const PixelCoord> pixels, const PixelRect& bounds,
-                     std::size_t samples) {
-  return samples > 1 && 2 * static_cast<long long>(pixels.size()) >= bounds.area();
-}
-
 }  // namespace
 
 EffectSet render_effects(const PreparedScene& scene, const RenderSettings& settings) {
@@ -190,7 +182,7 @@ void render_pixels(const PreparedScene& scene, const RenderSettings& settings,
   };
   const PixelRect bounds = bounds_of(pixels);
   if (samples_depend_on_position_only(render_effects(scene, settings), settings) &&
-      worth_a_lattice(pixels, bounds, context.offsets.size())) {
+      worth_a_lattice(static_cast<long long>(pixels.size()), bounds.area(), settings.aa_samples)) {
     SampleLattice lattice(bounds);
     for (std::size_t i = 0; i < pixels.size(); ++i) {
       check_interrupt();

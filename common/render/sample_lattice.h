@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "common/math/pixel_rect.h"
+#include "common/progressive/plan.h"
 #include "common/render/effects.h"
 #include "common/render/pixel_samples.h"
 #include "common/scene/rgb.h"
@@ -29,9 +30,24 @@ inline bool samples_depend_on_position_only(const EffectSet& effects,
          !effects.has(Effect::Translucency) && !effects.has(Effect::SoftShadows);
 }
 
-// Camera rays a pixel traces on average when a large rectangle of pixels shares its samples: a
-// lattice point per quarter pixel for the 3x3 grid, a corner and a centre for the 5-point one.
-inline double shared_rays_per_pixel(int aa) { return aa == 9 ? 4 : aa == 5 ? 2 : 1; }
+// Whether render_pixels shares the samples of `pixels` pixels whose bounds hold `bounds_area`:
+// with more than one sample a pixel, where they fill at least half their bounds (a unit of
+// sparse anchors shares no sample and would only pay for the lattice's memory).
+inline bool worth_a_lattice(long long pixels, long long bounds_area, int aa) {
+  return aa > 1 && 2 * pixels >= bounds_area;
+}
+
+// Camera rays render_pixels traces for `unit` at `aa` samples a pixel when samples are shared:
+// the lattice points its pixels' grids need, or aa a pixel where it shares none. The finest
+// level's units skip the coarser anchors (one pixel in four), whose centres alone no
+// neighbour needs.
+long long shared_unit_rays(const UnitPixels& unit, int aa);
+
+// The share of their samples the traced pixels of a plan with `passes` passes trace themselves
+// when samples are shared (the rest their neighbours trace): what scales a probe of lone
+// pixels, which share nothing, to the plan. `first_two` is the plan made with at most two
+// passes; every pass after the first is laid out as the second.
+double traced_share(const Plan& first_two, int passes, int aa);
 
 class SampleLattice {
  public:

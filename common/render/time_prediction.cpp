@@ -7,7 +7,6 @@
 #include <vector>
 
 #include "common/render/render.h"
-#include "common/render/sample_lattice.h"
 
 namespace tessera {
 
@@ -31,8 +30,6 @@ CostProbe probe_render_cost(const PreparedScene& scene, const RenderSettings& se
                             const ProbeBudget& budget) {
   using Clock = std::chrono::steady_clock;
   CostProbe probe;
-  if (samples_depend_on_position_only(render_effects(scene, settings), settings))
-    probe.traced_share = shared_rays_per_pixel(settings.aa_samples) / settings.aa_samples;
   RenderStats stats;
   Rgb value;
   const std::vector<PixelCoord> order =

@@ -22,16 +22,11 @@ struct CostProbe {
   // run for `unfinished_pixel_seconds`: "one pixel took over 0.5 s".
   bool cut_short = false;
   double unfinished_pixel_seconds = 0;
-  // The share of a pixel's samples it traces itself when whole tiles and units render:
-  // shared_rays_per_pixel / aa where pixels share samples (render/sample_lattice.h), else 1.
-  // The probe traces lone pixels, which share nothing.
-  double traced_share = 1;
-  // Seconds a pixel pass takes on one thread: the mean over the pixels traced, scaled by
-  // traced_share; when cut short, a lower bound, counting the unfinished pixel as if it had
-  // just finished.
+  // Seconds a pixel pass takes on one thread: the mean over the pixels traced; when cut short,
+  // a lower bound, counting the unfinished pixel as if it had just finished.
   double seconds_per_pixel_pass() const {
     const long long counted = pixels + (cut_short ? 1 : 0);
-    return counted > 0 ? seconds / double(counted) * traced_share : 0;
+    return counted > 0 ? seconds / double(counted) : 0;
   }
 };
 

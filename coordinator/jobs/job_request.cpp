@@ -9,6 +9,7 @@
 #include "common/loaders/scene_source.h"
 #include "common/render/prepared_scene.h"
 #include "common/render/render.h"
+#include "common/render/sample_lattice.h"
 #include "common/render/time_prediction.h"
 #include "common/texture/image_texture.h"
 #include "coordinator/jobs/api_error.h"
@@ -70,6 +71,19 @@ std::map<std::string, std::string> decoded_textures(const Scene& scene,
   return files;
 }
 
+// The probe traces lone pixels; where a render's pixels share their grid samples
+// (render/sample_lattice.h) each traces only a share of them, which depends on how the plan
+// lays its units out: the share of the plan made with at most two passes (every pass after
+// the first is laid out as the second) and units of the default size (a unit's edges, whose
+// lattice points it traces again, move the share by a few percent between sizes).
+double plan_traced_share(const PlanOptions& plan, const EffectSet& effects,
+                         const RenderSettings& settings) {
+  if (!samples_depend_on_position_only(effects, settings) || settings.aa_samples <= 1) return 1;
+  PlanOptions first_two = plan;
+  first_two.passes = std::min(plan.passes, 2);
+  return traced_share(make_plan(first_two), plan.passes, settings.aa_samples);
+}
+
 // The one place where a request's budget meets the loader and the probe.
 void check_scene(const Submission& sub, const std::optional<std::filesystem::path>& scenes_dir,
                  const ServiceLimits& limits, const IntakeBudget& budget, JobRequest& out) {
@@ -104,9 +118,11 @@ void check_scene(const Submission& sub, const std::optional<std::filesystem::pat
     {
       const PreparedScene prepared(scene, out.spec.settings.bvh);
       budget.check("preparing the scene");
-      out.effects = render_effects(prepared, out.spec.settings).names();
+      const EffectSet effects = render_effects(prepared, out.spec.settings);
+      out.effects = effects.names();
       const CostProbe probe = probe_render_cost(prepared, out.spec.settings);
-      out.seconds_per_pixel_pass = probe.seconds_per_pixel_pass();
+      out.seconds_per_pixel_pass =
+          probe.seconds_per_pixel_pass() * plan_traced_share(out.plan, effects, out.spec.settings);
       out.probe_cut_short = probe.cut_short;
       budget.check("the cost probe");
       out.plan.unit_pixels = unit_pixels_for_cost(out.seconds_per_pixel_pass);

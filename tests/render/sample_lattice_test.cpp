@@ -84,6 +84,33 @@ TEST_P(SharedSamples, EachLatticePointIsTracedOnce) {
   EXPECT_EQ(stats.pixels, static_cast<std::uint64_t>(w * h));
 }
 
+// The coordinator predicts a unit's rays without tracing it (shared_unit_rays): they are the
+// rays render_pixels traces, exactly for a whole rectangle and a unit of sparse anchors, and
+// for the finest level's units (every pixel but the coarser anchors) up to the skipped
+// anchors on the unit's border, whose outer corners and edges no traced pixel needs.
+TEST_P(SharedSamples, AUnitsPredictedRaysAreTheRaysItTraces) {
+  const Scene scene = scene_without_randomness();
+  const RenderSettings s = grid_settings(GetParam());
+  const PreparedScene prepared(scene, s.bvh);
+  const auto traced = [&](const UnitPixels& unit) {
+    const std::vector<PixelCoord> pixels = expand(unit);
+    std::vector<Rgb> values(pixels.size());
+    RenderStats stats;
+    render_pixels(prepared, s, pixels, 0, values, stats);
+    return static_cast<long long>(stats.camera_rays);
+  };
+  const PixelRect rect{4, 2, 24, 14};
+  const UnitPixels whole{.rect = rect};
+  EXPECT_EQ(shared_unit_rays(whole, GetParam()), traced(whole));
+  const UnitPixels sparse{.rect = rect, .step = 2, .exclude = 4};
+  EXPECT_EQ(shared_unit_rays(sparse, GetParam()), traced(sparse));
+  EXPECT_EQ(shared_unit_rays(sparse, GetParam()), GetParam() * pixel_count(sparse));
+  const UnitPixels finest{.rect = rect, .step = 1, .exclude = 2};
+  const long long predicted = shared_unit_rays(finest, GetParam());
+  EXPECT_LE(traced(finest), predicted);
+  EXPECT_GE(traced(finest), predicted - (rect.width() + rect.height()));
+}
+
 INSTANTIATE_TEST_SUITE_P(Grids, SharedSamples, ::testing::Values(5, 9));
 
 // Jitter moves each sample of each pixel on its own, and a random number drawn during a sample
@@ -120,6 +147,26 @@ TEST(SharedSamples, OnlyRendersWithoutJitterOrRandomEffectsQualify) {
   }
   s.stochastic = true;
   EXPECT_FALSE(samples_depend_on_position_only(effects, s));
+}
+
+// A plan's share: a pass after the first covers whole rectangles, so with many passes the share
+// tends to theirs; the first pass's coarse levels share nothing and raise it.
+TEST(SharedSamples, APlansShareWeighsItsPassesByTheirLayout) {
+  PlanOptions options{.width = 64, .height = 48, .passes = 2, .unit_pixels = 256};
+  const Plan first_two = make_plan(options);
+  long long later_rays = 0, later_pixels = 0;
+  for (const WorkUnit& unit : first_two.units)
+    if (first_two.stages[static_cast<std::size_t>(unit.stage)].pass == 1) {
+      later_rays += shared_unit_rays(unit.pixels, 9);
+      later_pixels += unit.cost;
+    }
+  const double later_share =
+      static_cast<double>(later_rays) / (9.0 * static_cast<double>(later_pixels));
+  EXPECT_GT(later_share, 4.0 / 9);  // each unit traces its own edges
+  EXPECT_LT(later_share, 5.0 / 9);
+  EXPECT_GT(traced_share(first_two, 1, 9), traced_share(first_two, 2, 9));
+  EXPECT_NEAR(traced_share(first_two, 100000, 9), later_share, 1e-4);
+  EXPECT_EQ(traced_share(first_two, 3, 1), 1);  // one sample a pixel: nothing to share
 }
 
 }  // namespace

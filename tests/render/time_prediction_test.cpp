@@ -44,25 +44,5 @@ TEST(TimePrediction, ProbeStopsAtItsTimeBudget) {
   EXPECT_EQ(probe_render_cost(prepared, s, {.max_pixels = 64, .max_seconds = 0}).pixels, 1);
 }
 
-// The probe traces lone pixels; a render's pixels share the samples on their common corners
-// and edges (render/sample_lattice.h), so the probe counts only the share a pixel traces.
-TEST(TimePrediction, ProbeCountsTheShareOfSamplesAPixelTracesItself) {
-  Scene scene;
-  scene.camera = camera_on_z(30);
-  scene.objects.push_back(object(Sphere{}, Affine::identity(), Material{}));
-  const PreparedScene prepared(scene, BvhMode::Sah);
-  RenderSettings s = settings(64, 48);
-  const ProbeBudget budget{.max_pixels = 4, .max_seconds = 10};
-  EXPECT_EQ(probe_render_cost(prepared, s, budget).traced_share, 1);
-  s.aa_samples = 9;
-  EXPECT_DOUBLE_EQ(probe_render_cost(prepared, s, budget).traced_share, 4.0 / 9);
-  s.aa_samples = 5;
-  EXPECT_DOUBLE_EQ(probe_render_cost(prepared, s, budget).traced_share, 2.0 / 5);
-  s.stochastic = true;
-  EXPECT_EQ(probe_render_cost(prepared, s, budget).traced_share, 1);
-  const CostProbe shared{.pixels = 200, .seconds = 0.01, .traced_share = 0.5};
-  EXPECT_DOUBLE_EQ(shared.seconds_per_pixel_pass(), 2.5e-5);
-}
-
 }  // namespace
 }  // namespace tessera::test
