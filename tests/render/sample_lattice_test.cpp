@@ -9,25 +9,8 @@
 namespace tessera::test {
 namespace {
 
-// Reflections, refraction, shadows and a specular highlight, but nothing drawn at random: a
-// sample's value depends on its position alone.
-Scene scene_without_randomness() {
-  Scene scene;
-  scene.camera = camera_on_z(40);
-  scene.globals.background = {0.1, 0.2, 0.3};
-  Material shiny;
-  shiny.specular = {0.6, 0.6, 0.6};
-  shiny.specular_exponent = 20;
-  shiny.reflectivity = 0.4;
-  scene.objects.push_back(object(Sphere{}, Affine::translation({-0.8, 0, 0}), shiny));
-  Material glass;
-  glass.transparency = 0.7;
-  glass.speed_of_light = 0.7;
-  scene.objects.push_back(
-      object(Cube{}, Affine::translation({1, 0.3, 0}) * Affine::scaling({0.6, 0.6, 0.6}), glass));
-  scene.lights.push_back(point_light({3, 4, 5}, {1, 1, 1}));
-  return scene;
-}
+// Nothing drawn at random: a sample's value depends on its position alone.
+Scene scene_without_randomness() { return sphere_and_glass_cube(0); }
 
 RenderSettings grid_settings(int aa) {
   RenderSettings s = settings(48, 36);

@@ -83,4 +83,25 @@ inline Image render(const Scene& scene, const RenderSettings& s, RenderStats* st
   return image;
 }
 
+// A shiny sphere (specular, reflective, and rough when `surface_roughness` > 0) and a glass
+// cube under one point light: reflection, refraction, shadows and a highlight in a few pixels.
+inline Scene sphere_and_glass_cube(double surface_roughness) {
+  Scene scene;
+  scene.camera = camera_on_z(40);
+  scene.globals.background = {0.1, 0.2, 0.3};
+  Material shiny;
+  shiny.specular = {0.6, 0.6, 0.6};
+  shiny.specular_exponent = 20;
+  shiny.reflectivity = 0.4;
+  shiny.surface_roughness = surface_roughness;
+  scene.objects.push_back(object(Sphere{}, Affine::translation({-0.8, 0, 0}), shiny));
+  Material glass;
+  glass.transparency = 0.7;
+  glass.speed_of_light = 0.7;
+  scene.objects.push_back(
+      object(Cube{}, Affine::translation({1, 0.3, 0}) * Affine::scaling({0.6, 0.6, 0.6}), glass));
+  scene.lights.push_back(point_light({3, 4, 5}, {1, 1, 1}));
+  return scene;
+}
+
 }  // namespace tessera::test
