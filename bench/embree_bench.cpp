@@ -18,7 +18,6 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
-#include <ctime>
 #include <fstream>
 #include <functional>
 #include <random>
@@ -31,6 +30,7 @@
 #include "common/geometry/shapes.h"
 #include "common/loaders/obj_loader.h"
 #include "common/loaders/teapot.h"
+#include "common/stats/thread_cpu_clock.h"
 
 namespace tessera {
 namespace {
@@ -208,12 +208,6 @@ struct Timed {
   std::size_t hits = 0;
 };
 
-double thread_cpu_seconds() {
-  timespec now{};
-  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &now);
-  return static_cast<double>(now.tv_sec) + 1e-9 * static_cast<double>(now.tv_nsec);
-}
-
 // Splits the rays into `threads` contiguous ranges, one per thread. Timed by the wall clock, or
 // with `cpu_time` by the CPU time of the busiest thread.
 Timed run(int threads, std::size_t count, bool cpu_time,
@@ -225,9 +219,9 @@ Timed run(int threads, std::size_t count, bool cpu_time,
   for (int t = 0; t < threads; ++t)
     pool.emplace_back([&, t] {
       const std::size_t begin = count * t / threads, end = count * (t + 1) / threads;
-      const double cpu_start = thread_cpu_seconds();
+      const auto cpu_start = ThreadCpuClock::now();
       hits[t] = trace(begin, end);
-      cpu_seconds[t] = thread_cpu_seconds() - cpu_start;
+      cpu_seconds[t] = std::chrono::duration<double>(ThreadCpuClock::now() - cpu_start).count();
     });
   for (std::thread& thread : pool) thread.join();
   const std::chrono::duration<double> elapsed = std::chrono::steady_clock::now() - start;

@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "common/render/render.h"
+#include "common/stats/thread_cpu_clock.h"
 
 namespace tessera {
 
@@ -28,16 +29,23 @@ std::vector<PixelCoord> probe_pixel_order(int width, int height, int max_pixels)
 
 CostProbe probe_render_cost(const PreparedScene& scene, const RenderSettings& settings,
                             const ProbeBudget& budget) {
-  using Clock = std::chrono::steady_clock;
+  // The probe's figure is this thread's CPU time: on a shared machine a probe preempted for a
+  // few of its 30 ms would otherwise predict the job several times too slow. Its deadline, a
+  // guard on the request's wall time, stays on the wall clock.
+  using Clock = ThreadCpuClock;
+  const auto seconds_between = [](Clock::time_point from, Clock::time_point to) {
+    return std::chrono::duration<double>(to - from).count();
+  };
   CostProbe probe;
   RenderStats stats;
   Rgb value;
   const std::vector<PixelCoord> order =
       probe_pixel_order(settings.width, settings.height, budget.max_pixels);
-  const auto begin = Clock::now();
   const RenderInterrupt interrupt{
-      .deadline = begin + std::chrono::duration_cast<Clock::duration>(
-                              std::chrono::duration<double>(budget.max_total_seconds))};
+      .deadline = std::chrono::steady_clock::now() +
+                  std::chrono::duration_cast<std::chrono::steady_clock::duration>(
+                      std::chrono::duration<double>(budget.max_total_seconds))};
+  const auto begin = Clock::now();
   // The first rays through a freshly prepared scene pay its page faults and cold caches, which
   // a worker pays once per job, not per pixel: a few pixels warm them up untimed.
   constexpr std::size_t kWarmUpPixels = 16;
@@ -55,15 +63,15 @@ CostProbe probe_render_cost(const PreparedScene& scene, const RenderSettings& se
       render_pixels(scene, settings, {&pixel, 1}, 0, {&value, 1}, stats, interrupt);
       ++finished;
       ++probe.pixels;
-      probe.seconds = std::chrono::duration<double>(Clock::now() - start).count();
+      probe.seconds = seconds_between(start, Clock::now());
       if (probe.seconds > budget.max_seconds) break;
     }
   } catch (const RenderInterrupted&) {
     const auto now = Clock::now();
     probe.cut_short = true;
     probe.pixels = finished;
-    probe.seconds = std::chrono::duration<double>(now - begin).count();
-    probe.unfinished_pixel_seconds = std::chrono::duration<double>(now - pixel_start).count();
+    probe.seconds = seconds_between(begin, now);
+    probe.unfinished_pixel_seconds = seconds_between(pixel_start, now);
   }
   return probe;
 }

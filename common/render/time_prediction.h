@@ -15,11 +15,11 @@ namespace tessera {
 
 struct CostProbe {
   long long pixels = 0;  // pixels traced (one pass each)
-  double seconds = 0;    // time they took on one thread
+  double seconds = 0;    // the CPU time they took on the probing thread
   // The probe's deadline (ProbeBudget::max_total_seconds) stopped it inside a pixel. `pixels`
   // and `seconds` then count every pixel finished since the probe began, warm-up included, and
-  // the time until the deadline, spent on those and on one more unfinished pixel, which had
-  // run for `unfinished_pixel_seconds`: "one pixel took over 0.5 s".
+  // the thread's CPU time until the deadline, spent on those and on one more unfinished pixel,
+  // which had run for `unfinished_pixel_seconds`: "one pixel took over 0.5 s".
   bool cut_short = false;
   double unfinished_pixel_seconds = 0;
   // Seconds a pixel pass takes on one thread: the mean over the pixels traced; when cut short,
@@ -32,8 +32,8 @@ struct CostProbe {
 
 struct ProbeBudget {
   int max_pixels = 1024;      // a 32 x 32 grid over the image
-  double max_seconds = 0.03;  // stop early on costly scenes (keeps submission quick)
-  // The whole probe, warm-up included, stops at this many seconds even inside a pixel (a
+  double max_seconds = 0.03;  // CPU seconds: stop early on costly scenes (keeps submission quick)
+  // The whole probe, warm-up included, stops at this many wall seconds even inside a pixel (a
   // scene with one pixel of runaway cost).
   double max_total_seconds = 0.5;
 };

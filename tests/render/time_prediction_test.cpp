@@ -1,10 +1,13 @@
 // Predicting a render's time: the probe's pixels and the estimator's arithmetic.
 #include <gtest/gtest.h>
 
+#include <chrono>
 #include <cmath>
 #include <set>
+#include <thread>
 
 #include "common/render/time_prediction.h"
+#include "common/stats/thread_cpu_clock.h"
 #include "tests/render/scene_builder.h"
 
 namespace tessera::test {
@@ -42,6 +45,19 @@ TEST(TimePrediction, ProbeStopsAtItsTimeBudget) {
   const RenderSettings s = settings(64, 48);
   EXPECT_EQ(probe_render_cost(prepared, s, {.max_pixels = 64, .max_seconds = 10}).pixels, 64);
   EXPECT_EQ(probe_render_cost(prepared, s, {.max_pixels = 64, .max_seconds = 0}).pixels, 1);
+}
+
+TEST(TimePrediction, TheProbesClockCountsWorkNotTimeOffTheCpu) {
+  // The probe times itself by ThreadCpuClock, so that time its thread spends preempted on a
+  // shared machine does not count: here, a sleep stands for it.
+  const auto asleep = ThreadCpuClock::now();
+  std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  EXPECT_LT(ThreadCpuClock::now() - asleep, std::chrono::milliseconds(10));
+
+  const auto working = ThreadCpuClock::now();
+  volatile double sink = 0;
+  while (ThreadCpuClock::now() - working < std::chrono::milliseconds(5)) sink = sink + 1;
+  EXPECT_GT(sink, 0);  // the loop ended, so the clock advanced while the thread worked
 }
 
 }  // namespace
