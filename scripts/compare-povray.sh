@@ -5,7 +5,10 @@
 # and their ratio.
 #
 # Usage: scripts/compare-povray.sh [--scenes "demo torus teapot100k"] [--width W] [--height H]
-#                                  [--repeats N] [--threads "1 2"]
+#                                  [--repeats N] [--threads "1 2"] [--tessera PATH]
+#
+# --tessera: the tessera-render to time (default build/worker/tessera-render; the fastest build
+# is build-pgo/worker/tessera-render, made by scripts/build-pgo.sh).
 #
 # Scenes (SDL file, POV-Ray file):
 #   demo        scenes/demo.sdl, bench/povray/demo.pov: glass, mirror, spotlight, reflections.
@@ -39,6 +42,7 @@ width=800
 height=600
 repeats=3
 threads="1 2"
+tessera=build/worker/tessera-render
 while (($#)); do
   case "$1" in
     --scenes) scenes=$2; shift 2 ;;
@@ -46,17 +50,17 @@ while (($#)); do
     --height) height=$2; shift 2 ;;
     --repeats) repeats=$2; shift 2 ;;
     --threads) threads=$2; shift 2 ;;
+    --tessera) tessera=$2; shift 2 ;;
     -h | --help) sed -n '2,/^set -euo/p' "$0" | sed '$d; s/^# \{0,1\}//'; exit 0 ;;
     *) echo "compare-povray.sh: unknown option $1 (see --help)" >&2; exit 2 ;;
   esac
 done
 
-tessera=build/worker/tessera-render
 out_root=out/povray
 
 missing=0
 if [[ ! -x $tessera ]]; then
-  echo "compare-povray.sh: $tessera is missing; build it with: scripts/build.sh" >&2
+  echo "compare-povray.sh: $tessera is missing; build it with scripts/build.sh (or build-pgo.sh)" >&2
   missing=1
 fi
 if ! povray=$(command -v povray); then
