@@ -7,8 +7,8 @@
 # Usage: scripts/compare-povray.sh [--scenes "demo torus teapot100k"] [--width W] [--height H]
 #                                  [--repeats N] [--threads "1 2"] [--tessera PATH]
 #
-# --tessera: the tessera-render to time (default build/worker/tessera-render; the fastest build
-# is build-pgo/worker/tessera-render, made by scripts/build-pgo.sh).
+# --tessera: the tessera-render to time (default build/worker/tessera-render), for example
+# another build of it to compare with the same POV-Ray runs.
 #
 # Scenes (SDL file, POV-Ray file):
 #   demo        scenes/demo.sdl, bench/povray/demo.pov: glass, mirror, spotlight, reflections.
@@ -60,7 +60,7 @@ out_root=out/povray
 
 missing=0
 if [[ ! -x $tessera ]]; then
-  echo "compare-povray.sh: $tessera is missing; build it with scripts/build.sh (or build-pgo.sh)" >&2
+  echo "compare-povray.sh: $tessera is missing; build it with scripts/build.sh" >&2
   missing=1
 fi
 if ! povray=$(command -v povray); then
