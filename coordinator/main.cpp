@@ -17,6 +17,7 @@
 
 #include "common/protocol/handshake.h"
 #include "common/protocol/tls.h"
+#include "common/render/mapping_pool.h"
 #include "coordinator/http/api.h"
 #include "coordinator/metrics/service_metrics.h"
 #include "coordinator/options.h"
@@ -26,7 +27,8 @@
 namespace {
 
 // Every 250 ms: time limits and speculation, then the merged results written to the store
-// (a crash loses at most this much work) and retention.
+// (a crash loses at most this much work) and retention; finished jobs' frame buffers kept for
+// the next job go back to the system once idle (mapping_pool.h).
 void tick_every(boost::asio::steady_timer& timer, tessera::Scheduler& scheduler,
                 tessera::JobStore& jobs, tessera::JobPersistence& persistence) {
   timer.expires_after(std::chrono::milliseconds(250));
@@ -34,6 +36,7 @@ void tick_every(boost::asio::steady_timer& timer, tessera::Scheduler& scheduler,
     if (ec) return;
     scheduler.tick();
     persistence.tick(jobs, scheduler);
+    tessera::MappingPool::shared().release_idle();
     tick_every(timer, scheduler, jobs, persistence);
   });
 }

@@ -6,6 +6,8 @@
 // (docs/SERVICE.md, "Memory"), so the sums are float32 rather than double: over the at most
 // 256 passes a job may have, a float sum of values near 1 is off by at most about 2^-24 x 256
 // relative, far below what a PNG or an EXR's half floats show.
+// The memory is taken at the first pass added, not when the buffer is made: a queued job holds
+// none, and a running one takes what a finished one gave back (mapping_pool.h).
 #pragma once
 
 #include <cstdint>
@@ -32,6 +34,7 @@ class FrameBuffer {
   // std::length_error beyond kMaxPasses passes.
   // Inline, with mean(): the coordinator calls both for every pixel it merges.
   void add_pass(int x, int y, const float rgb[3]) {
+    if (counts_.empty()) take_memory();
     const std::size_t i = idx(x, y);
     if (counts_[i] == kMaxPasses) throw_full();
     sums_[3 * i] += rgb[0];
@@ -43,11 +46,11 @@ class FrameBuffer {
   // passes' values 3 floats a pixel in a row. Throws std::length_error, adding nothing, when
   // one of them has kMaxPasses passes already.
   void add_run(PixelCoord first, int count, int stride, const float* rgb);
-  std::uint32_t passes_at(int x, int y) const { return counts_[idx(x, y)]; }
+  std::uint32_t passes_at(int x, int y) const { return counts_.empty() ? 0 : counts_[idx(x, y)]; }
   // The mean of the passes added so far (black where none).
   Rgb mean(int x, int y) const {
     const std::size_t i = idx(x, y);
-    if (counts_[i] == 0) return {};
+    if (counts_.empty() || counts_[i] == 0) return {};
     const double n = counts_[i];
     return {sums_[3 * i] / n, sums_[3 * i + 1] / n, sums_[3 * i + 2] / n};
   }
@@ -58,8 +61,10 @@ class FrameBuffer {
 
  private:
   std::size_t idx(int x, int y) const { return static_cast<std::size_t>(y) * width_ + x; }
+  void take_memory();
   [[noreturn]] static void throw_full();
   int width_, height_;
+  // Empty until the first pass (take_memory).
   std::vector<float, ZeroedAllocator<float>> sums_;  // 3 per pixel
   std::vector<std::uint16_t, ZeroedAllocator<std::uint16_t>> counts_;
 };
