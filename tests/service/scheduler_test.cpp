@@ -277,7 +277,8 @@ TEST_F(SchedulerTest, ResultsThatBreakARuleAreRefusedAndChangeNothing) {
     return f;
   };
   Frame short_payload = good;
-  short_payload.payload.resize(short_payload.payload.size() - 12);
+  const std::string_view all = good.payload.view();
+  short_payload.payload = std::string(all.substr(0, all.size() - 12));
   Frame miscounted = good;
   miscounted.header["count"] = 1;
   const std::map<std::string, Frame> forged = {
