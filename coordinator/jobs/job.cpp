@@ -6,8 +6,6 @@
 #include <chrono>
 #include <iterator>
 
-#include <malloc.h>
-
 namespace tessera {
 
 const char* to_string(JobState state) {
@@ -165,7 +163,6 @@ void Job::release_buffers() {
     frame_buffer_ = FrameBuffer(0, 0);
     tiles_ = std::move(tail);
     tiles_first_ = next - keep;
-    malloc_trim(0);
   } else {
     free_buffers();
   }
@@ -179,7 +176,6 @@ void Job::free_buffers() {
   tiles_first_ = delta_first_ = tiles_next();
   tiles_ = std::deque<TileRecord>();
   delta_bytes_ = 0;
-  malloc_trim(0);  // large frees go back to the system only when trimmed (glibc)
 }
 
 double Job::elapsed_seconds(Clock::time_point now) const {

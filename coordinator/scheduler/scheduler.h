@@ -97,6 +97,8 @@ class Scheduler {
   bool cancel(std::int64_t job);
   // Time limits and speculation deadlines; called periodically.
   void tick();
+  // Whether any job is queued or running.
+  bool has_unfinished_jobs() const { return !runs_.empty(); }
 
   // What GET /api/workers shows of each connected worker (coordinator/http/worker_json.h),
   // in order of id.
