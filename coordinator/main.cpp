@@ -19,7 +19,6 @@
 
 #include "common/protocol/handshake.h"
 #include "common/protocol/tls.h"
-#include "common/render/mapping_pool.h"
 #include "coordinator/http/api.h"
 #include "coordinator/jobs/idle_memory.h"
 #include "coordinator/metrics/service_metrics.h"
@@ -155,8 +154,7 @@ int main(int argc, char** argv) {
     asio::signal_set signals(io, SIGINT, SIGTERM);
     signals.async_wait([&](boost::system::error_code, int) { io.stop(); });
     asio::steady_timer timer(io);
-    // The heap is trimmed as long after the last job as the pool keeps frame buffers.
-    IdleMemory idle_memory(MappingPoolLimits{}.idle);
+    IdleMemory idle_memory;
     tick_every(timer, scheduler, jobs, persistence, idle_memory);
     io.run();
     // A graceful stop writes what merged since the last tick: only a crash loses it.

@@ -2,8 +2,6 @@
 
 #include <malloc.h>
 
-#include "common/render/mapping_pool.h"
-
 namespace tessera {
 
 bool IdleMemory::tick(bool jobs_unfinished, Clock::time_point now) {

@@ -8,12 +8,15 @@
 
 #include <chrono>
 
+#include "common/render/mapping_pool.h"
+
 namespace tessera {
 
 class IdleMemory {
  public:
   using Clock = std::chrono::steady_clock;
-  explicit IdleMemory(Clock::duration after) : after_(after) {}
+  // By default as long after the last job as the pool keeps frame buffers.
+  explicit IdleMemory(Clock::duration after = MappingPoolLimits{}.idle) : after_(after) {}
   // On the io thread's tick. Returns true when it trimmed the heap: once, `after` the last
   // tick with unfinished jobs.
   bool tick(bool jobs_unfinished, Clock::time_point now);
