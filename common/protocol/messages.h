@@ -94,7 +94,7 @@ struct ResultMessage {
   std::int64_t job = 0;
   std::int64_t unit = 0;
   RenderStats stats;
-  std::vector<float> values;  // 3 per pixel, in the order of the unit's pixels
+  FloatValues values;  // 3 per pixel, in the order of the unit's pixels
 };
 
 struct JobFailedMessage {

@@ -103,7 +103,7 @@ class SchedulerTest : public ::testing::Test {
         ResultMessage{.job = job.id,
                       .unit = unit,
                       .stats = stats,
-                      .values = std::vector<float>(static_cast<std::size_t>(pixels) * 3, value)});
+                      .values = FloatValues(static_cast<std::size_t>(pixels) * 3, value)});
   }
 
   // As the worker link hands it over: decoded, then to the scheduler.
