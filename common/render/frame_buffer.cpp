@@ -9,7 +9,14 @@
 
 namespace tessera {
 
-FrameBuffer::FrameBuffer(int width, int height) : width_(width), height_(height) {}
+FrameBuffer::FrameBuffer(int width, int height) : width_(width), height_(height) { take_memory(); }
+
+FrameBuffer FrameBuffer::deferred(int width, int height) {
+  FrameBuffer frame(0, 0);
+  frame.width_ = width;
+  frame.height_ = height;
+  return frame;
+}
 
 void FrameBuffer::take_memory() {
   const std::size_t pixels = static_cast<std::size_t>(width_) * height_;
@@ -22,7 +29,6 @@ void FrameBuffer::throw_full() {
 }
 
 void FrameBuffer::add_run(PixelCoord first, int count, int stride, const float* rgb) {
-  if (counts_.empty()) take_memory();
   const std::size_t start = idx(first.x, first.y);
   const auto step = static_cast<std::size_t>(stride);
   const auto n = static_cast<std::size_t>(count);

@@ -36,7 +36,7 @@ Job::Job(std::int64_t id_, Bundle bundle_, JobSpec spec_, PlanOptions plan_optio
           kDeltaLogBytes, static_cast<std::size_t>(kDeltaLogBytesPerPixel * spec.settings.width *
                                                    static_cast<double>(spec.settings.height)))),
       stage_timing_(plan.stages.size()),
-      frame_buffer_(spec.settings.width, spec.settings.height) {}
+      frame_buffer_(FrameBuffer::deferred(spec.settings.width, spec.settings.height)) {}
 
 namespace {
 
@@ -67,6 +67,7 @@ void Job::apply_result(int unit_index, std::span<const float> values, const Rend
   if (stage.preview_only) {
     if (!spec.settings.normalize_colors) append_tile_values(record.preview_values, values);
   } else {
+    if (!frame_buffer_.has_memory()) frame_buffer_.take_memory();
     for_each_run(unit.pixels,
                  [&, rgb = values.data()](PixelCoord first, int count, int stride) mutable {
                    frame_buffer_.add_run(first, count, stride, rgb);

@@ -119,21 +119,27 @@ TEST(FrameBuffer, ANewFrameBufferTakesMemoryOnlyWhereItIsWritten) {
   EXPECT_EQ(frame.mean(4095, 101).g, 0.0);
 }
 
-// Nor is any memory mapped for it before its first pass (a queued job's frame buffer, which
-// would otherwise take a finished job's pages from the pool): until then it reads as black.
-TEST(FrameBuffer, ANewFrameBufferMapsNothingUntilItsFirstPass) {
+// A deferred frame buffer (a coordinator job's) maps nothing before it takes its memory, which
+// a queued job would otherwise hold, taken from the pool: until then it reads as black.
+TEST(FrameBuffer, ADeferredFrameBufferMapsNothingUntilItTakesItsMemory) {
   const long before = memory().mapped;
   ASSERT_GT(before, 0);
-  std::vector<FrameBuffer> frames(8, FrameBuffer(2048, 2048));  // 8 x 56 MiB
+  std::vector<FrameBuffer> frames(8, FrameBuffer::deferred(2048, 2048));  // 8 x 56 MiB
   EXPECT_LT(memory().mapped - before, 16l << 20);
   FrameBuffer& frame = frames.front();
+  EXPECT_FALSE(frame.has_memory());
   EXPECT_EQ(frame.passes_at(2047, 2047), 0u);
   EXPECT_EQ(frame.mean(17, 2000).r, 0.0);
   std::vector<float> shown(3 * 5, 1.0f);
   frame.mean_run({10, 20}, 5, 2, shown.data());
   EXPECT_TRUE(std::all_of(shown.begin(), shown.end(), [](float v) { return v == 0.0f; }));
-  const Image image = FrameBuffer(3, 2).resolve();
+  const Image image = FrameBuffer::deferred(3, 2).resolve();
   EXPECT_EQ(image.get(2, 1).b, 0.0);
+  frame.take_memory();
+  EXPECT_TRUE(frame.has_memory());
+  const float one[3] = {1, 1, 1};
+  frame.add_pass(2047, 2047, one);
+  EXPECT_EQ(frame.mean(2047, 2047).g, 1.0);
 }
 
 }  // namespace
