@@ -18,9 +18,13 @@ tessera-worker processes of one thread. In phases, it measures
   first's units are re-queued, and until the second is dropped (--silence-ms after its last
   message) and its units re-queued.
 
+With --jobs N the throughput job runs N times, one after the other, each reported, then the io
+thread's CPU a pixel pass for the first job and the later ones: the first job's frame buffer is
+memory the kernel makes as it is first written, later ones may reuse a finished job's.
+
 usage: coordinator_capacity.py --build BUILD_DIR [--workers 32] [--threads 4] [--size 2048]
-       [--passes 4] [--scene SDL] [--aa 1] [--settings JSON] [--real N] [--heartbeat-ms 2000]
-       [--silence-ms 10000] [--idle-seconds 6] [--smoke]
+       [--passes 4] [--jobs 1] [--scene SDL] [--aa 1] [--settings JSON] [--real N]
+       [--heartbeat-ms 2000] [--silence-ms 10000] [--idle-seconds 6] [--smoke]
 --smoke: seconds, tiny sizes, short heartbeats; exits 1 when a phase fails (the test command
 runs it, so a protocol change that breaks this script fails CI).
 
@@ -279,6 +283,42 @@ async def keep_alive(workers, seconds):
                 w.send(w.writer, frame(HEARTBEAT, {}))
 
 
+async def throughput(args, coordinator, check_workers, report, label):
+    """One job of the throughput phase: reports its rates and the coordinator's CPU, returns
+    its id and the io thread's CPU seconds."""
+    pid = coordinator.proc.pid
+    units0 = await coordinator.metric("tessera_units_finished_total")
+    pixels0 = await coordinator.metric("tessera_pixels_total")
+    # Submission probes the scene's cost on the coordinator (docs/SERVICE.md): counted from
+    # its answer on, so that only the job's scheduling and merging are measured.
+    job = await coordinator.submit(args.size, args.passes, args.scene_text, args.aa,
+                                   args.settings)
+    start = time.perf_counter()
+    cpu, threads_before, faults = cpu_seconds(pid), thread_cpu_seconds(pid), page_faults(pid)
+    status = await coordinator.wait_job(job, check_workers)
+    elapsed = time.perf_counter() - start
+    cpu = cpu_seconds(pid) - cpu
+    faults = page_faults(pid) - faults
+    by_thread = sorted(((seconds - threads_before.get(thread, 0), thread[1])
+                        for thread, seconds in thread_cpu_seconds(pid).items()), reverse=True)
+    if status["state"] != "done":
+        raise AssertionError("the job ended %s" % status)
+    units = await coordinator.metric("tessera_units_finished_total") - units0
+    pixels = await coordinator.metric("tessera_pixels_total") - pixels0
+    report(label, "%s %dx%d aa %d, %d passes: %d units of %.0f pixels, %.2f M pixel "
+           "passes in %.2f s: %.0f units/s, %.1f M pixel passes/s (wall, machine shared)" %
+           (args.scene or "sphere", args.size, args.size, args.aa, args.passes, units,
+            pixels / units, pixels / 1e6, elapsed, units / elapsed, pixels / elapsed / 1e6))
+    cpu = max(cpu, 1e-9)
+    report("coordinator CPU", "%.2f s: %.0f units and %.1f M pixel passes per CPU-second; "
+           "%.0f us a unit, %.1f ns a pixel pass; its busiest threads %s; %d page faults on "
+           "the io thread" %
+           (cpu, units / cpu, pixels / cpu / 1e6, cpu / units * 1e6, cpu / pixels * 1e9,
+            ", ".join("%s %.2f s" % (name, t) for t, name in by_thread[:3]), faults))
+    io = sum(t for t, name in by_thread if name == "io")
+    return job, io / pixels
+
+
 async def measure(args, coordinator, report):
     pid = coordinator.proc.pid
     rss_before = rss_bytes(pid)
@@ -332,35 +372,19 @@ async def measure(args, coordinator, report):
                      rate(sum(w.sent for w in synthetic) - sent), line))
         report("idle", line)
 
-        # Throughput.
-        units0 = await coordinator.metric("tessera_units_finished_total")
-        pixels0 = await coordinator.metric("tessera_pixels_total")
-        # Submission probes the scene's cost on the coordinator (docs/SERVICE.md): counted from
-        # its answer on, so that only the job's scheduling and merging are measured.
-        job = await coordinator.submit(args.size, args.passes, args.scene_text, args.aa,
-                                       args.settings)
-        start = time.perf_counter()
-        cpu, threads_before, faults = cpu_seconds(pid), thread_cpu_seconds(pid), page_faults(pid)
-        status = await coordinator.wait_job(job, check_workers)
-        elapsed = time.perf_counter() - start
-        cpu = cpu_seconds(pid) - cpu
-        faults = page_faults(pid) - faults
-        by_thread = sorted(((seconds - threads_before.get(thread, 0), thread[1])
-                            for thread, seconds in thread_cpu_seconds(pid).items()), reverse=True)
-        if status["state"] != "done":
-            raise AssertionError("the job ended %s" % status)
-        units = await coordinator.metric("tessera_units_finished_total") - units0
-        pixels = await coordinator.metric("tessera_pixels_total") - pixels0
-        report("throughput", "%s %dx%d aa %d, %d passes: %d units of %.0f pixels, %.2f M pixel "
-               "passes in %.2f s: %.0f units/s, %.1f M pixel passes/s (wall, machine shared)" %
-               (args.scene or "sphere", args.size, args.size, args.aa, args.passes, units,
-                pixels / units, pixels / 1e6, elapsed, units / elapsed, pixels / elapsed / 1e6))
-        cpu = max(cpu, 1e-9)
-        report("coordinator CPU", "%.2f s: %.0f units and %.1f M pixel passes per CPU-second; "
-               "%.0f us a unit, %.1f ns a pixel pass; its busiest threads %s; %d page faults on "
-               "the io thread" %
-               (cpu, units / cpu, pixels / cpu / 1e6, cpu / units * 1e6, cpu / pixels * 1e9,
-                ", ".join("%s %.2f s" % (name, t) for t, name in by_thread[:3]), faults))
+        # Throughput: --jobs jobs one after the other. The first job's frame buffer is new
+        # memory; later ones may take a finished job's back (common/render/mapping_pool.h).
+        io_per_pixel = []
+        for index in range(args.jobs):
+            job, io = await throughput(args, coordinator, check_workers, report,
+                                       "throughput" if args.jobs == 1 else
+                                       "job %d" % (index + 1))
+            io_per_pixel.append(io * 1e9)
+        if args.jobs > 1:
+            later = sorted(io_per_pixel[1:])
+            report("io thread", "first job %.1f ns a pixel pass; later jobs %.1f-%.1f ns "
+                   "(median %.1f)" % (io_per_pixel[0], later[0], later[-1],
+                                      later[len(later) // 2]))
 
         # Loss: one worker crashes and one hangs while a job runs.
         crash, hang = names[0], names[1]
@@ -420,6 +444,9 @@ def main():
     parser.add_argument("--passes", type=int, default=4)
     parser.add_argument("--scene", help="an SDL file for the throughput job (default: one "
                         "sphere); a costlier scene or --aa 9 gives smaller units")
+    parser.add_argument("--jobs", type=int, default=1,
+                        help="throughput jobs, one after the other (the first job's frame "
+                        "buffer is new memory, later ones' may be a finished job's)")
     parser.add_argument("--aa", type=int, default=1)
     parser.add_argument("--settings", type=json.loads, default={},
                         help="more settings of the throughput job, a JSON object, e.g. "
@@ -434,6 +461,7 @@ def main():
     args.scene_text = open(args.scene).read() if args.scene else "sphere\n"
     if args.smoke:
         args.workers, args.size, args.passes = min(args.workers, 8), 64, 2
+        args.jobs = 2  # the loop runs in CI too
         args.real = min(args.real, 3)
         # Real workers adopt --heartbeat-ms and --silence-ms from the welcome; 3 s leaves their
         # slow start on a loaded machine some room, and 2 s the synthetic workers' event loop

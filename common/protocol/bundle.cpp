@@ -46,7 +46,7 @@ void encode_bundle(const Bundle& bundle, nlohmann::json& header, std::string& pa
   }
 }
 
-Bundle decode_bundle(const nlohmann::json& header, const std::string& payload) {
+Bundle decode_bundle(const nlohmann::json& header, std::string_view payload) {
   Bundle bundle;
   try {
     bundle.main = header.at("main").get<std::string>();
@@ -57,7 +57,7 @@ Bundle decode_bundle(const nlohmann::json& header, const std::string& payload) {
       const auto size = f.at("size").get<std::size_t>();
       if (!is_plain_relative_path(path)) throw ProtocolError("bundle path \"" + path + "\"");
       if (size > payload.size() - offset) throw ProtocolError("bundle sizes exceed its payload");
-      bundle.files[path] = payload.substr(offset, size);
+      bundle.files[path] = std::string(payload.substr(offset, size));
       offset += size;
     }
     if (offset != payload.size()) throw ProtocolError("bundle payload has trailing bytes");

@@ -5,6 +5,7 @@
 
 #include <map>
 #include <string>
+#include <string_view>
 
 #include "common/protocol/frame.h"
 
@@ -23,7 +24,7 @@ std::string content_hash(const Bundle& bundle);
 // The bundle as a header (file names and sizes) plus a payload (the files' bytes in order).
 void encode_bundle(const Bundle& bundle, nlohmann::json& header, std::string& payload);
 // Throws ProtocolError when the sizes do not add up or a path is not a plain relative path.
-Bundle decode_bundle(const nlohmann::json& header, const std::string& payload);
+Bundle decode_bundle(const nlohmann::json& header, std::string_view payload);
 
 // True for a normalized root-relative path: no empty, "." or ".." parts, not absolute.
 bool is_plain_relative_path(const std::string& path);

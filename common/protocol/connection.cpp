@@ -102,9 +102,11 @@ void FrameConnection::read_head() {
 
 void FrameConnection::read_rest(const FrameHead& head) {
   header_.resize(head.header_bytes);
-  payload_.resize(head.payload_bytes);
-  // One read into both: the payload lands in the buffer the frame keeps.
-  const std::array<asio::mutable_buffer, 2> parts{asio::buffer(header_), asio::buffer(payload_)};
+  payload_ = Payload::to_read(head.payload_bytes);
+  // One read into both: the payload lands in the buffer the frame keeps (a result's: the values
+  // the coordinator merges and stores).
+  const std::array<asio::mutable_buffer, 2> parts{
+      asio::buffer(header_), asio::buffer(payload_.data(), head.payload_bytes)};
   asio::async_read(
       stream_, parts,
       [self = shared_from_this(), type = head.type](boost::system::error_code ec, std::size_t) {
@@ -120,7 +122,7 @@ void FrameConnection::read_rest(const FrameHead& head) {
           return self->close(e.what());
         }
         if (self->traffic_) self->traffic_(false, frame.type, bytes);
-        self->payload_ = std::string();
+        self->payload_ = Payload();
         if (frame.type != MessageType::Heartbeat && self->on_frame_)
           self->on_frame_(std::move(frame));
         if (self->open_) self->read_head();

@@ -73,7 +73,8 @@ class FrameConnection : public std::enable_shared_from_this<FrameConnection> {
   FrameTraffic traffic_;
   bool open_ = false;
   std::uint8_t head_[kFrameHead] = {};
-  std::string header_, payload_;
+  std::string header_;
+  Payload payload_;
   std::deque<std::string> queue_;
   std::size_t queued_bytes_ = 0;
   bool writing_ = false;

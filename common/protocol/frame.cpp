@@ -52,7 +52,7 @@ std::string encode_frame(const Frame& frame, const FrameLimits& limits) {
   // Invalid UTF-8 (a scene's bytes in an error message) is replaced rather than thrown.
   return encode_frame_bytes(
       frame.type, frame.header.dump(-1, ' ', false, nlohmann::json::error_handler_t::replace),
-      frame.payload, limits);
+      frame.payload.view(), limits);
 }
 
 std::string encode_frame_bytes(MessageType type, std::string_view header, std::string_view payload,
@@ -97,7 +97,7 @@ FrameHead decode_frame_head(const std::uint8_t head[kFrameHead], const FrameLimi
   return check_head(head + kFramePrefix, decode_body_length(head, limits), limits);
 }
 
-Frame decode_frame_parts(MessageType type, std::string_view header, std::string&& payload) {
+Frame decode_frame_parts(MessageType type, std::string_view header, Payload&& payload) {
   Frame frame;
   frame.type = type;
   frame.header = nlohmann::json::parse(header, nullptr, false);

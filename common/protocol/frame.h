@@ -4,7 +4,7 @@
 //   u8  message type
 //   u32 header length (big-endian, at most FrameLimits::max_header)
 //   header: a JSON object, UTF-8
-//   payload: the rest of the body, raw bytes (float32 pixels, bundle files)
+//   payload: the rest of the body, raw bytes (float32 pixels, bundle files; payload.h)
 //
 // The decoder is incremental and transport-free, so the codec is tested without sockets.
 #pragma once
@@ -17,6 +17,8 @@
 #include <string_view>
 
 #include <nlohmann/json.hpp>
+
+#include "common/protocol/payload.h"
 
 namespace tessera {
 
@@ -39,7 +41,7 @@ const char* to_string(MessageType type);
 struct Frame {
   MessageType type = MessageType::Heartbeat;
   nlohmann::json header = nlohmann::json::object();
-  std::string payload;
+  Payload payload;
 };
 
 struct FrameLimits {
@@ -66,8 +68,8 @@ Frame decode_body(std::string_view body, const FrameLimits& limits);
 
 // A connection reads a frame in two steps: its first kFrameHead bytes (the length prefix, the
 // type and the header's length), then the header and the payload straight into their own
-// buffers, so that a result's pixels (up to 196 kB, one for every unit the coordinator merges)
-// are neither moved nor copied after the read.
+// buffers (Payload::to_read), so that a result's pixels (up to 196 kB, one for every unit the
+// coordinator merges) are neither moved nor copied after the read.
 constexpr std::size_t kFrameHead = kFramePrefix + 5;
 struct FrameHead {
   MessageType type;
@@ -76,7 +78,7 @@ struct FrameHead {
 // Validates a frame's first bytes; throws ProtocolError.
 FrameHead decode_frame_head(const std::uint8_t head[kFrameHead], const FrameLimits& limits);
 // The frame of a header's bytes and a payload, which it takes over; throws ProtocolError.
-Frame decode_frame_parts(MessageType type, std::string_view header, std::string&& payload);
+Frame decode_frame_parts(MessageType type, std::string_view header, Payload&& payload);
 
 // Bytes in, frames out, for stream transports that deliver arbitrary chunks.
 class FrameDecoder {

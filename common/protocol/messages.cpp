@@ -41,7 +41,7 @@ constexpr const char* kStatCounts[] = {
     "camera_rays",    "shadow_rays", "reflection_rays", "refraction_rays", "shape_tests",
     "triangle_tests", "bvh_nodes",   "pixels",          "samples",         "nan_samples"};
 
-Frame frame_of(MessageType type, json header, std::string payload = {}) {
+Frame frame_of(MessageType type, json header, Payload payload = {}) {
   return Frame{type, std::move(header), std::move(payload)};
 }
 
@@ -98,22 +98,11 @@ RenderStats stats_from_wire(const json& stats) {
   return stats_from_json(stats);
 }
 
-std::string pack_floats(const std::vector<float>& values) {
-  // Copied as bytes, not zero-filled first: a result is up to 196 kB.
-  return std::string(reinterpret_cast<const char*>(values.data()), values.size() * sizeof(float));
-}
-
-std::vector<float> unpack_rgb(const std::string& payload) {
+void check_rgb_payload(std::size_t bytes) {
   constexpr std::size_t kPixelBytes = 3 * sizeof(float);
-  if (payload.size() % kPixelBytes != 0)
-    throw ProtocolError("result payload of " + std::to_string(payload.size()) +
+  if (bytes % kPixelBytes != 0)
+    throw ProtocolError("result payload of " + std::to_string(bytes) +
                         " bytes is not whole RGB float32 pixels");
-  // Copied as floats straight from the bytes, not zero-filled first (a result is up to 196 kB
-  // and this runs on the coordinator's io thread). may_alias lets a float be read from the
-  // string's chars, whose buffer is aligned for a float (operator new's, or the string's own).
-  using AliasedFloat [[gnu::may_alias]] = float;
-  const auto* first = reinterpret_cast<const AliasedFloat*>(payload.data());
-  return std::vector<float>(first, first + payload.size() / sizeof(float));
 }
 
 }  // namespace
@@ -206,7 +195,10 @@ HeartbeatMessage decode(const Frame& frame) {
 Frame encode(const JobMessage& m) {
   Frame frame = frame_of(JobMessage::kType,
                          {{"job", m.job}, {"hash", m.hash}, {"settings", to_json(m.spec)}});
-  if (m.bundle) encode_bundle(*m.bundle, frame.header["bundle"], frame.payload);
+  if (!m.bundle) return frame;
+  std::string payload;
+  encode_bundle(*m.bundle, frame.header["bundle"], payload);
+  frame.payload = std::move(payload);
   return frame;
 }
 
@@ -217,7 +209,7 @@ JobMessage decode(const Frame& frame) {
     m.hash = h.at("hash").get<std::string>();
     m.spec = job_spec_from_json(h.at("settings"));
     if (!h.contains("bundle")) return;
-    m.bundle = decode_bundle(h["bundle"], frame.payload);
+    m.bundle = decode_bundle(h["bundle"], frame.payload.view());
     if (content_hash(*m.bundle) != m.hash) throw ProtocolError("bundle does not match its hash");
   });
 }
@@ -269,21 +261,26 @@ Frame encode(const ResultMessage& m) {
                    {"unit", m.unit},
                    {"count", m.values.size() / 3},
                    {"stats", to_json(m.stats)}},
-                  pack_floats(m.values));
+                  m.values);
 }
 
-template <>
-ResultMessage decode(const Frame& frame) {
+ResultMessage take_result(Frame&& frame) {
   return decoded<ResultMessage>(frame, [&](const json& h, ResultMessage& m) {
     m.job = integer_at<std::int64_t>(h, "job");
     m.unit = integer_at<std::int64_t>(h, "unit");
-    m.values = unpack_rgb(frame.payload);
+    check_rgb_payload(frame.payload.size());
+    m.values = std::move(frame.payload).take_floats();
     // Optional, as from the first workers; compared as JSON, so 16.0 counts as 16.
     if (h.contains("count") && h["count"] != m.values.size() / 3)
       throw ProtocolError("result of " + h["count"].dump() + " pixels with a payload of " +
                           std::to_string(m.values.size() / 3));
     m.stats = stats_from_wire(h.at("stats"));
   });
+}
+
+template <>
+ResultMessage decode(const Frame& frame) {
+  return take_result(Frame(frame));
 }
 
 Frame encode(const JobFailedMessage& m) {

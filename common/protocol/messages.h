@@ -94,7 +94,7 @@ struct ResultMessage {
   std::int64_t job = 0;
   std::int64_t unit = 0;
   RenderStats stats;
-  std::vector<float> values;  // 3 per pixel, in the order of the unit's pixels
+  FloatValues values;  // 3 per pixel, in the order of the unit's pixels
 };
 
 struct JobFailedMessage {
@@ -148,6 +148,9 @@ template <>
 ResultMessage decode(const Frame& frame);
 template <>
 JobFailedMessage decode(const Frame& frame);
+// decode<ResultMessage> that takes the frame's payload over: its values are the result's,
+// neither copied nor moved (the coordinator decodes every result it merges so).
+ResultMessage take_result(Frame&& frame);
 template <>
 CancelMessage decode(const Frame& frame);
 

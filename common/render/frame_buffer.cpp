@@ -1,5 +1,6 @@
 #include "common/render/frame_buffer.h"
 
+#include <algorithm>
 #include <stdexcept>
 
 #if defined(__SSE2__)
@@ -8,11 +9,20 @@
 
 namespace tessera {
 
-FrameBuffer::FrameBuffer(int width, int height)
-    : width_(width),
-      height_(height),
-      sums_(static_cast<std::size_t>(width) * height * 3),
-      counts_(static_cast<std::size_t>(width) * height) {}
+FrameBuffer::FrameBuffer(int width, int height) : width_(width), height_(height) { take_memory(); }
+
+FrameBuffer FrameBuffer::deferred(int width, int height) {
+  FrameBuffer frame(0, 0);
+  frame.width_ = width;
+  frame.height_ = height;
+  return frame;
+}
+
+void FrameBuffer::take_memory() {
+  const std::size_t pixels = static_cast<std::size_t>(width_) * height_;
+  sums_.resize(3 * pixels);
+  counts_.resize(pixels);
+}
 
 void FrameBuffer::throw_full() {
   throw std::length_error("a pixel of the frame buffer has the most passes it can count");
@@ -44,6 +54,10 @@ void FrameBuffer::add_run(PixelCoord first, int count, int stride, const float* 
 }
 
 void FrameBuffer::mean_run(PixelCoord first, int count, int stride, float* out) const {
+  if (counts_.empty()) {
+    std::fill_n(out, 3 * static_cast<std::size_t>(count), 0.0f);
+    return;
+  }
   const std::size_t start = idx(first.x, first.y);
   const auto step = static_cast<std::size_t>(stride);
   const std::uint16_t* counts = counts_.data() + start;

@@ -6,6 +6,9 @@
 // (docs/SERVICE.md, "Memory"), so the sums are float32 rather than double: over the at most
 // 256 passes a job may have, a float sum of values near 1 is off by at most about 2^-24 x 256
 // relative, far below what a PNG or an EXR's half floats show.
+// A coordinator job's frame buffer is made without memory (deferred) and takes it at its first
+// merge: a queued job holds none, and a running one takes what a finished one gave back
+// (mapping_pool.h).
 #pragma once
 
 #include <cstdint>
@@ -23,6 +26,12 @@ class FrameBuffer {
   static constexpr std::uint32_t kMaxPasses = 65535;
 
   FrameBuffer(int width, int height);
+  // One without memory until take_memory(); it reads as black until then.
+  static FrameBuffer deferred(int width, int height);
+  bool has_memory() const { return !counts_.empty(); }
+  // Not thread-safe: one thread calls it before any pass is added (the CLI's threads add
+  // passes to a buffer made with its memory).
+  void take_memory();
   int width() const { return width_; }
   int height() const { return height_; }
 
@@ -41,13 +50,13 @@ class FrameBuffer {
   }
   // The same for a run of `count` pixels along row first.y, `stride` apart (for_each_run), the
   // passes' values 3 floats a pixel in a row. Throws std::length_error, adding nothing, when
-  // one of them has kMaxPasses passes already.
+  // one of them has kMaxPasses passes already. Both need the memory (has_memory()).
   void add_run(PixelCoord first, int count, int stride, const float* rgb);
-  std::uint32_t passes_at(int x, int y) const { return counts_[idx(x, y)]; }
+  std::uint32_t passes_at(int x, int y) const { return counts_.empty() ? 0 : counts_[idx(x, y)]; }
   // The mean of the passes added so far (black where none).
   Rgb mean(int x, int y) const {
     const std::size_t i = idx(x, y);
-    if (counts_[i] == 0) return {};
+    if (counts_.empty() || counts_[i] == 0) return {};
     const double n = counts_[i];
     return {sums_[3 * i] / n, sums_[3 * i + 1] / n, sums_[3 * i + 2] / n};
   }
@@ -60,6 +69,7 @@ class FrameBuffer {
   std::size_t idx(int x, int y) const { return static_cast<std::size_t>(y) * width_ + x; }
   [[noreturn]] static void throw_full();
   int width_, height_;
+  // Empty until take_memory() when deferred.
   std::vector<float, ZeroedAllocator<float>> sums_;  // 3 per pixel
   std::vector<std::uint16_t, ZeroedAllocator<std::uint16_t>> counts_;
 };

@@ -8,7 +8,9 @@
 // (Linux): one fault then zeroes 2 MB instead of 4 kB, and the merge's scattered rows miss the
 // TLB far less. With 4 kB pages a first read maps the shared zero page and the first write
 // faults again to copy it; that pair of faults per 4 kB was a fifth of the coordinator's merging
-// time (docs/SCALING.md). Where huge pages are off the advice does nothing.
+// time (docs/SCALING.md). Where huge pages are off the advice does nothing. A freed mapping is
+// kept a little while for the next buffer that asks (mapping_pool.h): zeroing pages still mapped
+// costs a hundredth of having the kernel make new ones.
 #pragma once
 
 #include <cstddef>
@@ -17,16 +19,14 @@
 #include <new>
 #include <utility>
 
-#if defined(__linux__)
-#include <sys/mman.h>
-#endif
+#include "common/render/mapping_pool.h"
 
 namespace tessera {
 
 template <typename T>
 struct ZeroedAllocator {
   using value_type = T;
-  // At and above this size a buffer is mapped, with the huge-page advice.
+  // At and above this size a buffer is mapped, with the huge-page advice, through the pool.
   static constexpr std::size_t kMappedBytes = std::size_t{2} << 20;
 
   ZeroedAllocator() = default;
@@ -37,22 +37,14 @@ struct ZeroedAllocator {
     if (n > std::numeric_limits<std::size_t>::max() / sizeof(T)) throw std::bad_alloc();
 #if defined(__linux__)
     const std::size_t bytes = n * sizeof(T);
-    if (bytes >= kMappedBytes) {
-      void* p = mmap(nullptr, bytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
-      if (p == MAP_FAILED) throw std::bad_alloc();
-      madvise(p, bytes, MADV_HUGEPAGE);  // advice: refused, the buffer keeps 4 kB pages
-      return static_cast<T*>(p);
-    }
+    if (bytes >= kMappedBytes) return static_cast<T*>(MappingPool::shared().take(bytes));
 #endif
     if (void* p = std::calloc(n, sizeof(T))) return static_cast<T*>(p);
     throw std::bad_alloc();
   }
   void deallocate(T* p, std::size_t n) {
 #if defined(__linux__)
-    if (n * sizeof(T) >= kMappedBytes) {
-      munmap(p, n * sizeof(T));
-      return;
-    }
+    if (n * sizeof(T) >= kMappedBytes) return MappingPool::shared().give(p, n * sizeof(T));
 #endif
     std::free(p);
   }

@@ -4,7 +4,6 @@
 #include <fstream>
 #include <sstream>
 
-#include <malloc.h>
 #include <spdlog/spdlog.h>
 #include <boost/asio/post.hpp>
 #include <boost/asio/steady_timer.hpp>
@@ -562,7 +561,6 @@ void Api::on_released(Job& job) {
           const bool kept = done && !encodings.empty() && done->state() == JobState::Done;
           for (const char* format : kFinalFormats)
             encoded({id, format}, version, kept ? encodings.at(format) : nullptr, false);
-          malloc_trim(0);
         });
       },
       true);

@@ -6,8 +6,6 @@
 #include <chrono>
 #include <iterator>
 
-#include <malloc.h>
-
 namespace tessera {
 
 const char* to_string(JobState state) {
@@ -38,7 +36,7 @@ Job::Job(std::int64_t id_, Bundle bundle_, JobSpec spec_, PlanOptions plan_optio
           kDeltaLogBytes, static_cast<std::size_t>(kDeltaLogBytesPerPixel * spec.settings.width *
                                                    static_cast<double>(spec.settings.height)))),
       stage_timing_(plan.stages.size()),
-      frame_buffer_(spec.settings.width, spec.settings.height) {}
+      frame_buffer_(FrameBuffer::deferred(spec.settings.width, spec.settings.height)) {}
 
 namespace {
 
@@ -69,6 +67,7 @@ void Job::apply_result(int unit_index, std::span<const float> values, const Rend
   if (stage.preview_only) {
     if (!spec.settings.normalize_colors) append_tile_values(record.preview_values, values);
   } else {
+    if (!frame_buffer_.has_memory()) frame_buffer_.take_memory();
     for_each_run(unit.pixels,
                  [&, rgb = values.data()](PixelCoord first, int count, int stride) mutable {
                    frame_buffer_.add_run(first, count, stride, rgb);
@@ -165,7 +164,6 @@ void Job::release_buffers() {
     frame_buffer_ = FrameBuffer(0, 0);
     tiles_ = std::move(tail);
     tiles_first_ = next - keep;
-    malloc_trim(0);
   } else {
     free_buffers();
   }
@@ -179,7 +177,6 @@ void Job::free_buffers() {
   tiles_first_ = delta_first_ = tiles_next();
   tiles_ = std::deque<TileRecord>();
   delta_bytes_ = 0;
-  malloc_trim(0);  // large frees go back to the system only when trimmed (glibc)
 }
 
 double Job::elapsed_seconds(Clock::time_point now) const {

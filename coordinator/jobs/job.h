@@ -185,8 +185,8 @@ class Job {
   // Once the state is final (finish): keeps a done job's frame buffer, shared, for its final
   // image (made and encoded off the io thread, Api::on_released), and the tile records
   // that still have pixels (for pages catching up with the last merges; the coordinator frees
-  // them a little later with free_buffers); frees the rest and returns the memory to the
-  // system (malloc_trim).
+  // them a little later with free_buffers); frees the rest (the memory goes back to the
+  // system once the coordinator is idle, idle_memory.h).
   void release_buffers();
   // Moves delta_first past the oldest tile records until those after it give at most
   // max_bytes of pixels.

@@ -52,8 +52,8 @@ std::int64_t JobPersistence::admit(const JobRequest& r) {
   return db_.add_job(stored, WallClock::now());
 }
 
-void JobPersistence::merged(const Job& job, int unit, std::vector<float> values,
-                            const RenderStats& stats, const std::string& worker) {
+void JobPersistence::merged(const Job& job, int unit, FloatValues values, const RenderStats& stats,
+                            const std::string& worker) {
   try {
     db_.append_result(job.id, unit, std::move(values), stats, worker);
   } catch (const StoreError& e) {

@@ -29,7 +29,7 @@ class JobPersistence : public JobObserver {
 
   // Stores a new job and returns its id; throws StoreError (nothing is stored then).
   std::int64_t admit(const JobRequest& request);
-  void merged(const Job& job, int unit, std::vector<float> values, const RenderStats& stats,
+  void merged(const Job& job, int unit, FloatValues values, const RenderStats& stats,
               const std::string& worker) override;
   void state_changed(const Job& job) override;
   // A done job's final images are encoded (Job::final_encoded): stores them with its state.

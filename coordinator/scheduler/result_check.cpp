@@ -37,7 +37,7 @@ bool all_finite(const float* values, std::size_t count) {
   return true;
 }
 
-void check_pixels(const std::vector<float>& values, long long pixels) {
+void check_pixels(const FloatValues& values, long long pixels) {
   if (values.size() != static_cast<std::size_t>(pixels) * 3)
     throw ProtocolError("result of " + std::to_string(values.size() / 3) +
                         " pixels for a unit of " + std::to_string(pixels));

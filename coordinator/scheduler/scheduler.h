@@ -64,7 +64,7 @@ class JobObserver {
   virtual ~JobObserver() = default;
   // A unit's result was merged into the job's frame buffer (Job::apply_result): its values are
   // handed over, not copied (a result is up to 16,384 pixels' floats).
-  virtual void merged(const Job& job, int unit, std::vector<float> values, const RenderStats& stats,
+  virtual void merged(const Job& job, int unit, FloatValues values, const RenderStats& stats,
                       const std::string& worker) = 0;
   // The job started running or finished (its buffers are already released).
   virtual void state_changed(const Job& job) = 0;
@@ -97,6 +97,8 @@ class Scheduler {
   bool cancel(std::int64_t job);
   // Time limits and speculation deadlines; called periodically.
   void tick();
+  // Whether any job is queued or running.
+  bool has_unfinished_jobs() const { return !runs_.empty(); }
 
   // What GET /api/workers shows of each connected worker (coordinator/http/worker_json.h),
   // in order of id.

@@ -413,7 +413,7 @@ void JobDatabase::set_state(std::int64_t job, const std::string& state, const st
   });
 }
 
-std::int64_t JobDatabase::append_result(std::int64_t job, int unit, std::vector<float> values,
+std::int64_t JobDatabase::append_result(std::int64_t job, int unit, FloatValues values,
                                         const RenderStats& stats, const std::string& worker) {
   // Taken over, not copied: this runs for every merged unit.
   QueuedResult result{.job = job,

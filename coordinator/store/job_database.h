@@ -24,6 +24,7 @@
 #include <string>
 #include <vector>
 
+#include "common/protocol/payload.h"
 #include "coordinator/store/job_record.h"
 
 namespace tessera {
@@ -66,7 +67,7 @@ class JobDatabase {
   std::int64_t add_job(const StoredRequest& request, WallClock::time_point created);
   void set_state(std::int64_t job, const std::string& state, const std::string& error = {});
   // Queues a merged unit result; returns its sequence number within the job.
-  std::int64_t append_result(std::int64_t job, int unit, std::vector<float> values,
+  std::int64_t append_result(std::int64_t job, int unit, FloatValues values,
                              const RenderStats& stats, const std::string& worker);
   // Writes every queued result in one transaction. On failure the failed jobs' queued results
   // are dropped, the store keeps each job's results up to its last successful flush, and
@@ -103,8 +104,8 @@ class JobDatabase {
   struct QueuedResult {
     std::int64_t job, sequence;
     int unit;
-    std::vector<float> payload;  // the result's values, taken over from the message
-    RenderStats stats;           // turned into JSON by the flush, off the io thread that appends
+    FloatValues payload;  // the result's values, taken over from the message
+    RenderStats stats;    // turned into JSON by the flush, off the io thread that appends
     std::string worker;
   };
 

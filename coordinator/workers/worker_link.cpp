@@ -32,7 +32,7 @@ WorkerLink::WorkerLink(FrameStream stream, const WorkerAuth& auth, Scheduler& sc
 void WorkerLink::start() {
   auto self = shared_from_this();
   connection_->set_traffic(port_->traffic);
-  connection_->start([self](Frame f) { self->on_frame(f); },
+  connection_->start([self](Frame f) { self->on_frame(std::move(f)); },
                      [self](const std::string& reason) {
                        if (self->stage_ == Stage::Ready) {
                          spdlog::info("worker {}: {}", self->id_, reason);
@@ -62,14 +62,14 @@ void WorkerLink::start() {
 
 void WorkerLink::leave_unauthenticated() { stranger_.reset(); }
 
-void WorkerLink::on_frame(const Frame& frame) {
+void WorkerLink::on_frame(Frame frame) {
   try {
     if (stage_ == Stage::Hello && frame.type == MessageType::Hello)
       return on_hello(decode<HelloMessage>(frame));
     if (stage_ == Stage::Auth && frame.type == MessageType::Auth)
       return on_auth(decode<AuthMessage>(frame));
     if (stage_ == Stage::Ready && frame.type == MessageType::Result)
-      return scheduler_.on_result(id_, decode<ResultMessage>(frame));
+      return scheduler_.on_result(id_, take_result(std::move(frame)));
     if (stage_ == Stage::Ready && frame.type == MessageType::JobFailed)
       return scheduler_.on_job_failed(id_, decode<JobFailedMessage>(frame));
     connection_->close(std::string("unexpected ") + to_string(frame.type) + " frame");

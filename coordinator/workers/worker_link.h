@@ -58,7 +58,7 @@ class WorkerLink : public std::enable_shared_from_this<WorkerLink> {
 
  private:
   enum class Stage { Hello, Auth, Ready };
-  void on_frame(const Frame& frame);
+  void on_frame(Frame frame);
   void on_hello(const HelloMessage& hello);
   void on_auth(const AuthMessage& auth);
   void reject(const std::string& reason);

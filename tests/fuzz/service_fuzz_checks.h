@@ -140,7 +140,7 @@ inline void check_accepted_result(const Frame& frame) {
   const ResultMessage result = decode<ResultMessage>(frame);
   check_result(result, kFuzzUnitPixels, kFuzzUnitWallSeconds);
   const RenderStats& stats = result.stats;
-  const std::vector<float>& pixels = result.values;
+  const FloatValues& pixels = result.values;
   require(pixels.size() == static_cast<std::size_t>(kFuzzUnitPixels) * 3,
           "an accepted result does not have the unit's pixel count");
   for (const float value : pixels) require(std::isfinite(value), "an accepted pixel is not finite");

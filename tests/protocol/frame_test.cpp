@@ -36,55 +36,35 @@ TEST(Frame, RoundTripsThroughTheDecoderInAnyChunking) {
 // A connection reads the head, then the header and the payload into buffers of their own: the
 // frame is the one decode_body makes, and its payload is the buffer read into, not a copy.
 TEST(Frame, AFrameReadInPartsDecodesAsOneReadWhole) {
-  Frame sent = sample_frame();
-  sent.payload.assign(1000, 'p');
-  const std::string bytes = encode_frame(sent);
-  const FrameHead head = decode_frame_head(reinterpret_cast<const std::uint8_t*>(bytes.data()), {});
-  EXPECT_EQ(head.type, MessageType::Result);
-  EXPECT_EQ(kFrameHead + head.header_bytes + head.payload_bytes, bytes.size());
-  EXPECT_EQ(head.payload_bytes, 1000u);
-  std::string payload = bytes.substr(kFrameHead + head.header_bytes);
-  const char* read_into = payload.data();
-  const Frame taken = decode_frame_parts(
-      head.type, std::string_view(bytes).substr(kFrameHead, head.header_bytes), std::move(payload));
-  const Frame whole = decode_body(std::string_view(bytes).substr(kFramePrefix), {});
-  EXPECT_EQ(taken.type, whole.type);
-  EXPECT_EQ(taken.header, whole.header);
-  EXPECT_EQ(taken.payload, whole.payload);
-  EXPECT_EQ(taken.payload.data(), read_into);
+  for (const std::size_t size : {1000, 1001}) {  // whole floats, and not
+    Frame sent = sample_frame();
+    sent.payload = std::string(size, 'p');
+    const std::string bytes = encode_frame(sent);
+    const FrameHead head =
+        decode_frame_head(reinterpret_cast<const std::uint8_t*>(bytes.data()), {});
+    EXPECT_EQ(head.type, MessageType::Result);
+    EXPECT_EQ(kFrameHead + head.header_bytes + head.payload_bytes, bytes.size());
+    EXPECT_EQ(head.payload_bytes, size);
+    Payload payload = Payload::to_read(head.payload_bytes);
+    ASSERT_EQ(payload.size(), size);
+    bytes.copy(payload.data(), size, kFrameHead + head.header_bytes);
+    const char* read_into = payload.data();
+    const Frame taken =
+        decode_frame_parts(head.type, std::string_view(bytes).substr(kFrameHead, head.header_bytes),
+                           std::move(payload));
+    const Frame whole = decode_body(std::string_view(bytes).substr(kFramePrefix), {});
+    EXPECT_EQ(taken.type, whole.type);
+    EXPECT_EQ(taken.header, whole.header);
+    EXPECT_EQ(taken.payload, whole.payload);
+    EXPECT_EQ(taken.payload.view().data(), read_into);
+  }
   EXPECT_THROW(decode_frame_parts(MessageType::Result, "[1]", std::string()), ProtocolError);
-}
-
-TEST(Frame, AHeadIsRefusedBeforeItsBodyIsRead) {
-  auto head_with = [](std::size_t body, std::uint8_t type, std::size_t header_len) {
-    std::uint8_t h[kFrameHead];
-    for (int i = 0; i < 4; ++i) h[i] = static_cast<std::uint8_t>(body >> (24 - 8 * i));
-    h[4] = type;
-    for (int i = 0; i < 4; ++i) h[5 + i] = static_cast<std::uint8_t>(header_len >> (24 - 8 * i));
-    return std::to_array(h);
-  };
-  const FrameLimits limits{.max_body = 1000, .max_header = 100};
-  EXPECT_NO_THROW(decode_frame_head(head_with(5 + 100, 6, 100).data(), limits));
-  EXPECT_EQ(decode_frame_head(head_with(5 + 100, 6, 40).data(), limits).payload_bytes, 60u);
-  EXPECT_THROW(decode_frame_head(head_with(4, 6, 0).data(), limits), ProtocolError);      // short
-  EXPECT_THROW(decode_frame_head(head_with(1001, 6, 2).data(), limits), ProtocolError);   // big
-  EXPECT_THROW(decode_frame_head(head_with(50, 0, 2).data(), limits), ProtocolError);     // type
-  EXPECT_THROW(decode_frame_head(head_with(50, 12, 2).data(), limits), ProtocolError);    // type
-  EXPECT_THROW(decode_frame_head(head_with(50, 6, 46).data(), limits), ProtocolError);    // overrun
-  EXPECT_THROW(decode_frame_head(head_with(500, 6, 101).data(), limits), ProtocolError);  // limit
-}
-
-TEST(Frame, LengthPrefixIsBigEndianBodySize) {
-  const std::string bytes = encode_frame(sample_frame());
-  const auto* p = reinterpret_cast<const std::uint8_t*>(bytes.data());
-  EXPECT_EQ(decode_body_length(p, {}), bytes.size() - kFramePrefix);
-  EXPECT_EQ(p[4], static_cast<std::uint8_t>(MessageType::Result));
 }
 
 TEST(Frame, OversizedFramesAreRefusedFromTheirPrefix) {
   FrameLimits small{.max_body = 64, .max_header = 32};
   Frame big;
-  big.payload.assign(100, 'x');
+  big.payload = std::string(100, 'x');
   EXPECT_THROW(encode_frame(big, small), ProtocolError);
   FrameDecoder decoder(small);
   decoder.feed(std::string("\x7f\xff\xff\xff", 4));  // no body needed to refuse it

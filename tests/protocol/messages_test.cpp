@@ -154,6 +154,23 @@ TEST(Messages, ResultPixelsTravelBitExactly) {
             0);
 }
 
+// The coordinator's results: the values are the payload a connection read into, not a copy,
+// and the same as decode's.
+TEST(Messages, ATakenResultHoldsThePayloadReadIntoAsItsValues) {
+  const ResultMessage sent = small_result();
+  Frame frame = encode(sent);
+  Payload read = Payload::to_read(frame.payload.size());
+  frame.payload.view().copy(read.data(), read.size());
+  const char* read_into = read.data();
+  frame.payload = std::move(read);
+  const ResultMessage decoded = decode<ResultMessage>(frame);
+  const ResultMessage taken = take_result(std::move(frame));
+  EXPECT_EQ(reinterpret_cast<const char*>(taken.values.data()), read_into);
+  EXPECT_EQ(taken.values, sent.values);
+  EXPECT_EQ(decoded.values, sent.values);
+  EXPECT_EQ(taken.unit, sent.unit);
+}
+
 TEST(Messages, AFrameOfAnotherTypeIsRefused) {
   EXPECT_THROW(decode<UnitMessage>(encode(CancelMessage{.job = 1})), ProtocolError);
   // A heartbeat the worker cannot keep: none, or not within the silence.
@@ -212,7 +229,10 @@ TEST(Messages, AbsurdPixelSetsAreRefused) {
 
 TEST(Messages, AResultMustHoldWholePixelsAndItsCount) {
   Frame f = encode(small_result());
-  f.payload.pop_back();
+  const std::string_view whole = f.payload.view();
+  f.payload = std::string(whole.substr(0, whole.size() - 1));
+  EXPECT_THROW(decode<ResultMessage>(f), ProtocolError);
+  f.payload = std::string(whole.substr(0, whole.size() - 4));  // whole floats, not pixels
   EXPECT_THROW(decode<ResultMessage>(f), ProtocolError);
   f = encode(small_result());
   f.header["count"] = 3;

@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cstdio>
 #include <cstring>
 #include <random>
@@ -86,14 +87,19 @@ TEST(FrameBuffer, ARunWithAFullPixelAddsNothing) {
   EXPECT_EQ(shown[0], 0.0f);  // no passes: black
 }
 
-// Resident memory in bytes (Linux).
-long resident_bytes() {
+// The process's mapped and resident memory in bytes (Linux).
+struct Memory {
+  long mapped = -1, resident = -1;
+};
+Memory memory() {
   std::FILE* f = std::fopen("/proc/self/statm", "r");
-  long pages = 0, resident = 0;
-  if (f == nullptr || std::fscanf(f, "%ld %ld", &pages, &resident) != 2) resident = -1;
+  Memory m;
+  if (f == nullptr || std::fscanf(f, "%ld %ld", &m.mapped, &m.resident) != 2) m = {};
   if (f != nullptr) std::fclose(f);
-  return resident * sysconf(_SC_PAGESIZE);
+  const long page = sysconf(_SC_PAGESIZE);
+  return {m.mapped * page, m.resident * page};
 }
+long resident_bytes() { return memory().resident; }
 
 // A new frame buffer's zeros cost nothing until its pixels are written: the coordinator creates
 // one per job on its io thread (56 MB at 2048x2048).
@@ -111,6 +117,29 @@ TEST(FrameBuffer, ANewFrameBufferTakesMemoryOnlyWhereItIsWritten) {
   frame.add_run({0, 100}, 4096, 1, row.data());
   EXPECT_EQ(frame.mean(4095, 100).g, 1.0);
   EXPECT_EQ(frame.mean(4095, 101).g, 0.0);
+}
+
+// A deferred frame buffer (a coordinator job's) maps nothing before it takes its memory, which
+// a queued job would otherwise hold, taken from the pool: until then it reads as black.
+TEST(FrameBuffer, ADeferredFrameBufferMapsNothingUntilItTakesItsMemory) {
+  const long before = memory().mapped;
+  ASSERT_GT(before, 0);
+  std::vector<FrameBuffer> frames(8, FrameBuffer::deferred(2048, 2048));  // 8 x 56 MiB
+  EXPECT_LT(memory().mapped - before, 16l << 20);
+  FrameBuffer& frame = frames.front();
+  EXPECT_FALSE(frame.has_memory());
+  EXPECT_EQ(frame.passes_at(2047, 2047), 0u);
+  EXPECT_EQ(frame.mean(17, 2000).r, 0.0);
+  std::vector<float> shown(3 * 5, 1.0f);
+  frame.mean_run({10, 20}, 5, 2, shown.data());
+  EXPECT_TRUE(std::all_of(shown.begin(), shown.end(), [](float v) { return v == 0.0f; }));
+  const Image image = FrameBuffer::deferred(3, 2).resolve();
+  EXPECT_EQ(image.get(2, 1).b, 0.0);
+  frame.take_memory();
+  EXPECT_TRUE(frame.has_memory());
+  const float one[3] = {1, 1, 1};
+  frame.add_pass(2047, 2047, one);
+  EXPECT_EQ(frame.mean(2047, 2047).g, 1.0);
 }
 
 }  // namespace

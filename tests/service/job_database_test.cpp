@@ -10,6 +10,7 @@
 #include <chrono>
 #include <cstring>
 #include <filesystem>
+#include <span>
 #include <string>
 #include <thread>
 #include <vector>
@@ -80,8 +81,8 @@ StoredRequest make_request(const std::string& scene = "camera { }\n") {
 }
 
 // Values whose exact bits matter: signed zero, a subnormal, a NaN with a payload, infinity.
-std::vector<float> awkward_values(int seed, std::size_t n) {
-  std::vector<float> values(n);
+FloatValues awkward_values(int seed, std::size_t n) {
+  FloatValues values(n);
   for (std::size_t i = 0; i < n; ++i) values[i] = static_cast<float>(seed) + 1.0f / float(i + 3);
   values[0] = -0.0f;
   values[1] = std::bit_cast<float>(0x00000001u);
@@ -90,7 +91,7 @@ std::vector<float> awkward_values(int seed, std::size_t n) {
   return values;
 }
 
-bool same_bytes(const std::vector<float>& a, const std::vector<float>& b) {
+bool same_bytes(std::span<const float> a, std::span<const float> b) {
   return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(float)) == 0;
 }
 
@@ -117,8 +118,8 @@ TEST_F(JobDatabaseTest, ARegionJobRestoresItsRegionsPlan) {
 }
 
 TEST_F(JobDatabaseTest, RoundTripsAJobItsResultsAndImages) {
-  std::vector<std::vector<float>> sent = {awkward_values(1, 12), awkward_values(2, 3),
-                                          awkward_values(3, 300)};
+  std::vector<FloatValues> sent = {awkward_values(1, 12), awkward_values(2, 3),
+                                   awkward_values(3, 300)};
   std::int64_t id = 0;
   {
     JobDatabase db(dir_);
@@ -369,7 +370,7 @@ TEST_F(JobDatabaseTest, PruneBySizeDeletesTheOldestFinishedFirst) {
   db.finish_job(ids[0], "done", "", at_seconds(30), {{"image.png", image}});
   db.finish_job(ids[1], "done", "", at_seconds(10), {{"image.png", image}});
   db.finish_job(ids[2], "done", "", at_seconds(20), {{"image.png", image}});
-  db.append_result(ids[3], 0, std::vector<float>(30'000, 1.0f), {}, "w");  // 120 KB, unfinished
+  db.append_result(ids[3], 0, FloatValues(30'000, 1.0f), {}, "w");  // 120 KB, unfinished
   db.flush();
 
   std::int64_t before = db.size_bytes();
@@ -466,7 +467,7 @@ TEST_F(JobDatabaseTest, AFullStoreFailsTheWriteAndKeepsWhatItHeld) {
 TEST_F(JobDatabaseTest, FlushOfAHundredUnitResultsFitsATick) {
   JobDatabase db(dir_);
   std::int64_t id = db.add_job(make_request(), at_seconds(0));
-  std::vector<float> values = awkward_values(0, 3 * 1024);
+  FloatValues values = awkward_values(0, 3 * 1024);
   std::int64_t empty = db.size_bytes();
   std::vector<double> seconds;
   for (int round = 0; round < 5; ++round) {
@@ -567,7 +568,7 @@ TEST_F(JobDatabaseTest, AResultStoredInlineBeforeVersion3StillLoads) {
   }
   {
     sqlite::Connection raw((dir_ / "tessera.db").string());
-    const std::vector<float> values = awkward_values(0, 300);
+    const FloatValues values = awkward_values(0, 300);
     sqlite::Statement(raw,
                       "INSERT INTO results (job_id, sequence, unit, payload, stats, worker) "
                       "VALUES (?, 0, 4, ?, '{}', 'old')")

@@ -103,7 +103,7 @@ class SchedulerTest : public ::testing::Test {
         ResultMessage{.job = job.id,
                       .unit = unit,
                       .stats = stats,
-                      .values = std::vector<float>(static_cast<std::size_t>(pixels) * 3, value)});
+                      .values = FloatValues(static_cast<std::size_t>(pixels) * 3, value)});
   }
 
   // As the worker link hands it over: decoded, then to the scheduler.
@@ -277,7 +277,8 @@ TEST_F(SchedulerTest, ResultsThatBreakARuleAreRefusedAndChangeNothing) {
     return f;
   };
   Frame short_payload = good;
-  short_payload.payload.resize(short_payload.payload.size() - 12);
+  const std::string_view all = good.payload.view();
+  short_payload.payload = std::string(all.substr(0, all.size() - 12));
   Frame miscounted = good;
   miscounted.header["count"] = 1;
   const std::map<std::string, Frame> forged = {

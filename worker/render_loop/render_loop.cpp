@@ -168,7 +168,7 @@ void RenderLoop::render(const Task& task) {
   }
   stats.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   // Pass values travel as float32, the precision the frame buffer accumulates (frame_buffer.h).
-  std::vector<float> values;
+  FloatValues values;
   values.reserve(colours.size() * 3);
   for (const Rgb& c : colours) {
     values.push_back(static_cast<float>(c.r));
