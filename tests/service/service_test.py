@@ -439,7 +439,10 @@ def case_camera():
 def case_worker_faults():
     """A worker killed with SIGKILL mid-level, and one that goes silent (SIGSTOP), lose their
     units to the others; the image is still identical to tessera-render."""
-    settings = dict(SETTINGS, width=320, height=240, aa=9, passes=3)
+    # Large enough that the job is still running when the test sees both victims busy: at
+    # 320x240 it took 0.6 s once pixels shared their grid samples, and about one run in 20
+    # finished before that.
+    settings = dict(SETTINGS, width=480, height=360, aa=9, passes=3)
     with tempfile.TemporaryDirectory() as tmp, Service("--heartbeat-ms", "200",
                                                        "--silence-ms", "1500") as service:
         victims = [service.worker("victim"), service.worker("sleeper")]
