@@ -108,9 +108,13 @@ def case_intake():
                     assert reply["line"] > 1 and reply["detail"], reply
             else:
                 # The probe stops inside the runaway pixel at its deadline: the prediction is
-                # a lower bound, and says so.
+                # a lower bound, and says so. Its cost a pixel pass is the probing thread's CPU
+                # time over the few pixels it began, and that thread shares the cores with the
+                # other probes here: over 20 ms, where an ordinary pixel takes microseconds.
                 assert status == 200, (status, reply)
-                assert reply["lower_bound"] is True and reply["predicted_seconds"] > 10, reply
+                assert reply["lower_bound"] is True, reply
+                assert reply["seconds_per_pixel_pass"] > 0.02, reply
+                assert reply["predicted_seconds"] > 0, reply
         # The service itself is fine: the small job finished, a worker is still there.
         assert service.wait_job(job["id"])["state"] == "done"
         assert len(service.get("/api/workers")) == 1
