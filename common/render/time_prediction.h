@@ -18,10 +18,8 @@ struct CostProbe {
   double seconds = 0;    // the CPU time they took on the probing thread
   // The probe's deadline (ProbeBudget::max_total_seconds) stopped it inside a pixel. `pixels`
   // and `seconds` then count every pixel finished since the probe began, warm-up included, and
-  // the thread's CPU time until the deadline, spent on those and on one more unfinished pixel,
-  // which had run for `unfinished_pixel_seconds`: "one pixel took over 0.5 s".
+  // the thread's CPU time until the deadline, spent on those and on one more unfinished pixel.
   bool cut_short = false;
-  double unfinished_pixel_seconds = 0;
   // Seconds a pixel pass takes on one thread: the mean over the pixels traced; when cut short,
   // a lower bound, counting the unfinished pixel as if it had just finished.
   double seconds_per_pixel_pass() const {
@@ -32,7 +30,7 @@ struct CostProbe {
 
 struct ProbeBudget {
   int max_pixels = 1024;      // a 32 x 32 grid over the image
-  double max_seconds = 0.03;  // CPU seconds: stop early on costly scenes (keeps submission quick)
+  double max_seconds = 0.03;  // stop early on costly scenes (keeps submission quick)
   // The whole probe, warm-up included, stops at this many wall seconds even inside a pixel (a
   // scene with one pixel of runaway cost).
   double max_total_seconds = 0.5;

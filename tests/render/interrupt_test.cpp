@@ -137,8 +137,6 @@ TEST_F(MirrorHall, ProbeIsCutShortInsideAPixelAndBoundsTheCostFromBelow) {
   // The probe counts its thread's CPU time, at most the wall time to the deadline.
   EXPECT_GT(probe.seconds, 0);
   EXPECT_LE(probe.seconds, elapsed_ms / 1000);
-  EXPECT_GT(probe.unfinished_pixel_seconds, 0);
-  EXPECT_LE(probe.unfinished_pixel_seconds, probe.seconds);
   // The time went on the pixels finished and the unfinished one.
   EXPECT_DOUBLE_EQ(probe.seconds_per_pixel_pass(), probe.seconds / double(probe.pixels + 1));
 }
