@@ -229,10 +229,10 @@ TEST(Messages, AbsurdPixelSetsAreRefused) {
 
 TEST(Messages, AResultMustHoldWholePixelsAndItsCount) {
   Frame f = encode(small_result());
-  const std::string_view whole = f.payload.view();
-  f.payload = std::string(whole.substr(0, whole.size() - 1));
+  const std::string whole(f.payload.view());  // a copy: the payload is replaced below
+  f.payload = whole.substr(0, whole.size() - 1);
   EXPECT_THROW(decode<ResultMessage>(f), ProtocolError);
-  f.payload = std::string(whole.substr(0, whole.size() - 4));  // whole floats, not pixels
+  f.payload = whole.substr(0, whole.size() - 4);  // whole floats, not pixels
   EXPECT_THROW(decode<ResultMessage>(f), ProtocolError);
   f = encode(small_result());
   f.header["count"] = 3;
