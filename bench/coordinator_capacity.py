@@ -394,10 +394,19 @@ async def measure(args, coordinator, report):
             # submission's answer is still on its way here.
             for w, fault in ((synthetic[0], "crash"), (synthetic[1], "hang")):
                 w.fault, w.fault_after = fault, job
-            job = await coordinator.submit(args.size, args.passes)
             async def struck():
                 return all(w.fault_at for w in synthetic[:2])
-            await coordinator.wait_until("the faults", struck, 60)
+            async def struck_or_done():
+                return await struck() or (await coordinator.get(
+                    "/api/jobs/%d" % job))["state"] == "done"
+            # A job of fewer units than the workers' slots may end before one victim gets a
+            # unit (the smoke run's 7 units among 32 slots): then another job, until both did.
+            for _ in range(20):
+                job = await coordinator.submit(args.size, args.passes)
+                await coordinator.wait_until("the faults or the job's end", struck_or_done, 60)
+                if await struck():
+                    break
+            await coordinator.wait_until("the faults", struck, 1)
             crash_at, hang_at = synthetic[0].fault_at, synthetic[1].last_sent
         else:
             # Real workers take time: a job long enough that both victims hold units.
