@@ -301,7 +301,9 @@ void Scheduler::on_result(std::int64_t worker, ResultMessage result) {
   check_result(result, wu.cost, seconds_since(sent->second, now));
   const RenderStats& stats = result.stats;
   const Clock::time_point sent_at = sent->second;
-  w.pipeline.observe(seconds_since(sent_at, now), stats.seconds);
+  // Units of at least half the size the job's units are cut to count as full-sized.
+  w.pipeline.observe(seconds_since(sent_at, now), stats.seconds,
+                     2 * wu.cost >= job.plan_options.unit_pixels);
   w.in_flight.erase(sent);
   update_load(w);
   UnitRun& r = run.units[unit];

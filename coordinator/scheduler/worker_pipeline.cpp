@@ -31,9 +31,10 @@ WorkerPipeline::WorkerPipeline(int threads, double handshake_round_trip)
   if (handshake_round_trip > 0) round_trip_ = handshake_round_trip;
 }
 
-void WorkerPipeline::observe(double elapsed, double render) {
+void WorkerPipeline::observe(double elapsed, double render, bool full_sized) {
   const double transit = std::max(0.0, elapsed - render);
   round_trip_ = round_trip_ < 0 ? transit : std::min(round_trip_, transit);
+  if (!full_sized) return;
   unit_seconds_ = observed_ ? unit_seconds_ + kUnitTimeWeight * (render - unit_seconds_) : render;
   observed_ = true;
 }

@@ -4,6 +4,8 @@
 
 #include <gtest/gtest.h>
 
+#include "common/progressive/plan.h"
+
 namespace tessera {
 namespace {
 
@@ -48,6 +50,18 @@ TEST(WorkerPipeline, UnitTimeIsAMovingAverage) {
   p.observe(0.010, 0.010);
   p.observe(0.090, 0.090);
   EXPECT_DOUBLE_EQ(p.unit_seconds(), 0.010 + 0.125 * 0.080);
+}
+
+TEST(WorkerPipeline, ASmallUnitTeachesTheRoundTripButNotTheUnitTime) {
+  // A fresh worker's first results are a coarse level's units of a few pixels: 0.2 ms each.
+  // Learning from them would ask for 1 + 2 x 2 ms / 0.2 ms units a thread (capped at 16).
+  WorkerPipeline p(1, 0.002);
+  p.observe(0.0022, 0.0002, false);
+  EXPECT_DOUBLE_EQ(p.round_trip_seconds(), 0.002);
+  EXPECT_DOUBLE_EQ(p.unit_seconds(), kUnitTargetSeconds);
+  EXPECT_EQ(p.slots(), 2 + 1);
+  p.observe(0.022, 0.020, true);  // a full-sized unit does teach it
+  EXPECT_DOUBLE_EQ(p.unit_seconds(), 0.020);
 }
 
 TEST(WorkerPipeline, AFastLinkAddsAtMostOneUnitAThread) {
