@@ -192,8 +192,10 @@ async function main() {
         throw new Error(`the new job's camera: ${JSON.stringify([from.camera, to.camera])}`);
       if (to.scene !== from.scene || to.width !== from.width || to.height !== from.height)
         throw new Error("the moved job is not the same request");
-      if (await page.textContent("#nav-camera") === before)
-        throw new Error("the camera shown did not change");
+      // The page shows the new job's camera once it has fetched that job, a moment after the
+      // address changes.
+      await until("the camera shown to change", 10000, async () =>
+        (await page.textContent("#nav-camera")) !== before);
     } finally {
       worker.kill("SIGCONT");
     }
