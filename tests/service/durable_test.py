@@ -57,7 +57,20 @@ class Coordinator:
 
     def assert_workers_hold_no_port(self, ports):
         """The local workers (the coordinator's children) hold none of its listening sockets:
-        one inherited would keep a port taken after a kill, and the restart could not bind it."""
+        one inherited would keep a port taken after a kill, and the restart could not bind it.
+        A child holds them from its fork until it closes them before exec, which on a busy
+        machine can be after the port file appears: so the check waits, up to 10 s, for every
+        child to let them go. A worker that keeps them fails it."""
+        deadline = time.monotonic() + 10
+        while True:
+            holder = self.worker_holding(ports)
+            if holder is None:
+                return
+            assert time.monotonic() < deadline, "worker %s holds the coordinator's ports" % holder
+            time.sleep(0.05)
+
+    def worker_holding(self, ports):
+        """A child of the coordinator that holds one of its listening sockets, or None."""
         listening = set()
         for table in ("/proc/net/tcp", "/proc/net/tcp6"):
             with open(table) as f:
@@ -76,7 +89,9 @@ class Coordinator:
                         for fd in os.listdir("/proc/%s/fd" % pid)}
             except OSError:
                 continue  # gone meanwhile
-            assert not held & listening, "worker %s holds the coordinator's ports" % pid
+            if held & listening:
+                return pid
+        return None
 
     def kill(self):
         self.proc.send_signal(signal.SIGKILL)
