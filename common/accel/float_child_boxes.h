@@ -184,72 +184,95 @@ inline unsigned intersect_float_child_boxes_scalar(const FloatChildBoxes& boxes,
 }
 
 #if defined(__SSE2__)
-// The same with SSE, the children in two halves of four (`half` 0 or 1: children 4 half to
-// 4 half + 3), in bits 0-3 of the result.
-[[gnu::always_inline]] inline unsigned intersect_float_child_boxes_sse2_half(
-    const FloatChildBoxes& boxes, const FloatBoxRay& ray, float far_limit, int half,
-    float entry[4]) {
-  const int first = 4 * half;
-  __m128 t0 = _mm_setzero_ps(), t1 = _mm_set1_ps(far_limit);
-  const __m128 far_scale = _mm_set1_ps(kFloatFarScale);
-#pragma GCC unroll 3
-  for (int a = 0; a < 3; ++a) {
-    const __m128 inv = _mm_load_ps(ray.inv_dir[a]);
-    const int near = ray.near_side[a];
-    const __m128 t_near = _mm_mul_ps(
-        _mm_sub_ps(_mm_load_ps(&boxes.bound[a][near][first]), _mm_load_ps(ray.origin_near[a])),
-        inv);
-    const __m128 t_far =
-        _mm_mul_ps(_mm_mul_ps(_mm_sub_ps(_mm_load_ps(&boxes.bound[a][1 - near][first]),
-                                         _mm_load_ps(ray.origin_far[a])),
-                              inv),
-                   far_scale);
-    t0 = _mm_max_ps(t_near, t0);  // t_near > t0 ? t_near : t0
-    t1 = _mm_min_ps(t_far, t1);   // t_far < t1 ? t_far : t1
+// The SIMD kernels: one algorithm (intersect_float_child_boxes_lanes) over `Lanes` children at
+// once, with the vector operations of SSE2 (4 lanes) or AVX2 (8). The operations take and give
+// vectors by reference: an AVX vector passed by value through a function compiled without AVX
+// changes the ABI, and the algorithm is compiled for the baseline, to be inlined whole
+// (gnu::flatten) into functions compiled for AVX2.
+struct Sse2Lanes {
+  using V = __m128;
+  [[gnu::always_inline]] static void set1(V& r, float x) { r = _mm_set1_ps(x); }
+  [[gnu::always_inline]] static void load(V& r, const float* p) { r = _mm_loadu_ps(p); }
+  [[gnu::always_inline]] static void store(float* p, const V& a) { _mm_storeu_ps(p, a); }
+  [[gnu::always_inline]] static void sub(V& r, const V& a, const V& b) { r = _mm_sub_ps(a, b); }
+  [[gnu::always_inline]] static void mul(V& r, const V& a, const V& b) { r = _mm_mul_ps(a, b); }
+  [[gnu::always_inline]] static void add(V& r, const V& a, const V& b) { r = _mm_add_ps(a, b); }
+  [[gnu::always_inline]] static void max(V& r, const V& a, const V& b) { r = _mm_max_ps(a, b); }
+  [[gnu::always_inline]] static void min(V& r, const V& a, const V& b) { r = _mm_min_ps(a, b); }
+  // Bit c set where a[c] <= b[c] (false with a NaN).
+  [[gnu::always_inline]] static unsigned le_mask(const V& a, const V& b) {
+    return static_cast<unsigned>(_mm_movemask_ps(_mm_cmple_ps(a, b)));
   }
-  _mm_storeu_ps(entry, t0);
-  const __m128 hit = _mm_and_ps(
-      _mm_cmple_ps(t0, _mm_add_ps(t1, _mm_set1_ps(kFloatTinyMargin))),
-      _mm_cmple_ps(_mm_load_ps(&boxes.bound[0][0][first]), _mm_load_ps(&boxes.bound[0][1][first])));
-  return static_cast<unsigned>(_mm_movemask_ps(hit));
-}
+};
 
-[[gnu::always_inline]] inline unsigned intersect_float_child_boxes_sse2(
-    const FloatChildBoxes& boxes, const FloatBoxRay& ray, float far_limit,
-    float entry[kWideChildren]) {
-  return intersect_float_child_boxes_sse2_half(boxes, ray, far_limit, 0, entry) |
-         intersect_float_child_boxes_sse2_half(boxes, ray, far_limit, 1, entry + 4) << 4;
-}
-
-// The same with AVX, eight children in one go; for callers compiled for AVX2 (the traversal's
-// AVX2 instance, wide_bvh_traverse.h). No FMA: "avx2" does not enable it.
-[[gnu::target("avx2")]] inline unsigned intersect_float_child_boxes_avx2(
-    const FloatChildBoxes& boxes, const FloatBoxRay& ray, float far_limit,
-    float entry[kWideChildren]) {
-  __m256 t0 = _mm256_setzero_ps(), t1 = _mm256_set1_ps(far_limit);
-  const __m256 far_scale = _mm256_set1_ps(kFloatFarScale);
-#pragma GCC unroll 3
-  for (int a = 0; a < 3; ++a) {
-    const __m256 inv = _mm256_load_ps(ray.inv_dir[a]);
-    const int near = ray.near_side[a];
-    const __m256 t_near = _mm256_mul_ps(
-        _mm256_sub_ps(_mm256_load_ps(boxes.bound[a][near]), _mm256_load_ps(ray.origin_near[a])),
-        inv);
-    const __m256 t_far =
-        _mm256_mul_ps(_mm256_mul_ps(_mm256_sub_ps(_mm256_load_ps(boxes.bound[a][1 - near]),
-                                                  _mm256_load_ps(ray.origin_far[a])),
-                                    inv),
-                      far_scale);
-    t0 = _mm256_max_ps(t_near, t0);  // t_near > t0 ? t_near : t0
-    t1 = _mm256_min_ps(t_far, t1);   // t_far < t1 ? t_far : t1
-  }
-  _mm256_storeu_ps(entry, t0);
+// No FMA: the "avx2" target does not enable it.
+struct Avx2Lanes {
+  using V = __m256;
+  [[gnu::target("avx2")]] static void set1(V& r, float x) { r = _mm256_set1_ps(x); }
+  [[gnu::target("avx2")]] static void load(V& r, const float* p) { r = _mm256_loadu_ps(p); }
+  [[gnu::target("avx2")]] static void store(float* p, const V& a) { _mm256_storeu_ps(p, a); }
+  [[gnu::target("avx2")]] static void sub(V& r, const V& a, const V& b) { r = _mm256_sub_ps(a, b); }
+  [[gnu::target("avx2")]] static void mul(V& r, const V& a, const V& b) { r = _mm256_mul_ps(a, b); }
+  [[gnu::target("avx2")]] static void add(V& r, const V& a, const V& b) { r = _mm256_add_ps(a, b); }
+  [[gnu::target("avx2")]] static void max(V& r, const V& a, const V& b) { r = _mm256_max_ps(a, b); }
+  [[gnu::target("avx2")]] static void min(V& r, const V& a, const V& b) { r = _mm256_min_ps(a, b); }
   // _CMP_LE_OS is cmpleps's predicate.
-  const __m256 hit = _mm256_and_ps(
-      _mm256_cmp_ps(t0, _mm256_add_ps(t1, _mm256_set1_ps(kFloatTinyMargin)), _CMP_LE_OS),
-      _mm256_cmp_ps(_mm256_load_ps(boxes.bound[0][0]), _mm256_load_ps(boxes.bound[0][1]),
-                    _CMP_LE_OS));
-  return static_cast<unsigned>(_mm256_movemask_ps(hit));
+  [[gnu::target("avx2")]] static unsigned le_mask(const V& a, const V& b) {
+    return static_cast<unsigned>(_mm256_movemask_ps(_mm256_cmp_ps(a, b, _CMP_LE_OS)));
+  }
+};
+
+// intersect_float_child_boxes_scalar's operations for the children from `first` on, as many as
+// a vector holds, in bits 0 up of the result and entry[0] up. maxps(a, b) and minps(a, b) are
+// a > b ? a : b and a < b ? a : b, NaN included, as the scalar comparisons.
+template <typename Lanes>
+inline unsigned intersect_float_child_boxes_lanes(const FloatChildBoxes& boxes,
+                                                  const FloatBoxRay& ray, float far_limit,
+                                                  int first, float* entry) {
+  using V = typename Lanes::V;
+  V t0, t1, far_scale, bound, origin, inv, t_near, t_far;
+  Lanes::set1(t0, 0.0f);
+  Lanes::set1(t1, far_limit);
+  Lanes::set1(far_scale, kFloatFarScale);
+#pragma GCC unroll 3
+  for (int a = 0; a < 3; ++a) {
+    const int near = ray.near_side[a];
+    Lanes::load(inv, ray.inv_dir[a]);
+    Lanes::load(bound, &boxes.bound[a][near][first]);
+    Lanes::load(origin, ray.origin_near[a]);
+    Lanes::sub(t_near, bound, origin);
+    Lanes::mul(t_near, t_near, inv);
+    Lanes::load(bound, &boxes.bound[a][1 - near][first]);
+    Lanes::load(origin, ray.origin_far[a]);
+    Lanes::sub(t_far, bound, origin);
+    Lanes::mul(t_far, t_far, inv);
+    Lanes::mul(t_far, t_far, far_scale);
+    Lanes::max(t0, t_near, t0);
+    Lanes::min(t1, t_far, t1);
+  }
+  Lanes::store(entry, t0);
+  V margin, lo_x, hi_x;
+  Lanes::set1(margin, kFloatTinyMargin);
+  Lanes::add(t1, t1, margin);
+  Lanes::load(lo_x, &boxes.bound[0][0][first]);
+  Lanes::load(hi_x, &boxes.bound[0][1][first]);
+  return Lanes::le_mask(t0, t1) & Lanes::le_mask(lo_x, hi_x);
+}
+
+// The kernel of CPUs without AVX2: the children in two halves of four.
+[[gnu::flatten]] inline unsigned intersect_float_child_boxes_sse2(const FloatChildBoxes& boxes,
+                                                                  const FloatBoxRay& ray,
+                                                                  float far_limit,
+                                                                  float entry[kWideChildren]) {
+  return intersect_float_child_boxes_lanes<Sse2Lanes>(boxes, ray, far_limit, 0, entry) |
+         intersect_float_child_boxes_lanes<Sse2Lanes>(boxes, ray, far_limit, 4, entry + 4) << 4;
+}
+
+// Eight children in one go; only where the CPU has AVX2 (wide_box_kernel.h).
+[[gnu::target("avx2"), gnu::flatten]] inline unsigned intersect_float_child_boxes_avx2(
+    const FloatChildBoxes& boxes, const FloatBoxRay& ray, float far_limit,
+    float entry[kWideChildren]) {
+  return intersect_float_child_boxes_lanes<Avx2Lanes>(boxes, ray, far_limit, 0, entry);
 }
 #endif
 
