@@ -417,9 +417,9 @@ void make_bvh_wide(Bvh& bvh) {
   while (!pending.empty()) {
     const auto [wide_index, binary] = pending.back();
     pending.pop_back();
-    std::size_t children[4] = {binary + 1, second_child(binary), 0, 0};
+    std::size_t children[kWideChildren] = {binary + 1, second_child(binary)};
     int n = 2;
-    while (n < 4) {
+    while (n < kWideChildren) {
       int widest = -1;
       double widest_area = -1;
       for (int c = 0; c < n; ++c) {

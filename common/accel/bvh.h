@@ -1,7 +1,7 @@
 // A bounding volume hierarchy over anything with bounds, built with the surface area heuristic
 // (binned, as in pbrt-v3 §4.3) or, for comparison, not at all (BvhMode::None: one leaf holding
 // every primitive, the seeds' "acceleration off"). The tree is built binary in double; the scene
-// BVH is traversed in that form, in double (BvhPair, bvh_traverse.h), a mesh's as a 4-wide tree
+// BVH is traversed in that form, in double (BvhPair, bvh_traverse.h), a mesh's as an 8-wide tree
 // in float (BvhWideNode, wide_bvh_traverse.h; conservative, see float_child_boxes.h). Float
 // boxes contain a ray that leaves a surface more often than double ones (its origin is a few
 // rounding errors outside the surface's box in double, inside it in float): that costs nothing
@@ -37,17 +37,18 @@ struct BvhPair {
   std::uint32_t count[2] = {0, 0};  // primitives of a leaf child; 0 for an interior child
 };
 
-// The mesh BVH's form: the binary tree collapsed into nodes of up to four children
+// The mesh BVH's form: the binary tree collapsed into nodes of up to eight children
 // (make_bvh_wide), their boxes side by side in float, rounded outward (float_child_boxes.h), so
-// that one step tests four boxes with SSE and the node fills two cache lines exactly.
+// that one step tests eight boxes with AVX (or two fours with SSE) and the node fills four cache
+// lines exactly.
 struct alignas(64) BvhWideNode {
   FloatChildBoxes boxes = empty_float_child_boxes();
   // Per child: its index into Bvh::wide if interior, else its leaf's first primitive ...
-  std::uint32_t child[4] = {0, 0, 0, 0};
+  std::uint32_t child[kWideChildren] = {};
   // ... and its leaf's primitive count, 0 for an interior child.
-  std::uint32_t count[4] = {0, 0, 0, 0};
+  std::uint32_t count[kWideChildren] = {};
 };
-static_assert(sizeof(BvhWideNode) == 128);
+static_assert(sizeof(BvhWideNode) == 256);
 
 // The build keeps trees shallower than this (bvh.cpp), so the traversals' fixed stacks cannot
 // overflow.
@@ -69,7 +70,8 @@ Bvh build_bvh(std::span<const Bounds3> primitive_bounds, BvhMode mode, int threa
 // Fills bvh.pairs from bvh.nodes (build_bvh does; for hand-made trees).
 void make_bvh_pairs(Bvh& bvh);
 // Fills bvh.wide from bvh.nodes: each interior node takes the children of its largest-area
-// interior children until it has four (Embree's and pbrt-v4's collapse of a binary SAH tree).
+// interior children until it has kWideChildren (Embree's and pbrt-v4's collapse of a binary SAH
+// tree).
 void make_bvh_wide(Bvh& bvh);
 // Traversals: common/accel/bvh_traverse.h, common/accel/wide_bvh_traverse.h.
 

@@ -1,10 +1,12 @@
-// The four children of a wide BVH node (the mesh BVH's, wide_bvh_traverse.h) tested against a
-// ray at once, in float: the boxes are
-// stored side by side per axis and bound (structure of arrays), so that one SSE instruction
-// (part of every x86-64 CPU, so there is no other path to choose at run time) does the work of
-// four scalar ones. Other CPUs run the same IEEE operations one child at a time: maxps and
-// minps pick their second operand on NaN, as the scalar comparisons do, and nothing is fused,
-// so both give bit-identical results (tests/accel/float_child_boxes_test.cpp).
+// The eight children of a wide BVH node (the mesh BVH's, wide_bvh_traverse.h) tested against a
+// ray at once, in float: the boxes are stored side by side per axis and bound (structure of
+// arrays), so that one AVX instruction does the work of eight scalar ones, or two SSE ones
+// (part of every x86-64 CPU) the work of eight on CPUs without AVX2. The traversal picks the
+// kernel once at run time (wide_box_kernel.h). Every kernel computes, per child, the same IEEE
+// operations in the same order: maxps and minps (AVX's too) pick their second operand on NaN,
+// as the scalar comparisons do, and nothing is fused (the AVX2 kernel is compiled without FMA,
+// and -ffp-contract=off holds), so all give bit-identical results
+// (tests/accel/float_child_boxes_test.cpp), and images do not depend on the CPU.
 //
 // Float is only used to prune: the test is CONSERVATIVE, it accepts every box that the double
 // slab test intersect_bounds (common/math/ray.h) accepts, so that traversal reaches every leaf
@@ -39,7 +41,7 @@
 //    direction component below 3e-39) is +-inf in float and takes the same path, on the
 //    accepting side. Directions with components above 1e37 are outside this argument (their
 //    reciprocals lose precision as subnormals); nothing in a scene comes near.
-//  - Empty child slots (fewer than four children) hold the empty box (lo = +inf, hi = -inf)
+//  - Empty child slots (fewer than eight children) hold the empty box (lo = +inf, hi = -inf)
 //    and are masked out by lo.x <= hi.x, so a ray of NaNs, which accepts every slab, still
 //    never enters one.
 #pragma once
@@ -52,7 +54,7 @@
 #include "common/math/ray.h"
 
 #if defined(__SSE2__)
-#include <xmmintrin.h>
+#include <immintrin.h>
 #endif
 
 namespace tessera {
@@ -104,15 +106,18 @@ inline float float_far_limit(double t_max) {
   return round_up_to_float(t_max * static_cast<double>(kFloatFarScale));
 }
 
-struct alignas(16) FloatChildBoxes {
-  float bound[3][2][4];  // [axis][0 lo, 1 hi][child]
+// Children a wide node holds (Embree's eight-wide nodes: one AVX register of floats).
+inline constexpr int kWideChildren = 8;
+
+struct alignas(32) FloatChildBoxes {
+  float bound[3][2][kWideChildren];  // [axis][0 lo, 1 hi][child]
 };
 
-// Four empty slots; set_float_child_box fills slot `c` with `box`, rounded outward.
+// Empty slots; set_float_child_box fills slot `c` with `box`, rounded outward.
 inline FloatChildBoxes empty_float_child_boxes() {
   FloatChildBoxes boxes;
   for (auto& axis : boxes.bound)
-    for (int c = 0; c < 4; ++c) axis[0][c] = INFINITY, axis[1][c] = -INFINITY;
+    for (int c = 0; c < kWideChildren; ++c) axis[0][c] = INFINITY, axis[1][c] = -INFINITY;
   return boxes;
 }
 inline void set_float_child_box(FloatChildBoxes& boxes, int c, const Bounds3& box) {
@@ -122,14 +127,14 @@ inline void set_float_child_box(FloatChildBoxes& boxes, int c, const Bounds3& bo
   }
 }
 
-// The per-ray constants of the test, each repeated four times (one per child) so that a step
-// loads them instead of broadcasting them again.
+// The per-ray constants of the test, each repeated once per child so that a step loads them
+// instead of broadcasting them again.
 struct FloatBoxRay {
   // Subtracted from the near plane: the origin rounded towards it; from the far plane: rounded
   // away from it.
-  alignas(16) float origin_near[3][4];
-  alignas(16) float origin_far[3][4];
-  alignas(16) float inv_dir[3][4];
+  alignas(32) float origin_near[3][kWideChildren];
+  alignas(32) float origin_far[3][kWideChildren];
+  alignas(32) float inv_dir[3][kWideChildren];
   int near_side[3];  // 0 (lo) where the direction is forward (1 / d >= 0), else 1 (hi)
 
   explicit FloatBoxRay(const Ray& ray) {
@@ -143,7 +148,7 @@ struct FloatBoxRay {
       // backward, it is hi and (hi - origin) * inv is smaller with (hi - origin) larger.
       const float near_origin = select_float_bits(forward, up, down);
       const float far_origin = select_float_bits(forward, down, up);
-      for (int c = 0; c < 4; ++c) {
+      for (int c = 0; c < kWideChildren; ++c) {
         inv_dir[a][c] = static_cast<float>(inv);
         origin_near[a][c] = near_origin;
         origin_far[a][c] = far_origin;
@@ -156,12 +161,12 @@ struct FloatBoxRay {
 // double test accepts, and some more); entry[c] receives its float entry distance, which is at
 // most float_far_limit of any t_max for which the double test accepts the box (so a later,
 // smaller t_max may skip it). `far_limit` is float_far_limit(t_max). One child at a time: the
-// path of CPUs without SSE, and the reference the SSE path is tested against.
+// path of CPUs without SSE, and the reference the SIMD kernels are tested against.
 inline unsigned intersect_float_child_boxes_scalar(const FloatChildBoxes& boxes,
                                                    const FloatBoxRay& ray, float far_limit,
-                                                   float entry[4]) {
+                                                   float entry[kWideChildren]) {
   unsigned hits = 0;
-  for (int c = 0; c < 4; ++c) {
+  for (int c = 0; c < kWideChildren; ++c) {
     float t0 = 0, t1 = far_limit;
     for (int a = 0; a < 3; ++a) {
       const int near = ray.near_side[a];
@@ -178,35 +183,97 @@ inline unsigned intersect_float_child_boxes_scalar(const FloatChildBoxes& boxes,
   return hits;
 }
 
-// The same with SSE, four children in one go.
-[[gnu::always_inline]] inline unsigned intersect_float_child_boxes(const FloatChildBoxes& boxes,
-                                                                   const FloatBoxRay& ray,
-                                                                   float far_limit,
-                                                                   float entry[4]) {
-#if defined(__SSE__)
-  __m128 t0 = _mm_setzero_ps(), t1 = _mm_set1_ps(far_limit);
-  const __m128 far_scale = _mm_set1_ps(kFloatFarScale);
+#if defined(__SSE2__)
+// The SIMD kernels: one algorithm (intersect_float_child_boxes_lanes) over `Lanes` children at
+// once, with the vector operations of SSE2 (4 lanes) or AVX2 (8). The operations take and give
+// vectors by reference: an AVX vector passed by value through a function compiled without AVX
+// changes the ABI, and the algorithm is compiled for the baseline, to be inlined whole
+// (gnu::flatten) into functions compiled for AVX2.
+struct Sse2Lanes {
+  using V = __m128;
+  [[gnu::always_inline]] static void set1(V& r, float x) { r = _mm_set1_ps(x); }
+  [[gnu::always_inline]] static void load(V& r, const float* p) { r = _mm_loadu_ps(p); }
+  [[gnu::always_inline]] static void store(float* p, const V& a) { _mm_storeu_ps(p, a); }
+  [[gnu::always_inline]] static void sub(V& r, const V& a, const V& b) { r = _mm_sub_ps(a, b); }
+  [[gnu::always_inline]] static void mul(V& r, const V& a, const V& b) { r = _mm_mul_ps(a, b); }
+  [[gnu::always_inline]] static void add(V& r, const V& a, const V& b) { r = _mm_add_ps(a, b); }
+  [[gnu::always_inline]] static void max(V& r, const V& a, const V& b) { r = _mm_max_ps(a, b); }
+  [[gnu::always_inline]] static void min(V& r, const V& a, const V& b) { r = _mm_min_ps(a, b); }
+  // Bit c set where a[c] <= b[c] (false with a NaN).
+  [[gnu::always_inline]] static unsigned le_mask(const V& a, const V& b) {
+    return static_cast<unsigned>(_mm_movemask_ps(_mm_cmple_ps(a, b)));
+  }
+};
+
+// No FMA: the "avx2" target does not enable it.
+struct Avx2Lanes {
+  using V = __m256;
+  [[gnu::target("avx2")]] static void set1(V& r, float x) { r = _mm256_set1_ps(x); }
+  [[gnu::target("avx2")]] static void load(V& r, const float* p) { r = _mm256_loadu_ps(p); }
+  [[gnu::target("avx2")]] static void store(float* p, const V& a) { _mm256_storeu_ps(p, a); }
+  [[gnu::target("avx2")]] static void sub(V& r, const V& a, const V& b) { r = _mm256_sub_ps(a, b); }
+  [[gnu::target("avx2")]] static void mul(V& r, const V& a, const V& b) { r = _mm256_mul_ps(a, b); }
+  [[gnu::target("avx2")]] static void add(V& r, const V& a, const V& b) { r = _mm256_add_ps(a, b); }
+  [[gnu::target("avx2")]] static void max(V& r, const V& a, const V& b) { r = _mm256_max_ps(a, b); }
+  [[gnu::target("avx2")]] static void min(V& r, const V& a, const V& b) { r = _mm256_min_ps(a, b); }
+  // _CMP_LE_OS is cmpleps's predicate.
+  [[gnu::target("avx2")]] static unsigned le_mask(const V& a, const V& b) {
+    return static_cast<unsigned>(_mm256_movemask_ps(_mm256_cmp_ps(a, b, _CMP_LE_OS)));
+  }
+};
+
+// intersect_float_child_boxes_scalar's operations for the children from `first` on, as many as
+// a vector holds, in bits 0 up of the result and entry[0] up. maxps(a, b) and minps(a, b) are
+// a > b ? a : b and a < b ? a : b, NaN included, as the scalar comparisons.
+template <typename Lanes>
+inline unsigned intersect_float_child_boxes_lanes(const FloatChildBoxes& boxes,
+                                                  const FloatBoxRay& ray, float far_limit,
+                                                  int first, float* entry) {
+  using V = typename Lanes::V;
+  V t0, t1, far_scale, bound, origin, inv, t_near, t_far;
+  Lanes::set1(t0, 0.0f);
+  Lanes::set1(t1, far_limit);
+  Lanes::set1(far_scale, kFloatFarScale);
 #pragma GCC unroll 3
   for (int a = 0; a < 3; ++a) {
-    const __m128 inv = _mm_load_ps(ray.inv_dir[a]);
     const int near = ray.near_side[a];
-    const __m128 t_near = _mm_mul_ps(
-        _mm_sub_ps(_mm_load_ps(boxes.bound[a][near]), _mm_load_ps(ray.origin_near[a])), inv);
-    const __m128 t_far = _mm_mul_ps(
-        _mm_mul_ps(
-            _mm_sub_ps(_mm_load_ps(boxes.bound[a][1 - near]), _mm_load_ps(ray.origin_far[a])), inv),
-        far_scale);
-    t0 = _mm_max_ps(t_near, t0);  // t_near > t0 ? t_near : t0
-    t1 = _mm_min_ps(t_far, t1);   // t_far < t1 ? t_far : t1
+    Lanes::load(inv, ray.inv_dir[a]);
+    Lanes::load(bound, &boxes.bound[a][near][first]);
+    Lanes::load(origin, ray.origin_near[a]);
+    Lanes::sub(t_near, bound, origin);
+    Lanes::mul(t_near, t_near, inv);
+    Lanes::load(bound, &boxes.bound[a][1 - near][first]);
+    Lanes::load(origin, ray.origin_far[a]);
+    Lanes::sub(t_far, bound, origin);
+    Lanes::mul(t_far, t_far, inv);
+    Lanes::mul(t_far, t_far, far_scale);
+    Lanes::max(t0, t_near, t0);
+    Lanes::min(t1, t_far, t1);
   }
-  _mm_storeu_ps(entry, t0);
-  const __m128 hit =
-      _mm_and_ps(_mm_cmple_ps(t0, _mm_add_ps(t1, _mm_set1_ps(kFloatTinyMargin))),
-                 _mm_cmple_ps(_mm_load_ps(boxes.bound[0][0]), _mm_load_ps(boxes.bound[0][1])));
-  return static_cast<unsigned>(_mm_movemask_ps(hit));
-#else
-  return intersect_float_child_boxes_scalar(boxes, ray, far_limit, entry);
-#endif
+  Lanes::store(entry, t0);
+  V margin, lo_x, hi_x;
+  Lanes::set1(margin, kFloatTinyMargin);
+  Lanes::add(t1, t1, margin);
+  Lanes::load(lo_x, &boxes.bound[0][0][first]);
+  Lanes::load(hi_x, &boxes.bound[0][1][first]);
+  return Lanes::le_mask(t0, t1) & Lanes::le_mask(lo_x, hi_x);
 }
+
+// The kernel of CPUs without AVX2: the children in two halves of four.
+[[gnu::flatten]] inline unsigned intersect_float_child_boxes_sse2(const FloatChildBoxes& boxes,
+                                                                  const FloatBoxRay& ray,
+                                                                  float far_limit,
+                                                                  float entry[kWideChildren]) {
+  return intersect_float_child_boxes_lanes<Sse2Lanes>(boxes, ray, far_limit, 0, entry) |
+         intersect_float_child_boxes_lanes<Sse2Lanes>(boxes, ray, far_limit, 4, entry + 4) << 4;
+}
+
+// Eight children in one go; only where the CPU has AVX2 (wide_box_kernel.h).
+[[gnu::target("avx2"), gnu::flatten]] inline unsigned intersect_float_child_boxes_avx2(
+    const FloatChildBoxes& boxes, const FloatBoxRay& ray, float far_limit,
+    float entry[kWideChildren]) {
+  return intersect_float_child_boxes_lanes<Avx2Lanes>(boxes, ray, far_limit, 0, entry);
+}
+#endif
 
 }  // namespace tessera

@@ -1,52 +1,41 @@
 // The traversal of a mesh's BVH (common/accel/bvh.h, Bvh::wide): depth-first with an explicit
-// stack over the wide nodes. A step tests a node's (up to) four children's boxes in float
-// (float_child_boxes.h, conservative: it reaches every leaf the double slab test would),
-// descends into the child the ray enters first and keeps the others with their entry distances, the
-// nearer ones on top; a kept child is skipped when a closer hit found meanwhile lies before its
-// entry. The order only decides how soon t_max shrinks: callers choose among hits at equal t by
-// primitive index, so results do not depend on it.
+// stack over the wide nodes. A step tests a node's (up to) eight children's boxes in float
+// (float_child_boxes.h, conservative: it reaches every leaf the double slab test would), with the
+// kernel chosen at run time (wide_box_kernel.h), descends into the child the ray enters first
+// and keeps the others with their entry distances, the nearer ones on top; a kept child is
+// skipped when a closer hit found meanwhile lies before its entry. The order only decides how
+// soon t_max shrinks: callers choose among hits at equal t by primitive index, so results do not
+// depend on it.
 #pragma once
 
 #include <bit>
 #include <cstdint>
 
 #include "common/accel/bvh.h"
+#include "common/accel/wide_box_kernel.h"
 
 namespace tessera {
 
-// Visits the leaves whose boxes the ray [0, t_max] may enter, nearer children first:
-// `visit_leaf(first, count, t_max)` gets the leaf's range [first, first + count) of
-// Bvh::primitive_order and returns the possibly shrunk t_max (closest hit) or a negative value to
-// stop the traversal (any-hit queries). `make_visit_leaf()` makes it once the ray enters the
-// root's box, so that a ray that misses the whole tree (most rays of a scene, for a mesh that
-// fills little of it) skips the leaves' per-ray preparation. Counts the boxes tested in
-// `nodes_visited` (four per wide node).
-template <typename MakeVisitLeaf>
-void traverse_wide_bvh_leaves(const Bvh& bvh, const Ray& ray, double t_max,
-                              std::uint64_t& nodes_visited, MakeVisitLeaf&& make_visit_leaf) {
-  if (bvh.nodes.empty()) return;
-  ++nodes_visited;
-  const BvhNode& root = bvh.nodes[0];
-  {
-    const Vec3 inv_dir{1 / ray.direction.x, 1 / ray.direction.y, 1 / ray.direction.z};
-    if (!intersect_bounds(root.bounds, ray.origin, inv_dir, t_max)) return;
-  }
-  auto visit_leaf = make_visit_leaf();
-  if (root.count > 0) {
-    visit_leaf(root.first_or_second_child, root.count, t_max);
-    return;
-  }
+// A child to visit: an interior one (count 0, index into Bvh::wide) or a leaf's range.
+struct WideBvhPending {
+  std::uint32_t index;
+  std::uint32_t count;
+  float entry;
+};
+
+// The loop below the root, testing boxes with `test_boxes(node.boxes, box_ray, far_limit,
+// entry)`. Instantiated once per kernel, each inlined whole (gnu::flatten) into a function
+// compiled for that kernel's instruction set, so that the visitor and the box test run in one
+// loop without calls.
+template <typename TestBoxes, typename VisitLeaf>
+inline void traverse_wide_bvh_below_root(const Bvh& bvh, const Ray& ray, double t_max,
+                                         std::uint64_t& nodes_visited, VisitLeaf& visit_leaf,
+                                         TestBoxes test_boxes) {
   const FloatBoxRay box_ray(ray);
   float far_limit = float_far_limit(t_max);
-  // A child to visit: an interior one (count 0, index into bvh.wide) or a leaf's range.
-  struct Pending {
-    std::uint32_t index;
-    std::uint32_t count;
-    float entry;
-  };
-  Pending stack[3 * kBvhMaxDepth];  // a wide step pushes at most three children a level
+  WideBvhPending stack[(kWideChildren - 1) * kBvhMaxDepth];  // a step pushes at most 7 a level
   int size = 0;
-  Pending current{0, 0, 0};
+  WideBvhPending current{0, 0, 0};
   const BvhWideNode* wide = bvh.wide.data();
   for (;;) {
     if (current.count > 0) {
@@ -55,9 +44,9 @@ void traverse_wide_bvh_leaves(const Bvh& bvh, const Ray& ray, double t_max,
       if (limit != t_max) t_max = limit, far_limit = float_far_limit(t_max);
     } else {
       const BvhWideNode& node = wide[current.index];
-      alignas(16) float entry[4];
-      nodes_visited += 4;
-      const unsigned hits = intersect_float_child_boxes(node.boxes, box_ray, far_limit, entry);
+      alignas(32) float entry[kWideChildren];
+      nodes_visited += kWideChildren;
+      const unsigned hits = test_boxes(node.boxes, box_ray, far_limit, entry);
       if (hits != 0) {
         if ((hits & (hits - 1)) == 0) {  // one child: nothing to order
           const int c = std::countr_zero(hits);
@@ -65,8 +54,8 @@ void traverse_wide_bvh_leaves(const Bvh& bvh, const Ray& ray, double t_max,
           continue;
         }
         // The children hit, nearest first (the lower slot on a tie): an insertion sort of at
-        // most four.
-        int order[4], n = 0;
+        // most eight.
+        int order[kWideChildren], n = 0;
         for (unsigned rest = hits; rest != 0; rest &= rest - 1) {
           const int c = std::countr_zero(rest);
           int i = n++;
@@ -84,6 +73,68 @@ void traverse_wide_bvh_leaves(const Bvh& bvh, const Ray& ray, double t_max,
       current = stack[--size];
       if (current.entry <= far_limit) break;
     }
+  }
+}
+
+template <typename VisitLeaf>
+[[gnu::flatten]] void traverse_wide_bvh_scalar(const Bvh& bvh, const Ray& ray, double t_max,
+                                               std::uint64_t& nodes_visited,
+                                               VisitLeaf& visit_leaf) {
+  traverse_wide_bvh_below_root(bvh, ray, t_max, nodes_visited, visit_leaf,
+                               intersect_float_child_boxes_scalar);
+}
+
+#if defined(__SSE2__)
+template <typename VisitLeaf>
+[[gnu::flatten]] void traverse_wide_bvh_sse2(const Bvh& bvh, const Ray& ray, double t_max,
+                                             std::uint64_t& nodes_visited, VisitLeaf& visit_leaf) {
+  traverse_wide_bvh_below_root(bvh, ray, t_max, nodes_visited, visit_leaf,
+                               intersect_float_child_boxes_sse2);
+}
+
+// Compiled for AVX2 (no FMA): the visitor's double arithmetic, inlined here, keeps its IEEE
+// operations, only their encoding changes.
+template <typename VisitLeaf>
+[[gnu::flatten, gnu::target("avx2")]] void traverse_wide_bvh_avx2(const Bvh& bvh, const Ray& ray,
+                                                                  double t_max,
+                                                                  std::uint64_t& nodes_visited,
+                                                                  VisitLeaf& visit_leaf) {
+  traverse_wide_bvh_below_root(bvh, ray, t_max, nodes_visited, visit_leaf,
+                               intersect_float_child_boxes_avx2);
+}
+#endif
+
+// Visits the leaves whose boxes the ray [0, t_max] may enter, nearer children first:
+// `visit_leaf(first, count, t_max)` gets the leaf's range [first, first + count) of
+// Bvh::primitive_order and returns the possibly shrunk t_max (closest hit) or a negative value to
+// stop the traversal (any-hit queries). `make_visit_leaf()` makes it once the ray enters the
+// root's box, so that a ray that misses the whole tree (most rays of a scene, for a mesh that
+// fills little of it) skips the leaves' per-ray preparation. Counts the boxes tested in
+// `nodes_visited` (kWideChildren per wide node).
+template <typename MakeVisitLeaf>
+void traverse_wide_bvh_leaves(const Bvh& bvh, const Ray& ray, double t_max,
+                              std::uint64_t& nodes_visited, MakeVisitLeaf&& make_visit_leaf) {
+  if (bvh.nodes.empty()) return;
+  ++nodes_visited;
+  const BvhNode& root = bvh.nodes[0];
+  {
+    const Vec3 inv_dir{1 / ray.direction.x, 1 / ray.direction.y, 1 / ray.direction.z};
+    if (!intersect_bounds(root.bounds, ray.origin, inv_dir, t_max)) return;
+  }
+  auto visit_leaf = make_visit_leaf();
+  if (root.count > 0) {
+    visit_leaf(root.first_or_second_child, root.count, t_max);
+    return;
+  }
+  switch (wide_box_kernel()) {
+#if defined(__SSE2__)
+    case WideBoxKernel::Avx2:
+      return traverse_wide_bvh_avx2(bvh, ray, t_max, nodes_visited, visit_leaf);
+    case WideBoxKernel::Sse2:
+      return traverse_wide_bvh_sse2(bvh, ray, t_max, nodes_visited, visit_leaf);
+#endif
+    default:
+      return traverse_wide_bvh_scalar(bvh, ray, t_max, nodes_visited, visit_leaf);
   }
 }
 

@@ -1,9 +1,9 @@
-// The four-box float test of the mesh BVH traversal: conservative against the double slab test
+// The eight-box float test of the mesh BVH traversal: conservative against the double slab test
 // intersect_bounds (it never rejects a box that one accepts, and its entry distances never let
 // a later, smaller t_max skip one), on random and adversarial rays and boxes (far from the
 // origin, tiny boxes, axis-parallel rays, zero direction components, grazing rays, origins on
-// box planes); and the SSE path bit-identical to the scalar one, so that images do not depend
-// on which one a build uses.
+// box planes); and every kernel this build and CPU can select (SSE2, AVX2) bit-identical to the
+// scalar one, so that images do not depend on which one runs.
 #include "common/accel/float_child_boxes.h"
 
 #include <gtest/gtest.h>
@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "common/accel/wide_box_kernel.h"
 #include "tests/accel/edge_case_rays.h"
 
 namespace tessera {
@@ -35,23 +36,47 @@ std::string describe(const Vec3& v) {
   return out.str();
 }
 
-// Tests the four boxes (fewer leave empty slots) against `ray` both ways.
+// The scalar kernel's result, after checking that every SIMD kernel this build and CPU can
+// select gives the same hits and the same entry distances, bit for bit.
+unsigned intersect_with_every_kernel(const FloatChildBoxes& wide, const FloatBoxRay& box_ray,
+                                     float far_limit, float entry[kWideChildren]) {
+  const unsigned hits = intersect_float_child_boxes_scalar(wide, box_ray, far_limit, entry);
+#if defined(__SSE2__)
+  const auto expect_same = [&](const char* kernel, unsigned simd_hits,
+                               const float simd_entry[kWideChildren]) {
+    EXPECT_EQ(simd_hits, hits) << kernel;
+    for (int c = 0; c < kWideChildren; ++c)
+      EXPECT_EQ(std::bit_cast<std::uint32_t>(simd_entry[c]), std::bit_cast<std::uint32_t>(entry[c]))
+          << kernel << " child " << c;
+  };
+  float simd_entry[kWideChildren];
+  expect_same("sse2", intersect_float_child_boxes_sse2(wide, box_ray, far_limit, simd_entry),
+              simd_entry);
+  if (wide_box_kernel_supported(WideBoxKernel::Avx2))
+    expect_same("avx2", intersect_float_child_boxes_avx2(wide, box_ray, far_limit, simd_entry),
+                simd_entry);
+#endif
+  return hits;
+}
+
+TEST(FloatChildBoxes, ThisMachineRunsTheAvx2Kernel) {
+  // Where the CPU has AVX2, traversals use it, and the comparisons above cover it.
+  if (!wide_box_kernel_supported(WideBoxKernel::Avx2)) GTEST_SKIP() << "no AVX2 on this CPU";
+  EXPECT_EQ(wide_box_kernel(), WideBoxKernel::Avx2);
+}
+
+// Tests the eight boxes (fewer leave empty slots) against `ray` both ways.
 void expect_conservative(const std::vector<Bounds3>& boxes, const Ray& ray, double t_max,
                          Counts& counts) {
   FloatChildBoxes wide = empty_float_child_boxes();
   for (int c = 0; c < static_cast<int>(boxes.size()); ++c) set_float_child_box(wide, c, boxes[c]);
   const FloatBoxRay box_ray(ray);
   const float far_limit = float_far_limit(t_max);
-  float entry[4], scalar_entry[4];
-  const unsigned hits = intersect_float_child_boxes(wide, box_ray, far_limit, entry);
-  const unsigned scalar_hits =
-      intersect_float_child_boxes_scalar(wide, box_ray, far_limit, scalar_entry);
-  ASSERT_EQ(hits, scalar_hits);
-  for (int c = 0; c < 4; ++c)
-    ASSERT_EQ(std::bit_cast<std::uint32_t>(entry[c]), std::bit_cast<std::uint32_t>(scalar_entry[c]))
-        << "child " << c;
+  float entry[kWideChildren];
+  const unsigned hits = intersect_with_every_kernel(wide, box_ray, far_limit, entry);
+  ASSERT_FALSE(::testing::Test::HasFailure());
   const Vec3 inv_dir{1 / ray.direction.x, 1 / ray.direction.y, 1 / ray.direction.z};
-  for (int c = 0; c < 4; ++c) {
+  for (int c = 0; c < kWideChildren; ++c) {
     const bool is_hit = ((hits >> c) & 1u) != 0;
     counts.float_hits += is_hit;
     if (c >= static_cast<int>(boxes.size())) {
@@ -79,7 +104,7 @@ TEST(FloatChildBoxes, ConservativeOnRandomRays) {
   Counts counts;
   for (int i = 0; i < 50000; ++i) {
     std::vector<Bounds3> boxes;
-    const int n = 1 + i % 4;
+    const int n = 1 + i % kWideChildren;
     for (int c = 0; c < n; ++c) {
       Bounds3 b;
       b.extend(Vec3{u(rng), u(rng), u(rng)});
@@ -112,11 +137,11 @@ TEST(FloatChildBoxes, ConservativeOnAdversarialRays) {
     const double size = sizes[(i / 4) % 4];
     const Vec3 center = Vec3{offset, -offset, offset} + Vec3{u(rng), u(rng), u(rng)} * size;
     std::vector<Bounds3> boxes;
-    for (int c = 0; c < 4; ++c)
+    for (int c = 0; c < kWideChildren; ++c)
       boxes.push_back(box_around(center + Vec3{u(rng), u(rng), u(rng)} * size,
                                  Vec3{u(rng) + 1, u(rng) + 1, u(rng) + 1} * (size / 2)));
     if (i % 7 == 0) boxes[1].lo.y = boxes[1].hi.y;  // flat
-    const Bounds3& target_box = boxes[static_cast<std::size_t>(i) % 4];
+    const Bounds3& target_box = boxes[static_cast<std::size_t>(i) % boxes.size()];
     // A corner, an edge point or a face point of the target box, or a point inside it.
     Vec3 target;
     for (int a = 0; a < 3; ++a) {
@@ -161,7 +186,7 @@ TEST(FloatChildBoxes, EdgeCases) {
   Counts counts;
   for (const Ray& ray : rays)
     for (std::size_t first = 0; first < all.size(); ++first)
-      for (std::size_t n = 0; n <= 4; ++n) {
+      for (std::size_t n = 0; n <= kWideChildren; ++n) {
         std::vector<Bounds3> boxes;
         for (std::size_t k = 0; k < n; ++k) boxes.push_back(all[(first + k) % all.size()]);
         for (const double t_max : {kInfinity, 0.25, 0.0, 1e-45}) {
@@ -183,7 +208,7 @@ TEST(FloatChildBoxes, ConservativeBelowFloatsNormalRange) {
     const Vec3 direction{u(rng), u(rng), u(rng)};
     const double t = static_cast<double>(1 + rng() % 1000) * grid;
     std::vector<Bounds3> boxes;
-    for (int c = 0; c < 4; ++c) {
+    for (int c = 0; c < kWideChildren; ++c) {
       // A point near the ray (on the grid), or a box around it a grid step wide.
       Bounds3 b;
       for (int a = 0; a < 3; ++a) {
@@ -206,10 +231,8 @@ TEST(FloatChildBoxes, EmptySlotsAreNeverHit) {
   const double nan = std::numeric_limits<double>::quiet_NaN();
   for (const Ray& ray : {Ray{{nan, nan, nan}, {1, 1, 1}}, Ray{{0, 0, 0}, {nan, nan, nan}},
                          Ray{{kInfinity, 0, 0}, {kInfinity, 0, 0}}}) {
-    float entry[4];
-    EXPECT_EQ(intersect_float_child_boxes(wide, FloatBoxRay(ray), INFINITY, entry) & ~1u, 0u);
-    EXPECT_EQ(intersect_float_child_boxes_scalar(wide, FloatBoxRay(ray), INFINITY, entry) & ~1u,
-              0u);
+    float entry[kWideChildren];
+    EXPECT_EQ(intersect_with_every_kernel(wide, FloatBoxRay(ray), INFINITY, entry) & ~1u, 0u);
   }
 }
 

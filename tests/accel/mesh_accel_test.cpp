@@ -228,7 +228,7 @@ TEST(MeshAccel, LeavesFillWholePairs) {
         in_leaf.at(i) = true;
     }
     for (const BvhWideNode& node : accel.bvh.wide)
-      for (int c = 0; c < 4; ++c)
+      for (int c = 0; c < kWideChildren; ++c)
         if (node.count[c] > 0) {
           EXPECT_EQ(node.child[c] % 2, 0u);
         }

@@ -1,0 +1,81 @@
+#include "common/accel/wide_box_kernel.h"
+
+#include <cstdlib>
+#include <stdexcept>
+#include <string>
+
+namespace tessera {
+namespace {
+
+WideBoxKernel widest_supported() {
+  if (wide_box_kernel_supported(WideBoxKernel::Avx2)) return WideBoxKernel::Avx2;
+  if (wide_box_kernel_supported(WideBoxKernel::Sse2)) return WideBoxKernel::Sse2;
+  return WideBoxKernel::Scalar;
+}
+
+WideBoxKernel automatic_choice() {
+  if (const char* name = std::getenv("TESSERA_BOX_KERNEL")) {
+    const auto kernel = parse_wide_box_kernel(name);
+    if (kernel && wide_box_kernel_supported(*kernel)) return *kernel;
+  }
+  return widest_supported();
+}
+
+std::optional<WideBoxKernel>& forced() {
+  static std::optional<WideBoxKernel> kernel;
+  return kernel;
+}
+
+}  // namespace
+
+bool wide_box_kernel_supported(WideBoxKernel kernel) {
+  switch (kernel) {
+    case WideBoxKernel::Scalar:
+      return true;
+    case WideBoxKernel::Sse2:
+#if defined(__SSE2__)
+      return true;
+#else
+      return false;
+#endif
+    case WideBoxKernel::Avx2:
+#if defined(__SSE2__)
+      return __builtin_cpu_supports("avx2") != 0;
+#else
+      return false;
+#endif
+  }
+  return false;
+}
+
+WideBoxKernel wide_box_kernel() {
+  static const WideBoxKernel automatic = automatic_choice();
+  return forced().value_or(automatic);
+}
+
+void force_wide_box_kernel(std::optional<WideBoxKernel> kernel) {
+  if (kernel && !wide_box_kernel_supported(*kernel))
+    throw std::invalid_argument("box kernel " + std::string(wide_box_kernel_name(*kernel)) +
+                                " is not supported here");
+  forced() = kernel;
+}
+
+std::string_view wide_box_kernel_name(WideBoxKernel kernel) {
+  switch (kernel) {
+    case WideBoxKernel::Scalar:
+      return "scalar";
+    case WideBoxKernel::Sse2:
+      return "sse2";
+    case WideBoxKernel::Avx2:
+      return "avx2";
+  }
+  return "?";
+}
+
+std::optional<WideBoxKernel> parse_wide_box_kernel(std::string_view name) {
+  for (const auto kernel : {WideBoxKernel::Scalar, WideBoxKernel::Sse2, WideBoxKernel::Avx2})
+    if (name == wide_box_kernel_name(kernel)) return kernel;
+  return std::nullopt;
+}
+
+}  // namespace tessera

@@ -1,0 +1,142 @@
+// Issue 18 §3: the mesh traversal gives the same answers whichever box kernel it runs
+// (wide_box_kernel.h), so that images do not depend on the CPU. Every kernel this build and CPU
+// can select traces the same rays through the same meshes, and renders the mesh scenes, and is
+// compared bit for bit with the scalar kernel (the box tests alone: float_child_boxes_test.cpp).
+#include <gtest/gtest.h>
+
+#include <bit>
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <random>
+#include <string>
+#include <vector>
+
+#include "common/accel/mesh_accel.h"
+#include "common/accel/wide_box_kernel.h"
+#include "common/geometry/shapes.h"
+#include "common/loaders/scene_loader.h"
+#include "common/render/prepared_scene.h"
+#include "common/render/render.h"
+
+namespace tessera {
+namespace {
+
+std::vector<WideBoxKernel> selectable_kernels() {
+  std::vector<WideBoxKernel> kernels;
+  for (const auto kernel : {WideBoxKernel::Scalar, WideBoxKernel::Sse2, WideBoxKernel::Avx2})
+    if (wide_box_kernel_supported(kernel)) kernels.push_back(kernel);
+  return kernels;
+}
+
+// Forces a kernel for the scope, then returns to the automatic choice.
+struct ForcedKernel {
+  explicit ForcedKernel(WideBoxKernel kernel) { force_wide_box_kernel(kernel); }
+  ~ForcedKernel() { force_wide_box_kernel(std::nullopt); }
+  ForcedKernel(const ForcedKernel&) = delete;
+  ForcedKernel& operator=(const ForcedKernel&) = delete;
+};
+
+// Everything the mesh queries answer for a set of rays, as bits.
+std::vector<std::uint64_t> trace_all(const MeshAccel& accel, const std::vector<Ray>& rays) {
+  std::vector<std::uint64_t> out;
+  const auto put = [&](double x) { out.push_back(std::bit_cast<std::uint64_t>(x)); };
+  const auto put_vec = [&](const Vec3& v) { put(v.x), put(v.y), put(v.z); };
+  IntersectionCounters counters;
+  for (const Ray& ray : rays) {
+    for (const double t_max : {kInfinity, 0.7}) {
+      LocalHit hit;
+      if (intersect_mesh(accel, true, ray, t_max, hit, counters)) {
+        put(hit.t), put_vec(hit.point), put_vec(hit.normal), put_vec(hit.shading_normal);
+        out.push_back(hit.part);
+      } else {
+        out.push_back(~0ull);
+      }
+      out.push_back(occluded_mesh(accel, ray, t_max, counters) ? 1 : 0);
+    }
+    for (const LocalHit& crossing : mesh_crossings(accel, false, ray, kInfinity, counters)) {
+      put(crossing.t);
+      out.push_back(crossing.part);
+    }
+  }
+  out.push_back(counters.bvh_nodes);
+  out.push_back(counters.triangle_tests);
+  return out;
+}
+
+TEST(WideBoxKernels, EveryKernelTracesMeshesAlike) {
+  std::mt19937_64 rng(18);
+  std::uniform_real_distribution<double> u(0, 1);
+  for (const double offset : {0.0, 1e5}) {
+    Mesh mesh;
+    for (int i = 0; i < 3000; ++i) {
+      const Vec3 c = Vec3{offset, offset, -offset} + Vec3{u(rng), u(rng), u(rng)} * 10;
+      MeshTriangle t;
+      for (int k = 0; k < 3; ++k) {
+        t.v[static_cast<std::size_t>(k)] = static_cast<std::uint32_t>(mesh.positions.size());
+        mesh.positions.push_back(c + Vec3{u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5});
+      }
+      mesh.triangles.push_back(t);
+    }
+    const MeshAccel accel = build_mesh_accel(mesh, BvhMode::Sah);
+    std::vector<Ray> rays;
+    for (int r = 0; r < 3000; ++r) {
+      const Vec3 center = Vec3{offset, offset, -offset} + Vec3{5, 5, 5};
+      const Vec3 origin = center + Vec3{u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5} * 30;
+      const Vec3 target = center + Vec3{u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5} * 10;
+      rays.push_back({origin, (target - origin) * (0.05 + u(rng))});
+    }
+    std::optional<std::vector<std::uint64_t>> reference;
+    for (const WideBoxKernel kernel : selectable_kernels()) {
+      SCOPED_TRACE(std::string(wide_box_kernel_name(kernel)));
+      const ForcedKernel forced(kernel);
+      ASSERT_EQ(wide_box_kernel(), kernel);
+      const std::vector<std::uint64_t> answers = trace_all(accel, rays);
+      if (!reference) {
+        reference = answers;
+        EXPECT_GT(answers.size(), 3 * rays.size());  // not all misses
+      } else {
+        EXPECT_EQ(answers, *reference);
+      }
+    }
+  }
+}
+
+TEST(WideBoxKernels, EveryKernelRendersMeshScenesAlike) {
+  const std::filesystem::path scenes = std::filesystem::path(TESSERA_SOURCE_DIR) / "scenes";
+  for (const char* name : {"features/mesh.sdl", "features/mesh_formats.sdl", "features/teapot.sdl",
+                           "vrml/world.wrl"}) {
+    SCOPED_TRACE(name);
+    const Scene scene = load_scene_file(scenes / name);
+    const PreparedScene prepared(scene, BvhMode::Sah);
+    RenderSettings settings;
+    settings.width = 64;
+    settings.height = 48;
+    std::optional<Image> reference;
+    for (const WideBoxKernel kernel : selectable_kernels()) {
+      SCOPED_TRACE(std::string(wide_box_kernel_name(kernel)));
+      const ForcedKernel forced(kernel);
+      RenderStats stats;
+      const Image image = render_image(prepared, settings, 0, stats);
+      if (!reference) {
+        reference = image;
+      } else {
+        ASSERT_EQ(image.rgb.size(), reference->rgb.size());
+        for (std::size_t i = 0; i < image.rgb.size(); ++i)
+          ASSERT_EQ(std::bit_cast<std::uint32_t>(image.rgb[i]),
+                    std::bit_cast<std::uint32_t>(reference->rgb[i]))
+              << "value " << i;
+      }
+    }
+  }
+}
+
+TEST(WideBoxKernels, NamesRoundTripAndScalarIsAlwaysThere) {
+  for (const auto kernel : {WideBoxKernel::Scalar, WideBoxKernel::Sse2, WideBoxKernel::Avx2})
+    EXPECT_EQ(parse_wide_box_kernel(wide_box_kernel_name(kernel)), kernel);
+  EXPECT_EQ(parse_wide_box_kernel("avx512"), std::nullopt);
+  EXPECT_TRUE(wide_box_kernel_supported(WideBoxKernel::Scalar));
+}
+
+}  // namespace
+}  // namespace tessera
