@@ -1,6 +1,5 @@
 #include "common/protocol/connection.h"
 
-#include <algorithm>
 #include <array>
 
 #include <boost/asio/post.hpp>
@@ -87,7 +86,6 @@ void FrameConnection::close_after_flush(const std::string& reason) {
 }
 
 void FrameConnection::read_head() {
-  if (low_watermark_raised_) wake_at_bytes(1);
   asio::async_read(stream_, asio::buffer(head_),
                    [self = shared_from_this()](boost::system::error_code ec, std::size_t) {
                      if (!self->open_) return;
@@ -109,18 +107,8 @@ void FrameConnection::read_rest(const FrameHead& head) {
   // the coordinator merges and stores).
   const std::array<asio::mutable_buffer, 2> parts{
       asio::buffer(header_), asio::buffer(payload_.data(), head.payload_bytes)};
-  const std::size_t rest = head.header_bytes + head.payload_bytes;
-  // Before each read: a large frame's rest wakes the io thread once it has all arrived, not at
-  // each of the sender's chunks (a 194 kB result came in 3-4 reads and as many wake-ups). Only
-  // the frame's own bytes are awaited, which a peer that sends the frame sends; a plain socket
-  // only: under TLS the socket's bytes are records, some perhaps already read by OpenSSL.
-  auto wake_at_rest = [this, rest](boost::system::error_code ec, std::size_t read) -> std::size_t {
-    if (ec || read == rest) return 0;
-    if (rest >= kLowWatermarkFrom && !stream_.tls()) wake_at_bytes(rest - read);
-    return rest - read;
-  };
   asio::async_read(
-      stream_, parts, wake_at_rest,
+      stream_, parts,
       [self = shared_from_this(), type = head.type](boost::system::error_code ec, std::size_t) {
         if (!self->open_) return;
         if (ec) return self->close(ec.message());
@@ -139,14 +127,6 @@ void FrameConnection::read_rest(const FrameHead& head) {
           self->on_frame_(std::move(frame));
         if (self->open_) self->read_head();
       });
-}
-
-void FrameConnection::wake_at_bytes(std::size_t bytes) {
-  boost::system::error_code ignored;  // without it the reads wake as before
-  stream_.socket().set_option(asio::socket_base::receive_low_watermark(
-                                  static_cast<int>(std::min<std::size_t>(bytes, 1 << 30))),
-                              ignored);
-  low_watermark_raised_ = bytes > 1;
 }
 
 void FrameConnection::write_next() {

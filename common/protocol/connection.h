@@ -60,8 +60,6 @@ class FrameConnection : public std::enable_shared_from_this<FrameConnection> {
  private:
   void read_head();
   void read_rest(const FrameHead& head);
-  // The socket's receive low-watermark (SO_RCVLOWAT): reads wake once `bytes` have arrived.
-  void wake_at_bytes(std::size_t bytes);
   void write_next();
   void tick();
 
@@ -74,10 +72,6 @@ class FrameConnection : public std::enable_shared_from_this<FrameConnection> {
   CloseHandler on_close_;
   FrameTraffic traffic_;
   bool open_ = false;
-  bool low_watermark_raised_ = false;
-  // Frames whose rest (header and payload) is at least this many bytes raise the low-watermark:
-  // a result's pixels, a job's bundle; not the small messages, which arrive whole.
-  static constexpr std::size_t kLowWatermarkFrom = 16 << 10;
   std::uint8_t head_[kFrameHead] = {};
   std::string header_;
   Payload payload_;
