@@ -93,20 +93,18 @@ TEST(FrameConnection, ReadsFramesThatArriveTogetherOrInPieces) {
         if (received.size() == 4) receiver->close("done");
       },
       [](const std::string&) {});
-  // Large frames, whose rest is awaited whole (FrameConnection::wake_at_bytes), and small
-  // ones, all arriving together or cut through a head or a payload.
+  // Large frames (a result's size, read in several pieces) and small ones, arriving alone,
+  // cut through a head or a payload, or with the start of the next frame.
   const std::string large(200000, 'x'), small = "abc";
   const std::string frames[] = {encode_frame(Frame{MessageType::Result, {{"n", 0}}, large}),
                                 encode_frame(Frame{MessageType::Unit, {{"n", 1}}, small}),
                                 encode_frame(Frame{MessageType::Result, {{"n", 2}}, large}),
                                 encode_frame(Frame{MessageType::Unit, {{"n", 3}}, small})};
-  auto pieces = std::make_shared<std::vector<std::string>>(std::vector<std::string>{
-      frames[0],
-      frames[1],                    // alone: its head awaited with the watermark back at a byte
-      frames[2].substr(0, 5),       // a head cut in two
-      frames[2].substr(5, 100000),  // a payload cut in two
-      frames[2].substr(100005) + frames[3].substr(0, frames[3].size() - 1),
-      frames[3].substr(frames[3].size() - 1)});
+  auto pieces = std::make_shared<std::vector<std::string>>(
+      std::vector<std::string>{frames[0], frames[1], frames[2].substr(0, 5),  // a head cut in two
+                               frames[2].substr(5, 100000),  // a payload cut in two
+                               frames[2].substr(100005) + frames[3].substr(0, frames[3].size() - 1),
+                               frames[3].substr(frames[3].size() - 1)});
   write_pieces(a, pieces);
   io.run_for(std::chrono::seconds(5));
   ASSERT_EQ(received.size(), 4u);
