@@ -69,5 +69,50 @@ TEST(FrameConnection, ClosesOnOversizedFrameAndOnSilence) {
   EXPECT_NE(reason.find("silent"), std::string::npos) << reason;
 }
 
+// Writes `pieces` to `socket` one after the other, 30 ms apart.
+void write_pieces(tcp::socket& socket, std::shared_ptr<std::vector<std::string>> pieces,
+                  std::size_t i = 0) {
+  if (i == pieces->size()) return;
+  asio::async_write(socket, asio::buffer((*pieces)[i]), [&socket, pieces, i](auto ec, auto) {
+    ASSERT_FALSE(ec) << ec.message();
+    auto gap =
+        std::make_shared<asio::steady_timer>(socket.get_executor(), std::chrono::milliseconds(30));
+    gap->async_wait([&socket, pieces, i, gap](auto) { write_pieces(socket, pieces, i + 1); });
+  });
+}
+
+TEST(FrameConnection, ReadsFramesThatArriveTogetherOrInPieces) {
+  asio::io_context io;
+  auto [a, b] = socket_pair(io);
+  auto receiver =
+      std::make_shared<FrameConnection>(std::move(b), FrameLimits{}, ConnectionTiming{});
+  std::vector<Frame> received;
+  receiver->start(
+      [&](Frame f) {
+        received.push_back(std::move(f));
+        if (received.size() == 4) receiver->close("done");
+      },
+      [](const std::string&) {});
+  // Large frames (a result's size, read in several pieces) and small ones, arriving alone,
+  // cut through a head or a payload, or with the start of the next frame.
+  const std::string large(200000, 'x'), small = "abc";
+  const std::string frames[] = {encode_frame(Frame{MessageType::Result, {{"n", 0}}, large}),
+                                encode_frame(Frame{MessageType::Unit, {{"n", 1}}, small}),
+                                encode_frame(Frame{MessageType::Result, {{"n", 2}}, large}),
+                                encode_frame(Frame{MessageType::Unit, {{"n", 3}}, small})};
+  auto pieces = std::make_shared<std::vector<std::string>>(
+      std::vector<std::string>{frames[0], frames[1], frames[2].substr(0, 5),  // a head cut in two
+                               frames[2].substr(5, 100000),  // a payload cut in two
+                               frames[2].substr(100005) + frames[3].substr(0, frames[3].size() - 1),
+                               frames[3].substr(frames[3].size() - 1)});
+  write_pieces(a, pieces);
+  io.run_for(std::chrono::seconds(5));
+  ASSERT_EQ(received.size(), 4u);
+  for (int n = 0; n < 4; ++n) {
+    EXPECT_EQ(received[n].header["n"], n);
+    EXPECT_EQ(received[n].payload, n % 2 == 0 ? large : small);
+  }
+}
+
 }  // namespace
 }  // namespace tessera
