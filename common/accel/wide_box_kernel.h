@@ -7,10 +7,16 @@
 
 #include <optional>
 #include <string_view>
+#include <type_traits>
 
 namespace tessera {
 
 enum class WideBoxKernel { Scalar, Sse2, Avx2 };
+
+// The kernel a traversal was compiled for, as a type: its leaf visitor may use that instruction
+// set too (the mesh's four-triangle test, intersect_triangle_pair.h, under AVX2).
+template <WideBoxKernel kKernel>
+using WideBoxKernelTag = std::integral_constant<WideBoxKernel, kKernel>;
 
 // The kernel in use: the forced one if any, else TESSERA_BOX_KERNEL's if the CPU supports it,
 // else the widest the CPU supports.

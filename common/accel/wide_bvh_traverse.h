@@ -24,13 +24,13 @@ struct WideBvhPending {
 };
 
 // The loop below the root, testing boxes with `test_boxes(node.boxes, box_ray, far_limit,
-// entry)`. Instantiated once per kernel, each inlined whole (gnu::flatten) into a function
-// compiled for that kernel's instruction set, so that the visitor and the box test run in one
-// loop without calls.
-template <typename TestBoxes, typename VisitLeaf>
+// entry)` and passing `kernel` to the leaf visitor. Instantiated once per kernel, each inlined
+// whole (gnu::flatten) into a function compiled for that kernel's instruction set, so that the
+// visitor and the box test run in one loop without calls.
+template <typename Kernel, typename TestBoxes, typename VisitLeaf>
 inline void traverse_wide_bvh_below_root(const Bvh& bvh, const Ray& ray, double t_max,
                                          std::uint64_t& nodes_visited, VisitLeaf& visit_leaf,
-                                         TestBoxes test_boxes) {
+                                         Kernel kernel, TestBoxes test_boxes) {
   const FloatBoxRay box_ray(ray);
   float far_limit = float_far_limit(t_max);
   WideBvhPending stack[(kWideChildren - 1) * kBvhMaxDepth];  // a step pushes at most 7 a level
@@ -39,7 +39,7 @@ inline void traverse_wide_bvh_below_root(const Bvh& bvh, const Ray& ray, double 
   const BvhWideNode* wide = bvh.wide.data();
   for (;;) {
     if (current.count > 0) {
-      const double limit = visit_leaf(current.index, current.count, t_max);
+      const double limit = visit_leaf(current.index, current.count, t_max, kernel);
       if (limit < 0) return;
       if (limit != t_max) t_max = limit, far_limit = float_far_limit(t_max);
     } else {
@@ -81,6 +81,7 @@ template <typename VisitLeaf>
                                                std::uint64_t& nodes_visited,
                                                VisitLeaf& visit_leaf) {
   traverse_wide_bvh_below_root(bvh, ray, t_max, nodes_visited, visit_leaf,
+                               WideBoxKernelTag<WideBoxKernel::Scalar>{},
                                intersect_float_child_boxes_scalar);
 }
 
@@ -89,6 +90,7 @@ template <typename VisitLeaf>
 [[gnu::flatten]] void traverse_wide_bvh_sse2(const Bvh& bvh, const Ray& ray, double t_max,
                                              std::uint64_t& nodes_visited, VisitLeaf& visit_leaf) {
   traverse_wide_bvh_below_root(bvh, ray, t_max, nodes_visited, visit_leaf,
+                               WideBoxKernelTag<WideBoxKernel::Sse2>{},
                                intersect_float_child_boxes_sse2);
 }
 
@@ -100,17 +102,19 @@ template <typename VisitLeaf>
                                                                   std::uint64_t& nodes_visited,
                                                                   VisitLeaf& visit_leaf) {
   traverse_wide_bvh_below_root(bvh, ray, t_max, nodes_visited, visit_leaf,
+                               WideBoxKernelTag<WideBoxKernel::Avx2>{},
                                intersect_float_child_boxes_avx2);
 }
 #endif
 
 // Visits the leaves whose boxes the ray [0, t_max] may enter, nearer children first:
-// `visit_leaf(first, count, t_max)` gets the leaf's range [first, first + count) of
+// `visit_leaf(first, count, t_max, kernel)` gets the leaf's range [first, first + count) of
 // Bvh::primitive_order and returns the possibly shrunk t_max (closest hit) or a negative value to
-// stop the traversal (any-hit queries). `make_visit_leaf()` makes it once the ray enters the
-// root's box, so that a ray that misses the whole tree (most rays of a scene, for a mesh that
-// fills little of it) skips the leaves' per-ray preparation. Counts the boxes tested in
-// `nodes_visited` (kWideChildren per wide node).
+// stop the traversal (any-hit queries); `kernel`, a WideBoxKernelTag, names the instruction set
+// the loop around it was compiled for (a root that is a leaf is visited outside it: Scalar).
+// `make_visit_leaf()` makes it once the ray enters the root's box, so that a ray that misses the
+// whole tree (most rays of a scene, for a mesh that fills little of it) skips the leaves' per-ray
+// preparation. Counts the boxes tested in `nodes_visited` (kWideChildren per wide node).
 template <typename MakeVisitLeaf>
 void traverse_wide_bvh_leaves(const Bvh& bvh, const Ray& ray, double t_max,
                               std::uint64_t& nodes_visited, MakeVisitLeaf&& make_visit_leaf) {
@@ -123,7 +127,8 @@ void traverse_wide_bvh_leaves(const Bvh& bvh, const Ray& ray, double t_max,
   }
   auto visit_leaf = make_visit_leaf();
   if (root.count > 0) {
-    visit_leaf(root.first_or_second_child, root.count, t_max);
+    visit_leaf(root.first_or_second_child, root.count, t_max,
+               WideBoxKernelTag<WideBoxKernel::Scalar>{});
     return;
   }
   switch (wide_box_kernel()) {

@@ -1,5 +1,6 @@
 // Ray / triangle mesh intersection through the mesh's own BVH (shapes.h).
 #include <algorithm>
+#include <bit>
 #include <utility>
 
 #include "common/accel/wide_bvh_traverse.h"
@@ -9,8 +10,34 @@
 #include "common/math/float_error.h"
 
 namespace tessera {
+namespace {
 
-// Each traversal prepares the ray for the pair tests (prepare_triangle_pair_ray) only once it
+// How many positions of a leaf, from one with `remaining` left, the next test covers: four (two
+// pairs) in the traversal compiled for AVX2 while more than two remain, else one pair.
+template <typename Kernel>
+constexpr std::uint32_t triangle_test_width(Kernel, std::uint32_t remaining) {
+  return Kernel::value == WideBoxKernel::Avx2 && remaining > 2 ? 4 : 2;
+}
+
+// The triangles of leaf_pairs from `pairs` on, `width` of them (triangle_test_width); the lanes
+// hit as bits, lane i for the triangle at position 2 (pairs - leaf_pairs.data()) + i.
+template <typename Kernel>
+[[gnu::always_inline]] inline unsigned intersect_leaf_triangles(Kernel, const TrianglePair* pairs,
+                                                                std::uint32_t width,
+                                                                const TriangleLanesRay& lanes_ray,
+                                                                double t_max,
+                                                                TriangleLaneHits& hits) {
+#if defined(__SSE2__)
+  if constexpr (Kernel::value == WideBoxKernel::Avx2)
+    if (width == 4) return intersect_triangle_quad(pairs, lanes_ray, t_max, hits);
+#endif
+  (void)width;
+  return intersect_triangle_pair(*pairs, lanes_ray, t_max, hits);
+}
+
+}  // namespace
+
+// Each traversal prepares the ray for the lane tests (prepare_triangle_lanes_ray) only once it
 // enters the mesh's root box. The leaf visitors are forced inline into the traversal loop: as
 // calls, each leaf paid a stack frame and six saved registers, 5-10 % of a shadow ray's time
 // (tessera-embree-bench --cpu-time). GCC's attribute syntax: [[gnu::always_inline]] in that place
@@ -24,8 +51,9 @@ bool intersect_mesh(const MeshAccel& accel, bool interpolate_normals, const Ray&
   // Hits at equal t go to the smaller triangle index, whichever the traversal meets first: once
   // one is found, triangles are tested up to the next double above its t.
   traverse_wide_bvh_leaves(accel.bvh, ray, t_max, counters.bvh_nodes, [&] {
-    return [&, pair_ray = prepare_triangle_pair_ray(ray) ](
-        std::uint32_t first, std::uint32_t count, double t_limit) __attribute__((always_inline)) {
+    return [&, lanes_ray = prepare_triangle_lanes_ray(ray) ](
+        std::uint32_t first, std::uint32_t count, double t_limit, auto kernel)
+        __attribute__((always_inline)) {
       counters.triangle_tests += count;
       const auto take = [&](const TriangleHit& h, std::uint32_t position) {
         const std::uint32_t triangle = accel.bvh.primitive_order[position];
@@ -33,22 +61,28 @@ bool intersect_mesh(const MeshAccel& accel, bool interpolate_normals, const Ray&
         nearest = h, found_triangle = triangle, found = true;
         t_limit = h.t;
       };
-      for (std::uint32_t i = first; i < first + count; i += 2) {
-        const TrianglePair& pair = accel.leaf_pairs[i / 2];
+      const std::uint32_t end = first + count;
+      for (std::uint32_t i = first; i < end;) {
+        const TrianglePair* pairs = &accel.leaf_pairs[i / 2];
+        const std::uint32_t width = triangle_test_width(kernel, end - i);
         const double limit = found ? next_up(t_limit) : t_limit;
-        TrianglePairHits hits;
-        const unsigned lanes = intersect_triangle_pair(pair, pair_ray, limit, hits);
-        if (lanes == 0) continue;
-        if ((lanes & 1) != 0) take(hits.lane(0), i);
-        if ((lanes & 2) == 0) continue;
-        // One triangle at a time, lane 1 would have been tested against the limit after lane
-        // 0's hit, never a larger one: in the rare case that it changed, test it again with it.
-        const double limit_after = found ? next_up(t_limit) : t_limit;
-        TriangleHit h = hits.lane(1);
-        if (limit_after == limit ||
-            intersect_triangle(pair_corner(pair, 0, 1), pair_corner(pair, 1, 1),
-                               pair_corner(pair, 2, 1), pair_ray.ray, limit_after, h))
-          take(h, i + 1);
+        TriangleLaneHits hits;
+        const unsigned lanes =
+            intersect_leaf_triangles(kernel, pairs, width, lanes_ray, limit, hits);
+        for (unsigned rest = lanes; rest != 0; rest &= rest - 1) {
+          const int lane = std::countr_zero(rest);
+          // One triangle at a time, a lane would have been tested against the limit after the
+          // earlier lanes' hits, never a larger one: in the rare case that it changed, test it
+          // again with it.
+          const double limit_now = found ? next_up(t_limit) : t_limit;
+          const TrianglePair& pair = pairs[lane / 2];
+          TriangleHit h = hits.lane(lane);
+          if (limit_now == limit ||
+              intersect_triangle(pair_corner(pair, 0, lane % 2), pair_corner(pair, 1, lane % 2),
+                                 pair_corner(pair, 2, lane % 2), lanes_ray.ray, limit_now, h))
+            take(h, i + static_cast<std::uint32_t>(lane));
+        }
+        i += width;
       }
       return t_limit;
     };
@@ -63,19 +97,23 @@ bool occluded_mesh(const MeshAccel& accel, const Ray& ray, double t_max,
   if (accel.mesh == nullptr) return false;
   bool found = false;
   traverse_wide_bvh_leaves(accel.bvh, ray, t_max, counters.bvh_nodes, [&] {
-    return [&, pair_ray = prepare_triangle_pair_ray(ray) ](
-        std::uint32_t first, std::uint32_t count, double t_limit) __attribute__((always_inline)) {
+    return [&, lanes_ray = prepare_triangle_lanes_ray(ray) ](
+        std::uint32_t first, std::uint32_t count, double t_limit, auto kernel)
+        __attribute__((always_inline)) {
       const std::uint32_t end = first + count;
-      for (std::uint32_t i = first; i < end; i += 2) {
-        TrianglePairHits hits;
-        const unsigned lanes =
-            intersect_triangle_pair(accel.leaf_pairs[i / 2], pair_ray, t_limit, hits);
+      for (std::uint32_t i = first; i < end;) {
+        const std::uint32_t width = triangle_test_width(kernel, end - i);
+        TriangleLaneHits hits;
+        const unsigned lanes = intersect_leaf_triangles(kernel, &accel.leaf_pairs[i / 2], width,
+                                                        lanes_ray, t_limit, hits);
         if (lanes != 0) {
           // Counted as one at a time: up to the first triangle hit.
-          counters.triangle_tests += i - first + ((lanes & 1) != 0 ? 1 : 2);
+          counters.triangle_tests +=
+              i - first + static_cast<std::uint32_t>(std::countr_zero(lanes)) + 1;
           found = true;
           return -1.0;  // any hit will do
         }
+        i += width;
       }
       counters.triangle_tests += count;
       return t_limit;
@@ -91,16 +129,22 @@ std::vector<LocalHit> mesh_crossings(const MeshAccel& accel, bool interpolate_no
   const Mesh& mesh = *accel.mesh;
   std::vector<std::pair<TriangleHit, std::uint32_t>> hits;
   traverse_wide_bvh_leaves(accel.bvh, ray, t_max, counters.bvh_nodes, [&] {
-    return [&, pair_ray = prepare_triangle_pair_ray(ray) ](
-        std::uint32_t first, std::uint32_t count, double limit) __attribute__((always_inline)) {
+    return [&, lanes_ray = prepare_triangle_lanes_ray(ray) ](
+        std::uint32_t first, std::uint32_t count, double limit, auto kernel)
+        __attribute__((always_inline)) {
       counters.triangle_tests += count;
-      for (std::uint32_t i = first; i < first + count; i += 2) {
-        TrianglePairHits pair_hits;
-        const unsigned lanes =
-            intersect_triangle_pair(accel.leaf_pairs[i / 2], pair_ray, limit, pair_hits);
-        for (int lane = 0; lane < 2; ++lane)
-          if ((lanes >> lane & 1) != 0)
-            hits.emplace_back(pair_hits.lane(lane), accel.bvh.primitive_order[i + lane]);
+      const std::uint32_t end = first + count;
+      for (std::uint32_t i = first; i < end;) {
+        const std::uint32_t width = triangle_test_width(kernel, end - i);
+        TriangleLaneHits lane_hits;
+        const unsigned lanes = intersect_leaf_triangles(kernel, &accel.leaf_pairs[i / 2], width,
+                                                        lanes_ray, limit, lane_hits);
+        for (unsigned rest = lanes; rest != 0; rest &= rest - 1) {
+          const auto lane = static_cast<std::uint32_t>(std::countr_zero(rest));
+          hits.emplace_back(lane_hits.lane(static_cast<int>(lane)),
+                            accel.bvh.primitive_order[i + lane]);
+        }
+        i += width;
       }
       return limit;  // every hit, not only the nearest
     };

@@ -1,5 +1,5 @@
-// Two triangles of a mesh leaf laid out to be tested against a ray at once
-// (intersect_triangle_pair.h): MeshAccel::leaf_pairs.
+// Two triangles of a mesh leaf laid out to be tested against a ray at once, or four as two
+// adjacent pairs (intersect_triangle_pair.h): MeshAccel::leaf_pairs.
 #pragma once
 
 #include "common/math/vec3.h"

@@ -1,8 +1,9 @@
-// The two-at-a-time triangle test of mesh leaves: the SSE2 path (where the build has it) gives
-// bit for bit the hits of the scalar path, which is the one-triangle test of triangle.h per lane,
-// so that images do not depend on the CPU. Rays graze edges and vertices, start on or near the
-// triangles' planes (where the t error bound decides), meet t_max at the hit's exact t, and
-// lanes hold NaN corners (the padding of odd leaves) or huge coordinates.
+// The lane tests of mesh leaves, two triangles at a time (SSE2, where the build has it) and four
+// (AVX2, where the CPU has it): each gives bit for bit the hits of the scalar path, which is the
+// one-triangle test of triangle.h per lane, so that images do not depend on the CPU. Rays graze
+// edges and vertices, start on or near the triangles' planes (where the t error bound decides),
+// meet t_max at the hit's exact t, and lanes hold NaN corners (the padding of odd leaves) or huge
+// coordinates.
 #include "common/geometry/intersect_triangle_pair.h"
 
 #include <gtest/gtest.h>
@@ -35,29 +36,58 @@ void expect_same_bits(double a, double b, const char* what) {
   EXPECT_EQ(std::bit_cast<std::uint64_t>(a), std::bit_cast<std::uint64_t>(b)) << what;
 }
 
-// Both paths on one pair and ray; also checks lane by lane against the one-triangle test.
-// Returns the lanes hit.
-unsigned expect_paths_agree(const Corners& a, const Corners& b, const Ray& ray, double t_max) {
-  const TrianglePair pair = make_pair(a, b);
-  const TrianglePairRay pair_ray = prepare_triangle_pair_ray(ray);
-  const TriangleRay& triangle_ray = pair_ray.ray;
-  TrianglePairHits fast, scalar;
-  const unsigned fast_lanes = intersect_triangle_pair(pair, pair_ray, t_max, fast);
-  const unsigned scalar_lanes = intersect_triangle_pair_scalar(pair, triangle_ray, t_max, scalar);
-  EXPECT_EQ(fast_lanes, scalar_lanes);
-  const Corners* lanes[2] = {&a, &b};
-  for (int lane = 0; lane < 2; ++lane) {
+// The lanes of `fast` reported hit agree bit for bit with the one-triangle test on `corners`;
+// its lanes, `lane_count` from `first`, are bits 0 up of `fast_lanes`.
+void expect_lanes_match(const Corners* const corners[4], int first, int lane_count,
+                        unsigned fast_lanes, const TriangleLaneHits& fast,
+                        const TriangleRay& triangle_ray, double t_max, const char* path) {
+  for (int lane = 0; lane < lane_count; ++lane) {
+    const Corners& triangle = *corners[first + lane];
     TriangleHit single;
-    const bool hit = intersect_triangle(lanes[lane]->p[0], lanes[lane]->p[1], lanes[lane]->p[2],
-                                        triangle_ray, t_max, single);
-    EXPECT_EQ(hit, (scalar_lanes >> lane & 1) != 0);
+    const bool hit = intersect_triangle(triangle.p[0], triangle.p[1], triangle.p[2], triangle_ray,
+                                        t_max, single);
+    EXPECT_EQ(hit, (fast_lanes >> lane & 1) != 0) << path << " lane " << first + lane;
     if (!hit || (fast_lanes >> lane & 1) == 0) continue;
     expect_same_bits(fast.t[lane], single.t, "t");
     expect_same_bits(fast.b0[lane], single.b0, "b0");
     expect_same_bits(fast.b1[lane], single.b1, "b1");
     expect_same_bits(fast.b2[lane], single.b2, "b2");
   }
+}
+
+// Every path on the four triangles a, b, c, d (pairs a b and c d) and one ray: each pair alone,
+// both pairs at once with AVX2 where the CPU has it, and the scalar path, each checked lane by
+// lane against the one-triangle test. Returns the lanes hit (a: bit 0 ... d: bit 3).
+unsigned expect_paths_agree(const Corners& a, const Corners& b, const Corners& c, const Corners& d,
+                            const Ray& ray, double t_max) {
+  const TrianglePair pairs[2] = {make_pair(a, b), make_pair(c, d)};
+  const TriangleLanesRay lanes_ray = prepare_triangle_lanes_ray(ray);
+  const TriangleRay& triangle_ray = lanes_ray.ray;
+  const Corners* const corners[4] = {&a, &b, &c, &d};
+  TriangleLaneHits scalar;
+  const unsigned scalar_lanes =
+      intersect_triangle_lanes_scalar(pairs, 2, triangle_ray, t_max, scalar);
+  expect_lanes_match(corners, 0, 4, scalar_lanes, scalar, triangle_ray, t_max, "scalar");
+  for (int p = 0; p < 2; ++p) {
+    TriangleLaneHits pair_hits;
+    const unsigned pair_lanes = intersect_triangle_pair(pairs[p], lanes_ray, t_max, pair_hits);
+    expect_lanes_match(corners, 2 * p, 2, pair_lanes, pair_hits, triangle_ray, t_max, "pair");
+  }
+#if defined(__SSE2__)
+  if (__builtin_cpu_supports("avx2")) {
+    TriangleLaneHits quad_hits;
+    const unsigned quad_lanes = intersect_triangle_quad(pairs, lanes_ray, t_max, quad_hits);
+    expect_lanes_match(corners, 0, 4, quad_lanes, quad_hits, triangle_ray, t_max, "quad");
+  }
+#endif
   return scalar_lanes;
+}
+
+// Triangles a and b, both pairs (a b, and b a), for the cases written for pairs.
+unsigned expect_paths_agree(const Corners& a, const Corners& b, const Ray& ray, double t_max) {
+  const unsigned lanes = expect_paths_agree(a, b, b, a, ray, t_max);
+  EXPECT_EQ(lanes >> 2, (lanes & 1) << 1 | (lanes >> 1 & 1));
+  return lanes & 3;
 }
 
 Vec3 random_point(std::mt19937_64& rng, double scale) {
@@ -72,23 +102,26 @@ TEST(TrianglePair, PathsAgreeOnRandomTrianglesAndRays) {
   for (int i = 0; i < 20000; ++i) {
     const double scale = std::pow(10.0, 6 * u(rng) - 3);  // 1e-3 to 1e3
     const Vec3 centre = random_point(rng, std::pow(10.0, 5 * u(rng)));
-    Corners a, b;
-    for (Vec3& p : a.p) p = centre + random_point(rng, scale);
-    for (Vec3& p : b.p) p = centre + random_point(rng, scale);
-    // Aim at a random point of lane 0's triangle, its edge or its vertex.
+    Corners triangles[4];
+    for (Corners& triangle : triangles)
+      for (Vec3& p : triangle.p) p = centre + random_point(rng, scale);
+    // Aim at a random point of one lane's triangle, its edge or its vertex.
+    const Corners& aimed = triangles[(i / 3) % 4];
     const double w0 = u(rng), w1 = (1 - w0) * u(rng);
     const int kind = i % 3;
     const double v0 = kind == 2 ? 1 : w0, v1 = kind == 2 ? 0 : kind == 1 ? 1 - w0 : w1;
-    const Vec3 target = a.p[0] * v0 + a.p[1] * v1 + a.p[2] * (1 - v0 - v1);
+    const Vec3 target = aimed.p[0] * v0 + aimed.p[1] * v1 + aimed.p[2] * (1 - v0 - v1);
     const Vec3 origin = centre + random_point(rng, 4 * scale);
     const Ray ray{origin, (target - origin) * std::pow(10.0, 4 * u(rng) - 2)};
-    const unsigned lanes = expect_paths_agree(a, b, ray, kInfinity);
-    hits += std::popcount(lanes);
+    const auto agree = [&](double t_max) {
+      return std::popcount(
+          expect_paths_agree(triangles[0], triangles[1], triangles[2], triangles[3], ray, t_max));
+    };
+    hits += agree(kInfinity);
     // t_max at the hit's t and one step either side: the limit's comparisons.
     TriangleHit h;
-    if (intersect_triangle(a.p[0], a.p[1], a.p[2], ray, kInfinity, h)) {
-      for (const double limit : {h.t, next_up(h.t), next_down(h.t)})
-        tight += std::popcount(expect_paths_agree(a, b, ray, limit));
+    if (intersect_triangle(aimed.p[0], aimed.p[1], aimed.p[2], ray, kInfinity, h)) {
+      for (const double limit : {h.t, next_up(h.t), next_down(h.t)}) tight += agree(limit);
     }
   }
   EXPECT_GT(hits, 10000);  // the cases above must hit often to show anything
@@ -130,6 +163,10 @@ TEST(TrianglePair, NaNLanesAndSpecialRaysAgree) {
   expect_paths_agree(huge, triangle, down, kInfinity);
   EXPECT_EQ(expect_paths_agree(flat, triangle, down, kInfinity), 2u);
   EXPECT_EQ(expect_paths_agree(triangle, triangle, down, 1.0), 0u);  // t = 1 is not below 1
+  // Padding in either pair of a four-wide test, as in leaves of three.
+  EXPECT_EQ(expect_paths_agree(triangle, flat, triangle, padding, down, kInfinity), 5u);
+  EXPECT_EQ(expect_paths_agree(padding, padding, padding, triangle, down, kInfinity), 8u);
+  EXPECT_EQ(expect_paths_agree(padding, padding, padding, padding, down, kInfinity), 0u);
   for (const Ray& ray :
        {Ray{{0.25, 0.25, 1}, {0, 0, 0}}, Ray{{0.25, 0.25, 1}, {0, kNaN, -1}},
         Ray{{0.25, 0.25, 1}, {0, 0, -kInfinity}}, Ray{{0.25, 0.25, 0}, {0, 0, 1}},
