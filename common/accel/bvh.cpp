@@ -34,8 +34,7 @@ namespace tessera {
 namespace {
 
 constexpr int kBins = 16;
-constexpr std::uint32_t kMaxLeafSize = 4;
-// Cost of a traversal step relative to one primitive test.
+// Cost of a traversal step relative to one primitive test (of BvhLeafTests::group primitives).
 constexpr double kTraversalCost = 0.5;
 // Below this depth the SAH decides; deeper, object-median splits halve the primitive count,
 // which bounds the depth by kSahDepth + 32 < kBvhMaxDepth for any input.
@@ -109,8 +108,12 @@ std::uint32_t bin_of(double centroid, double lo, double scale) {
 // so that it may take a subtree of a larger side that is still being built.
 class Builder {
  public:
-  Builder(std::vector<BuildPrimitive>& primitives, Bvh& bvh, std::atomic<int>& spare_threads)
-      : primitives_(primitives), bvh_(bvh), spare_threads_(spare_threads) {}
+  Builder(std::vector<BuildPrimitive>& primitives, Bvh& bvh, std::atomic<int>& spare_threads,
+          BvhLeafTests leaf_tests)
+      : primitives_(primitives),
+        bvh_(bvh),
+        spare_threads_(spare_threads),
+        leaf_tests_(leaf_tests) {}
 
   void build(std::size_t begin, std::size_t end, int depth, const NodeBoxes& boxes) {
     bvh_.nodes.reserve(2 * (end - begin));
@@ -189,6 +192,11 @@ class Builder {
     double cost = std::numeric_limits<double>::infinity();
     int axis = -1, bin = 0;
   };
+  // The primitive tests a leaf of `count` costs: ceil(count / group).
+  double tests(std::uint32_t count) const {
+    return static_cast<double>((count + leaf_tests_.group - 1) / leaf_tests_.group);
+  }
+
   SahChoice cheapest_split(double area, const Vec3& extent) const {
     SahChoice best;
     for (int a = 0; a < 3; ++a) {
@@ -219,10 +227,9 @@ class Builder {
         const auto next = static_cast<std::size_t>(std::countr_zero(rest));
         left.extend(bins[b].bounds);
         n_left += bins[b].count;
-        const double cost =
-            kTraversalCost + (static_cast<double>(n_left) * left.bounds().surface_area() +
-                              static_cast<double>(right_count[next]) * right_area[next]) /
-                                 area;
+        const double cost = kTraversalCost + (tests(n_left) * left.bounds().surface_area() +
+                                              tests(right_count[next]) * right_area[next]) /
+                                                 area;
         if (cost < best.cost) best.cost = cost, best.axis = a, best.bin = static_cast<int>(b);
       }
     }
@@ -279,8 +286,8 @@ class Builder {
                        extent.z > 0 ? kBins / extent.z : 0};
       bin(begin, end, centroids.lo, scale);
       choice = cheapest_split(area, extent);
-      const bool leaf =
-          choice.axis >= 0 && count <= kMaxLeafSize && static_cast<double>(count) <= choice.cost;
+      const bool leaf = choice.axis >= 0 && count <= leaf_tests_.max_size &&
+                        tests(static_cast<std::uint32_t>(count)) <= choice.cost;
       if (choice.axis >= 0 && !leaf) {
         axis = choice.axis;
         split = partition(begin, end, choice, centroids, scale, first, second);
@@ -307,7 +314,8 @@ class Builder {
       {
         std::jthread second_builder([&] {
           try {
-            Builder(primitives_, second_tree, spare_threads_).build(split, end, depth + 1, second);
+            Builder(primitives_, second_tree, spare_threads_, leaf_tests_)
+                .build(split, end, depth + 1, second);
           } catch (...) {
             second_failure = std::current_exception();
           }
@@ -346,14 +354,16 @@ class Builder {
 
   std::vector<BuildPrimitive>& primitives_;  // shared; each Builder reorders only its range
   Bvh& bvh_;
-  std::atomic<int>& spare_threads_;             // shared by all Builders of one tree
+  std::atomic<int>& spare_threads_;  // shared by all Builders of one tree
+  const BvhLeafTests leaf_tests_;
   std::array<std::array<Bin, kBins>, 3> bins_;  // one node's at a time
   std::array<unsigned, 3> occupied_{};          // bit b: bins_[axis][b] is not empty
 };
 
 }  // namespace
 
-Bvh build_bvh_nodes(std::span<const Bounds3> primitive_bounds, BvhMode mode, int threads) {
+Bvh build_bvh_nodes(std::span<const Bounds3> primitive_bounds, BvhMode mode, int threads,
+                    BvhLeafTests leaf_tests) {
   Bvh bvh;
   if (primitive_bounds.empty()) return bvh;
   if (mode == BvhMode::None) {
@@ -375,7 +385,7 @@ Bvh build_bvh_nodes(std::span<const Bounds3> primitive_bounds, BvhMode mode, int
     primitives.push_back({MinBox::of(b), b.centroid(), static_cast<std::uint32_t>(i)});
   }
   std::atomic<int> spare_threads = threads - 1;  // the caller's thread builds too
-  Builder(primitives, bvh, spare_threads).build();
+  Builder(primitives, bvh, spare_threads, leaf_tests).build();
   return bvh;
 }
 

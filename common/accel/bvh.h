@@ -62,9 +62,19 @@ struct Bvh {
   std::vector<BvhWideNode> wide;  // make_bvh_wide, for wide_bvh_traverse.h
 };
 
+// How the SAH prices a leaf: its primitives are tested `group` at a time, so a leaf of n costs
+// ceil(n / group) tests (a traversal step costs half of one), and a leaf holds at most
+// `max_size`. The scene's objects are tested one at a time; a mesh's triangles four at a time
+// with AVX2 (intersect_triangle_pair.h), whose larger leaves save node visits (MeshAccel).
+struct BvhLeafTests {
+  std::uint32_t group = 1;
+  std::uint32_t max_size = 4;
+};
+
 // The binary tree (nodes and primitive_order), without a traversal form. `threads` (the
 // caller's included) may build large subtrees at once; the tree is the same for any count.
-Bvh build_bvh_nodes(std::span<const Bounds3> primitive_bounds, BvhMode mode, int threads = 1);
+Bvh build_bvh_nodes(std::span<const Bounds3> primitive_bounds, BvhMode mode, int threads = 1,
+                    BvhLeafTests leaf_tests = {});
 // build_bvh_nodes and make_bvh_pairs.
 Bvh build_bvh(std::span<const Bounds3> primitive_bounds, BvhMode mode, int threads = 1);
 // Fills bvh.pairs from bvh.nodes (build_bvh does; for hand-made trees).
