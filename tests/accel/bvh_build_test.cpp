@@ -21,7 +21,8 @@ namespace tessera {
 namespace {
 
 // The reference: commit 66e52a1's SAH build, condensed but with the same operations in the
-// same order (the order of std::partition's and std::nth_element's moves included).
+// same order (the order of std::partition's and std::nth_element's moves included), with the
+// leaves priced as BvhLeafTests says (ceil(n / group) tests, at most max_size a leaf).
 namespace reference {
 
 constexpr int kBins = 16;
@@ -35,6 +36,9 @@ struct Primitive {
 struct Builder {
   std::vector<Primitive> p;
   Bvh& bvh;
+  BvhLeafTests leaf_tests;
+
+  double tests(std::size_t n) const { return std::ceil(static_cast<double>(n) / leaf_tests.group); }
 
   static std::uint32_t bin_of(const Primitive& q, int axis, double lo, double scale) {
     const double x = (q.centroid[axis] - lo) * scale;
@@ -86,15 +90,15 @@ struct Builder {
           left.extend(bin_bounds[b]);
           n_left += bin_counts[b];
           if (n_left == 0 || right_count[b + 1] == 0) continue;
-          const double cost = 0.5 + (static_cast<double>(n_left) * left.surface_area() +
-                                     static_cast<double>(right_count[b + 1]) * right_area[b + 1]) /
+          const double cost = 0.5 + (tests(n_left) * left.surface_area() +
+                                     tests(right_count[b + 1]) * right_area[b + 1]) /
                                         area;
           if (cost < best_cost) best_cost = cost, best_axis = a, best_bin = b;
         }
       }
       if (best_axis >= 0) {
         axis = best_axis;
-        if (end - begin <= 4 && static_cast<double>(end - begin) <= best_cost) return leaf();
+        if (end - begin <= leaf_tests.max_size && tests(end - begin) <= best_cost) return leaf();
         const double lo = centroids.lo[axis], scale = kBins / extent[axis];
         split =
             static_cast<std::size_t>(std::partition(at(begin), at(end),
@@ -120,9 +124,9 @@ struct Builder {
   }
 };
 
-Bvh build_sah(const std::vector<Bounds3>& boxes) {
+Bvh build_sah(const std::vector<Bounds3>& boxes, BvhLeafTests leaf_tests) {
   Bvh bvh;
-  Builder builder{{}, bvh};
+  Builder builder{{}, bvh, leaf_tests};
   for (std::size_t i = 0; i < boxes.size(); ++i) {
     const Bounds3& b = boxes[i];
     if (b.empty() || !is_finite(b.lo) || !is_finite(b.hi)) continue;
@@ -178,13 +182,28 @@ void expect_same_tree(const Bvh& expected, const Bvh& actual) {
   }
 }
 
-// The same tree as the reference's, built with one thread and with several.
+// The leaf pricing of mesh BVHs (mesh_accel.cpp).
+constexpr BvhLeafTests kMeshLeafTests{.group = 4, .max_size = 8};
+
+// The same tree as the reference's, built with one thread and with several, with the default
+// leaf pricing and with the meshes'.
 void expect_same_tree(const std::vector<Bounds3>& boxes) {
-  const Bvh expected = reference::build_sah(boxes);
-  for (const int threads : {1, 2, 3, 8}) {
-    SCOPED_TRACE(testing::Message() << threads << " threads");
-    expect_same_tree(expected, build_bvh(boxes, BvhMode::Sah, threads));
+  for (const BvhLeafTests leaf_tests : {BvhLeafTests{}, kMeshLeafTests}) {
+    const Bvh expected = reference::build_sah(boxes, leaf_tests);
+    for (const int threads : {1, 2, 3, 8}) {
+      SCOPED_TRACE(testing::Message() << threads << " threads, leaf tests of " << leaf_tests.group);
+      Bvh actual = build_bvh_nodes(boxes, BvhMode::Sah, threads, leaf_tests);
+      make_bvh_pairs(actual);
+      expect_same_tree(expected, actual);
+    }
   }
+}
+
+// The largest leaf of a tree.
+std::uint32_t largest_leaf(const Bvh& bvh) {
+  std::uint32_t largest = 0;
+  for (const BvhNode& node : bvh.nodes) largest = std::max(largest, node.count);
+  return largest;
 }
 
 TEST(BvhBuild, SameTreeAsTheReferenceOnRandomBoxes) {
@@ -268,6 +287,10 @@ TEST(BvhBuild, SameTreeOnATriangleMesh) {
       }
   expect_same_tree(boxes);
   EXPECT_GT(nodes_with_negative_zero(build_bvh(boxes, BvhMode::Sah)), 0);
+  // Priced as tests of four, some leaves hold more than the default's four, none more than 8.
+  EXPECT_EQ(largest_leaf(build_bvh(boxes, BvhMode::Sah)), 4u);
+  EXPECT_GT(largest_leaf(build_bvh_nodes(boxes, BvhMode::Sah, 1, kMeshLeafTests)), 4u);
+  EXPECT_LE(largest_leaf(build_bvh_nodes(boxes, BvhMode::Sah, 1, kMeshLeafTests)), 8u);
 }
 
 }  // namespace
