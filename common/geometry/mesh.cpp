@@ -12,26 +12,23 @@
 namespace tessera {
 namespace {
 
-// How many positions of a leaf, from one with `remaining` left, the next test covers: four (two
-// pairs) in the traversal compiled for AVX2 while more than two remain, else one pair.
+// Tests the triangles of a leaf ending at `end` from its position i (even) on: four (two pairs)
+// in the traversal compiled for AVX2 while more than two remain, else one pair; `next` receives
+// the position after them. Returns the lanes hit as bits, lane l for the triangle at i + l.
 template <typename Kernel>
-constexpr std::uint32_t triangle_test_width(Kernel, std::uint32_t remaining) {
-  return Kernel::value == WideBoxKernel::Avx2 && remaining > 2 ? 4 : 2;
-}
-
-// The triangles of leaf_pairs from `pairs` on, `width` of them (triangle_test_width); the lanes
-// hit as bits, lane i for the triangle at position 2 (pairs - leaf_pairs.data()) + i.
-template <typename Kernel>
-[[gnu::always_inline]] inline unsigned intersect_leaf_triangles(Kernel, const TrianglePair* pairs,
-                                                                std::uint32_t width,
-                                                                const TriangleLanesRay& lanes_ray,
-                                                                double t_max,
-                                                                TriangleLaneHits& hits) {
+[[gnu::always_inline]] inline unsigned intersect_leaf_triangles(
+    Kernel, const MeshAccel& accel, std::uint32_t i, std::uint32_t end,
+    const TriangleLanesRay& lanes_ray, double t_max, TriangleLaneHits& hits, std::uint32_t& next) {
+  const TrianglePair* pairs = &accel.leaf_pairs[i / 2];
 #if defined(__SSE2__)
-  if constexpr (Kernel::value == WideBoxKernel::Avx2)
-    if (width == 4) return intersect_triangle_quad(pairs, lanes_ray, t_max, hits);
+  if constexpr (Kernel::value == WideBoxKernel::Avx2) {
+    if (end - i > 2) {
+      next = i + 4;
+      return intersect_triangle_quad(pairs, lanes_ray, t_max, hits);
+    }
+  }
 #endif
-  (void)width;
+  next = i + 2;
   return intersect_triangle_pair(*pairs, lanes_ray, t_max, hits);
 }
 
@@ -62,27 +59,24 @@ bool intersect_mesh(const MeshAccel& accel, bool interpolate_normals, const Ray&
         t_limit = h.t;
       };
       const std::uint32_t end = first + count;
-      for (std::uint32_t i = first; i < end;) {
-        const TrianglePair* pairs = &accel.leaf_pairs[i / 2];
-        const std::uint32_t width = triangle_test_width(kernel, end - i);
+      for (std::uint32_t i = first, next; i < end; i = next) {
         const double limit = found ? next_up(t_limit) : t_limit;
         TriangleLaneHits hits;
         const unsigned lanes =
-            intersect_leaf_triangles(kernel, pairs, width, lanes_ray, limit, hits);
+            intersect_leaf_triangles(kernel, accel, i, end, lanes_ray, limit, hits, next);
         for (unsigned rest = lanes; rest != 0; rest &= rest - 1) {
           const int lane = std::countr_zero(rest);
           // One triangle at a time, a lane would have been tested against the limit after the
           // earlier lanes' hits, never a larger one: in the rare case that it changed, test it
           // again with it.
           const double limit_now = found ? next_up(t_limit) : t_limit;
-          const TrianglePair& pair = pairs[lane / 2];
+          const TrianglePair& pair = accel.leaf_pairs[(i + static_cast<std::uint32_t>(lane)) / 2];
           TriangleHit h = hits.lane(lane);
           if (limit_now == limit ||
               intersect_triangle(pair_corner(pair, 0, lane % 2), pair_corner(pair, 1, lane % 2),
                                  pair_corner(pair, 2, lane % 2), lanes_ray.ray, limit_now, h))
             take(h, i + static_cast<std::uint32_t>(lane));
         }
-        i += width;
       }
       return t_limit;
     };
@@ -101,11 +95,10 @@ bool occluded_mesh(const MeshAccel& accel, const Ray& ray, double t_max,
         std::uint32_t first, std::uint32_t count, double t_limit, auto kernel)
         __attribute__((always_inline)) {
       const std::uint32_t end = first + count;
-      for (std::uint32_t i = first; i < end;) {
-        const std::uint32_t width = triangle_test_width(kernel, end - i);
+      for (std::uint32_t i = first, next; i < end; i = next) {
         TriangleLaneHits hits;
-        const unsigned lanes = intersect_leaf_triangles(kernel, &accel.leaf_pairs[i / 2], width,
-                                                        lanes_ray, t_limit, hits);
+        const unsigned lanes =
+            intersect_leaf_triangles(kernel, accel, i, end, lanes_ray, t_limit, hits, next);
         if (lanes != 0) {
           // Counted as one at a time: up to the first triangle hit.
           counters.triangle_tests +=
@@ -113,7 +106,6 @@ bool occluded_mesh(const MeshAccel& accel, const Ray& ray, double t_max,
           found = true;
           return -1.0;  // any hit will do
         }
-        i += width;
       }
       counters.triangle_tests += count;
       return t_limit;
@@ -134,17 +126,15 @@ std::vector<LocalHit> mesh_crossings(const MeshAccel& accel, bool interpolate_no
         __attribute__((always_inline)) {
       counters.triangle_tests += count;
       const std::uint32_t end = first + count;
-      for (std::uint32_t i = first; i < end;) {
-        const std::uint32_t width = triangle_test_width(kernel, end - i);
+      for (std::uint32_t i = first, next; i < end; i = next) {
         TriangleLaneHits lane_hits;
-        const unsigned lanes = intersect_leaf_triangles(kernel, &accel.leaf_pairs[i / 2], width,
-                                                        lanes_ray, limit, lane_hits);
+        const unsigned lanes =
+            intersect_leaf_triangles(kernel, accel, i, end, lanes_ray, limit, lane_hits, next);
         for (unsigned rest = lanes; rest != 0; rest &= rest - 1) {
           const auto lane = static_cast<std::uint32_t>(std::countr_zero(rest));
           hits.emplace_back(lane_hits.lane(static_cast<int>(lane)),
                             accel.bvh.primitive_order[i + lane]);
         }
-        i += width;
       }
       return limit;  // every hit, not only the nearest
     };
