@@ -24,6 +24,11 @@ void FrameBuffer::take_memory() {
   counts_.resize(pixels);
 }
 
+void FrameBuffer::clear() {
+  std::fill(sums_.begin(), sums_.end(), 0.0f);
+  std::fill(counts_.begin(), counts_.end(), std::uint16_t{0});
+}
+
 void FrameBuffer::throw_full() {
   throw std::length_error("a pixel of the frame buffer has the most passes it can count");
 }

@@ -207,9 +207,13 @@ Image render_image(const PreparedScene& scene, const RenderSettings& settings, i
   const int tiles_y = (area.height() + kTileSize - 1) / kTileSize;
   const long long tile_count = static_cast<long long>(tiles_x) * tiles_y;
 
-  // Tiles own disjoint pixels, so threads add to the frame buffer without locking; each
-  // pixel receives its passes in pass order, as on the coordinator.
-  FrameBuffer frame(settings.width, settings.height);
+  // Tiles own disjoint pixels, so threads write the image without locking. Each thread
+  // averages a tile's passes in a tile-sized frame buffer, in pass order as on the coordinator,
+  // and writes their means into the image when the tile is done. A frame buffer of the whole
+  // image cost more: a page fault for every 4 kB of it first written (14 bytes a pixel, freshly
+  // mapped) and, after the threads, a pass over it on one (docs/PERFORMANCE.md, "The second
+  // thread").
+  Image image(settings.width, settings.height);
   std::atomic<long long> next{0}, done{0};
   std::mutex stats_mutex;
   // The first exception of any thread (RenderInterrupted, or running out of memory): the
@@ -219,23 +223,28 @@ Image render_image(const PreparedScene& scene, const RenderSettings& settings, i
   auto work = [&] {
     RenderStats local;
     std::vector<Rgb> values(kTileSize * kTileSize);
+    FrameBuffer tile(kTileSize, kTileSize);
     try {
       for (long long t; !failed && (t = next.fetch_add(1)) < tile_count;) {
         const int tx = static_cast<int>(t % tiles_x), ty = static_cast<int>(t / tiles_x);
         const PixelRect rect{area.x0 + tx * kTileSize, area.y0 + ty * kTileSize,
                              std::min(area.x1, area.x0 + (tx + 1) * kTileSize),
                              std::min(area.y1, area.y0 + (ty + 1) * kTileSize)};
+        tile.clear();
         for (int pass = 0; pass < settings.passes; ++pass) {
           render_pass(scene, settings, rect, pass, values, local, interrupt);
           std::size_t i = 0;
-          for (int y = rect.y0; y < rect.y1; ++y)
-            for (int x = rect.x0; x < rect.x1; ++x, ++i) {
+          for (int y = 0; y < rect.height(); ++y)
+            for (int x = 0; x < rect.width(); ++x, ++i) {
               const float rgb[3] = {static_cast<float>(values[i].r),
                                     static_cast<float>(values[i].g),
                                     static_cast<float>(values[i].b)};
-              frame.add_pass(x, y, rgb);
+              tile.add_pass(x, y, rgb);
             }
         }
+        for (int y = 0; y < rect.height(); ++y)
+          for (int x = 0; x < rect.width(); ++x)
+            image.set(rect.x0 + x, rect.y0 + y, tile.mean(x, y));
         const long long finished = done.fetch_add(1) + 1;
         if (progress) progress(finished, tile_count);
       }
@@ -252,7 +261,6 @@ Image render_image(const PreparedScene& scene, const RenderSettings& settings, i
   work();
   for (std::thread& t : pool) t.join();
   if (failure) std::rethrow_exception(failure);
-  Image image = frame.resolve();
   if (settings.normalize_colors) post_normalize(image, settings.normalize_brightness);
   stats.seconds += std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   return image;

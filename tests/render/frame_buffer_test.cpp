@@ -87,6 +87,22 @@ TEST(FrameBuffer, ARunWithAFullPixelAddsNothing) {
   EXPECT_EQ(shown[0], 0.0f);  // no passes: black
 }
 
+// A cleared frame buffer is a new one: passes added after clear() average as if none came
+// before (render_image reuses one for tile after tile).
+TEST(FrameBuffer, ClearedIsLikeNew) {
+  FrameBuffer reused(3, 2), fresh(3, 2);
+  const float before[3] = {5, -7, 9}, after[3] = {0.25f, 0.5f, 2};
+  for (int p = 0; p < 3; ++p) reused.add_pass(1, 1, before);
+  reused.add_pass(2, 0, before);
+  reused.clear();
+  EXPECT_EQ(reused.passes_at(1, 1), 0u);
+  EXPECT_EQ(reused.mean(2, 0), Rgb{});
+  reused.add_pass(1, 1, after);
+  fresh.add_pass(1, 1, after);
+  EXPECT_EQ(reused.passes_at(1, 1), 1u);
+  EXPECT_EQ(reused.resolve(), fresh.resolve());
+}
+
 // The process's mapped and resident memory in bytes (Linux).
 struct Memory {
   long mapped = -1, resident = -1;
