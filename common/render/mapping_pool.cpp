@@ -75,6 +75,11 @@ void MappingPool::release_idle(Clock::time_point now) {
   release_idle_locked(now);
 }
 
+void MappingPool::renew(Clock::time_point now) {
+  std::lock_guard lock(mutex_);
+  for (Kept& k : kept_) k.since = now;
+}
+
 void MappingPool::release_idle_locked(Clock::time_point now) {
   std::erase_if(kept_, [&](const Kept& k) {
     if (now - k.since < limits_.idle) return false;

@@ -7,8 +7,8 @@
 //
 // Bounded both ways, so that the memory still goes back to the system: at most max_bytes are
 // kept (the oldest go first), and a mapping kept longer than `idle` is unmapped at the next
-// call (the coordinator calls release_idle on its tick). Linux only; elsewhere the allocator
-// uses calloc.
+// call. The coordinator renews the kept mappings on its tick while jobs run and lets them go
+// `idle` after the last one (idle_memory.h). Linux only; elsewhere the allocator uses calloc.
 #pragma once
 
 #include <chrono>
@@ -44,6 +44,11 @@ class MappingPool {
   void give(void* mapping, std::size_t bytes, Clock::time_point now = Clock::now());
   // Unmaps what was kept longer than the idle limit.
   void release_idle(Clock::time_point now = Clock::now());
+  // Starts every kept mapping's idle time again at `now`. A finished job's buffer is taken by
+  // the job after next (the next one starts while it is still encoded), so it waits a whole
+  // job; kept only `idle` from its give, it was unmapped during jobs longer than that, and
+  // the job after next zeroed new pages again (docs/SCALING.md).
+  void renew(Clock::time_point now = Clock::now());
   std::size_t kept_bytes() const;
 
  private:

@@ -533,7 +533,7 @@ void Api::on_released(Job& job) {
     final_encoding.bytes.reset();
   }
   pool_.submit(
-      [this, id, version, snapshot = job.snapshot()] {
+      [this, id, version, snapshot = job.snapshot(), record = JobPersistence::DoneJob(job)] {
         Job::Encodings encodings;
         try {
           const Image image = snapshot.image();
@@ -550,11 +550,15 @@ void Api::on_released(Job& job) {
           spdlog::error("the final image of job {}: {}", id, e.what());
           encodings.clear();
         }
-        return std::function<void()>([this, id, version, encodings] {
-          Job* done = jobs_.find(id);
+        // Stored here, off the io thread (store_images).
+        std::optional<StoreError> unstored;
+        if (config_.persistence && !encodings.empty())
+          unstored = config_.persistence->store_images(record, encodings);
+        return std::function<void()>([this, id, version, encodings, unstored] {
+          Job* done = jobs_.find(id);  // gone if deleted meanwhile (its write failed or undone)
           if (done && !encodings.empty()) {
             done->keep_encodings(encodings);
-            if (config_.persistence) config_.persistence->store_images(*done);
+            if (unstored) config_.persistence->fail_unstored(*done, *unstored);
           }
           // The job keeps them now (one that could not store them failed: no image), not
           // this cache; requests still waiting (for a format that failed) get a 404.

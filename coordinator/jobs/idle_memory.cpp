@@ -5,12 +5,13 @@
 namespace tessera {
 
 bool IdleMemory::tick(bool jobs_unfinished, Clock::time_point now) {
-  MappingPool::shared().release_idle(now);
   if (jobs_unfinished) {
+    pool_.renew(now);
     busy_ = now;
     trimmed_ = false;
     return false;
   }
+  pool_.release_idle(now);
   if (trimmed_ || now - busy_ < after_) return false;
   malloc_trim(0);  // glibc gives freed heap back only when trimmed
   trimmed_ = true;

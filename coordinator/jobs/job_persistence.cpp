@@ -75,23 +75,32 @@ void JobPersistence::state_changed(const Job& job) {
   }
 }
 
-void JobPersistence::store_images(Job& job) {
-  std::vector<StoredImage> images;
-  for (const auto& [format, bytes] : job.final_encoded())
-    if (bytes) images.push_back({"image." + format, *bytes});
-  const WallClock::time_point finished = to_wall(job.finished().value_or(Clock::now()));
+JobPersistence::DoneJob::DoneJob(const Job& job)
+    : id(job.id), error(job.error()), finished(job.finished().value_or(Clock::now())) {}
+
+std::optional<StoreError> JobPersistence::store_images(const DoneJob& job,
+                                                       const Job::Encodings& images) {
+  std::vector<StoredImage> stored;
+  for (const auto& [format, bytes] : images)
+    if (bytes) stored.push_back({"image." + format, *bytes});
   try {
-    db_.finish_job(job.id, to_string(job.state()), job.error(), finished, images);
+    db_.finish_job(job.id, to_string(JobState::Done), job.error, to_wall(job.finished), stored);
   } catch (const StoreError& e) {
-    // Kept only in memory, the job would come back after a restart as what the store holds
-    // of it: it fails now, and that (a small write, after the failed one rolled back) is kept.
-    job.fail_unstored("cannot store the job's results: " + e.cause());
-    spdlog::error("job {} failed: its results cannot be stored: {}", job.id, e.cause());
-    try {
-      db_.finish_job(job.id, to_string(job.state()), job.error(), finished, {});
-    } catch (const StoreError& again) {
-      spdlog::error("job {}: its failure cannot be stored either: {}", job.id, again.cause());
-    }
+    return e;
+  }
+  return std::nullopt;
+}
+
+void JobPersistence::fail_unstored(Job& job, const StoreError& e) {
+  // Kept only in memory, the job would come back after a restart as what the store holds of
+  // it: it fails now, and that (a small write, after the failed one rolled back) is kept.
+  job.fail_unstored("cannot store the job's results: " + e.cause());
+  spdlog::error("job {} failed: its results cannot be stored: {}", job.id, e.cause());
+  try {
+    db_.finish_job(job.id, to_string(job.state()), job.error(),
+                   to_wall(job.finished().value_or(Clock::now())), {});
+  } catch (const StoreError& again) {
+    spdlog::error("job {}: its failure cannot be stored either: {}", job.id, again.cause());
   }
 }
 

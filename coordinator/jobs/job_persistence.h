@@ -5,7 +5,8 @@
 // files. At start,
 // restore() rebuilds every stored job under its old id: finished ones with their images,
 // unfinished ones by replaying their results into a fresh Job, which the scheduler resumes.
-// A write that fails fails the jobs it concerned; the coordinator goes on. On the io thread.
+// A write that fails fails the jobs it concerned; the coordinator goes on. On the io thread
+// (store_images excepted).
 #pragma once
 
 #include <chrono>
@@ -13,6 +14,7 @@
 #include <filesystem>
 #include <functional>
 #include <map>
+#include <optional>
 #include <string>
 
 #include "coordinator/jobs/job_store.h"
@@ -32,9 +34,21 @@ class JobPersistence : public JobObserver {
   void merged(const Job& job, int unit, FloatValues values, const RenderStats& stats,
               const std::string& worker) override;
   void state_changed(const Job& job) override;
-  // A done job's final images are encoded (Job::final_encoded): stores them with its state.
-  // When that write fails the job fails (its images dropped) with the store's error.
-  void store_images(Job& job);
+  // What store_images writes of a done job besides its images, taken on the io thread.
+  struct DoneJob {
+    std::int64_t id;
+    std::string error;
+    Clock::time_point finished;
+    explicit DoneJob(const Job& job);
+  };
+  // A done job's final images, just encoded, stored with its state. Thread-safe, unlike the
+  // rest: called on the thread that encoded them, since the write (the images' files and the
+  // results queued since the last tick) took 5-7 % of the io thread's time while the next job
+  // merged (docs/SCALING.md). Returns the store's error when it failed (nothing stored).
+  std::optional<StoreError> store_images(const DoneJob& job, const Job::Encodings& images);
+  // On the io thread after store_images failed: the job fails, its images dropped, with the
+  // store's error, and that is stored.
+  void fail_unstored(Job& job, const StoreError& e);
   // Every tick: fails in the scheduler the jobs whose write failed (in earlier ticks' writes),
   // applies retention (jobs it deleted leave `jobs`), then has the store's thread write the
   // queued results.

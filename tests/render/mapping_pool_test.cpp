@@ -82,6 +82,23 @@ TEST(MappingPool, ReleasesWhatStayedIdle) {
   pool.release_idle(now + 8s);
   EXPECT_EQ(pool.kept_bytes(), 0u);
 }
+
+// A renewed mapping stays the idle limit from its renewal, not from its give: a finished job's
+// buffer waits through a running job longer than the limit for the job after it.
+TEST(MappingPool, KeepsARenewedMappingTheIdleLimitFromItsRenewal) {
+  MappingPool pool({.max_bytes = 64 * kMB, .idle = 5s});
+  const auto now = MappingPool::Clock::now();
+  void* mapping = pool.take(4 * kMB, now);
+  pool.give(mapping, 4 * kMB, now);
+  pool.renew(now + 4s);
+  pool.renew(now + 8s);
+  pool.release_idle(now + 12s);
+  EXPECT_EQ(pool.kept_bytes(), 4 * kMB);
+  EXPECT_EQ(pool.take(4 * kMB, now + 12s), mapping);
+  pool.give(mapping, 4 * kMB, now + 12s);
+  pool.release_idle(now + 17s);
+  EXPECT_EQ(pool.kept_bytes(), 0u);
+}
 #endif
 
 }  // namespace

@@ -23,5 +23,22 @@ TEST(IdleMemory, TrimsOnceAfterTheLastJobNeverWhileOneRuns) {
   EXPECT_TRUE(memory.tick(false, t + 22s));
 }
 
+#if defined(__linux__)
+// A finished job's frame buffer stays in the pool while jobs run, however long, and goes back
+// the idle time after the last one.
+TEST(IdleMemory, KeepsPooledBuffersWhileJobsRunAndReleasesThemAfter) {
+  constexpr std::size_t kBytes = std::size_t{4} << 20;
+  MappingPool pool({.max_bytes = 4 * kBytes, .idle = 5s});
+  IdleMemory memory(5s, pool);
+  const auto t = IdleMemory::Clock::now();
+  pool.give(pool.take(kBytes, t), kBytes, t);
+  for (auto s = 1s; s <= 20s; s += 1s) memory.tick(true, t + s);
+  memory.tick(false, t + 24s);
+  EXPECT_EQ(pool.kept_bytes(), kBytes);
+  memory.tick(false, t + 26s);
+  EXPECT_EQ(pool.kept_bytes(), 0u);
+}
+#endif
+
 }  // namespace
 }  // namespace tessera
