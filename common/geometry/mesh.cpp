@@ -47,7 +47,7 @@ bool intersect_mesh(const MeshAccel& accel, bool interpolate_normals, const Ray&
   TriangleHit nearest;
   // Hits at equal t go to the smaller triangle index, whichever the traversal meets first: once
   // one is found, triangles are tested up to the next double above its t.
-  traverse_wide_bvh_leaves(accel.bvh, ray, t_max, counters.bvh_nodes, [&] {
+  traverse_wide_bvh_leaves(accel.bvh, ray, t_max, counters.bvh_nodes, kNearestFirst, [&] {
     return [&, lanes_ray = prepare_triangle_lanes_ray(ray) ](
         std::uint32_t first, std::uint32_t count, double t_limit, auto kernel)
         __attribute__((always_inline)) {
@@ -90,7 +90,7 @@ bool occluded_mesh(const MeshAccel& accel, const Ray& ray, double t_max,
                    IntersectionCounters& counters) {
   if (accel.mesh == nullptr) return false;
   bool found = false;
-  traverse_wide_bvh_leaves(accel.bvh, ray, t_max, counters.bvh_nodes, [&] {
+  traverse_wide_bvh_leaves(accel.bvh, ray, t_max, counters.bvh_nodes, kAnyOrder, [&] {
     return [&, lanes_ray = prepare_triangle_lanes_ray(ray) ](
         std::uint32_t first, std::uint32_t count, double t_limit, auto kernel)
         __attribute__((always_inline)) {
@@ -120,7 +120,7 @@ std::vector<LocalHit> mesh_crossings(const MeshAccel& accel, bool interpolate_no
   if (accel.mesh == nullptr) return crossings;
   const Mesh& mesh = *accel.mesh;
   std::vector<std::pair<TriangleHit, std::uint32_t>> hits;
-  traverse_wide_bvh_leaves(accel.bvh, ray, t_max, counters.bvh_nodes, [&] {
+  traverse_wide_bvh_leaves(accel.bvh, ray, t_max, counters.bvh_nodes, kAnyOrder, [&] {
     return [&, lanes_ray = prepare_triangle_lanes_ray(ray) ](
         std::uint32_t first, std::uint32_t count, double limit, auto kernel)
         __attribute__((always_inline)) {
