@@ -43,7 +43,7 @@ bool intersect_mesh(const MeshAccel& accel, bool interpolate_normals, const Ray&
                     LocalHit& hit, IntersectionCounters& counters) {
   if (accel.mesh == nullptr) return false;
   bool found = false;
-  std::uint32_t found_triangle = 0;
+  std::uint32_t found_triangle = 0, found_position = 0;
   TriangleHit nearest;
   // Hits at equal t go to the smaller triangle index, whichever the traversal meets first: once
   // one is found, triangles are tested up to the next double above its t.
@@ -55,7 +55,7 @@ bool intersect_mesh(const MeshAccel& accel, bool interpolate_normals, const Ray&
       const auto take = [&](const TriangleHit& h, std::uint32_t position) {
         const std::uint32_t triangle = accel.bvh.primitive_order[position];
         if (found && h.t == nearest.t && triangle > found_triangle) return;
-        nearest = h, found_triangle = triangle, found = true;
+        nearest = h, found_triangle = triangle, found_position = position, found = true;
         t_limit = h.t;
       };
       const std::uint32_t end = first + count;
@@ -82,7 +82,11 @@ bool intersect_mesh(const MeshAccel& accel, bool interpolate_normals, const Ray&
     };
   });
   if (!found) return false;
-  hit = triangle_local_hit(*accel.mesh, found_triangle, interpolate_normals, nearest);
+  const TrianglePair& pair = accel.leaf_pairs[found_position / 2];
+  const int lane = static_cast<int>(found_position % 2);
+  hit = triangle_local_hit(*accel.mesh, found_triangle, pair_corner(pair, 0, lane),
+                           pair_corner(pair, 1, lane), pair_corner(pair, 2, lane),
+                           interpolate_normals, nearest);
   return true;
 }
 
