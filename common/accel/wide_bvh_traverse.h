@@ -22,7 +22,7 @@ namespace tessera {
 // nearest hits, whose t_max shrinks sooner so; or slot order (kAnyOrder), without sorting, for
 // queries whose t_max never shrinks (occlusion, which ends at its first hit, and every hit): a
 // shadow ray that is not blocked, most of them, visits the same children in any order, and the
-// sort was 5-10 % of its time (docs/PERFORMANCE.md "Shadow rays in slot order").
+// sort was about 5 % of its time (docs/PERFORMANCE.md "Shadow rays in slot order").
 enum class WideBvhOrder { NearestFirst, Any };
 template <WideBvhOrder kOrder>
 using WideBvhOrderTag = std::integral_constant<WideBvhOrder, kOrder>;
