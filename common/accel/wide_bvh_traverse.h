@@ -2,19 +2,32 @@
 // stack over the wide nodes. A step tests a node's (up to) eight children's boxes in float
 // (float_child_boxes.h, conservative: it reaches every leaf the double slab test would), with the
 // kernel chosen at run time (wide_box_kernel.h), descends into the child the ray enters first
-// and keeps the others with their entry distances, the nearer ones on top; a kept child is
-// skipped when a closer hit found meanwhile lies before its entry. The order only decides how
+// and keeps the others with their entry distances, the nearer ones on top (or, for occlusion, in
+// slot order: WideBvhOrder); a kept child is skipped when a closer hit found meanwhile lies
+// before its entry. The order only decides how
 // soon t_max shrinks: callers choose among hits at equal t by primitive index, so results do not
 // depend on it.
 #pragma once
 
 #include <bit>
 #include <cstdint>
+#include <type_traits>
 
 #include "common/accel/bvh.h"
 #include "common/accel/wide_box_kernel.h"
 
 namespace tessera {
+
+// The order a traversal visits the children a ray enters: nearest first (kNearestFirst), for
+// nearest hits, whose t_max shrinks sooner so; or slot order (kAnyOrder), without sorting, for
+// queries whose t_max never shrinks (occlusion, which ends at its first hit, and every hit): a
+// shadow ray that is not blocked, most of them, visits the same children in any order, and the
+// sort was about 5 % of its time (docs/PERFORMANCE.md "Shadow rays in slot order").
+enum class WideBvhOrder { NearestFirst, Any };
+template <WideBvhOrder kOrder>
+using WideBvhOrderTag = std::integral_constant<WideBvhOrder, kOrder>;
+inline constexpr WideBvhOrderTag<WideBvhOrder::NearestFirst> kNearestFirst;
+inline constexpr WideBvhOrderTag<WideBvhOrder::Any> kAnyOrder;
 
 // A child to visit: an interior one (count 0, index into Bvh::wide) or a leaf's range.
 struct WideBvhPending {
@@ -27,7 +40,7 @@ struct WideBvhPending {
 // entry)` and passing `kernel` to the leaf visitor. Instantiated once per kernel, each inlined
 // whole (gnu::flatten) into a function compiled for that kernel's instruction set, so that the
 // visitor and the box test run in one loop without calls.
-template <typename Kernel, typename TestBoxes, typename VisitLeaf>
+template <WideBvhOrder kOrder, typename Kernel, typename TestBoxes, typename VisitLeaf>
 inline void traverse_wide_bvh_below_root(const Bvh& bvh, const Ray& ray, double t_max,
                                          std::uint64_t& nodes_visited, VisitLeaf& visit_leaf,
                                          Kernel kernel, TestBoxes test_boxes) {
@@ -53,6 +66,16 @@ inline void traverse_wide_bvh_below_root(const Bvh& bvh, const Ray& ray, double 
           current = {node.child[c], node.count[c], entry[c]};
           continue;
         }
+        if constexpr (kOrder == WideBvhOrder::Any) {
+          unsigned rest = hits;
+          const int c0 = std::countr_zero(rest);
+          for (rest &= rest - 1; rest != 0; rest &= rest - 1) {
+            const int c = std::countr_zero(rest);
+            stack[size++] = {node.child[c], node.count[c], entry[c]};
+          }
+          current = {node.child[c0], node.count[c0], entry[c0]};
+          continue;
+        }
         // The children hit, nearest first (the lower slot on a tie): an insertion sort of at
         // most eight.
         int order[kWideChildren], n = 0;
@@ -71,43 +94,44 @@ inline void traverse_wide_bvh_below_root(const Bvh& bvh, const Ray& ray, double 
     for (;;) {
       if (size == 0) return;
       current = stack[--size];
-      if (current.entry <= far_limit) break;
+      // Without the order, entries are no reason to skip: t_max does not shrink.
+      if (kOrder == WideBvhOrder::Any || current.entry <= far_limit) break;
     }
   }
 }
 
-template <typename VisitLeaf>
+template <WideBvhOrder kOrder, typename VisitLeaf>
 [[gnu::flatten]] void traverse_wide_bvh_scalar(const Bvh& bvh, const Ray& ray, double t_max,
                                                std::uint64_t& nodes_visited,
                                                VisitLeaf& visit_leaf) {
-  traverse_wide_bvh_below_root(bvh, ray, t_max, nodes_visited, visit_leaf,
-                               WideBoxKernelTag<WideBoxKernel::Scalar>{},
-                               intersect_float_child_boxes_scalar);
+  traverse_wide_bvh_below_root<kOrder>(bvh, ray, t_max, nodes_visited, visit_leaf,
+                                       WideBoxKernelTag<WideBoxKernel::Scalar>{},
+                                       intersect_float_child_boxes_scalar);
 }
 
 #if defined(__SSE2__)
-template <typename VisitLeaf>
+template <WideBvhOrder kOrder, typename VisitLeaf>
 [[gnu::flatten]] void traverse_wide_bvh_sse2(const Bvh& bvh, const Ray& ray, double t_max,
                                              std::uint64_t& nodes_visited, VisitLeaf& visit_leaf) {
-  traverse_wide_bvh_below_root(bvh, ray, t_max, nodes_visited, visit_leaf,
-                               WideBoxKernelTag<WideBoxKernel::Sse2>{},
-                               intersect_float_child_boxes_sse2);
+  traverse_wide_bvh_below_root<kOrder>(bvh, ray, t_max, nodes_visited, visit_leaf,
+                                       WideBoxKernelTag<WideBoxKernel::Sse2>{},
+                                       intersect_float_child_boxes_sse2);
 }
 
 // Compiled for AVX2 (no FMA): the visitor's double arithmetic, inlined here, keeps its IEEE
 // operations, only their encoding changes.
-template <typename VisitLeaf>
+template <WideBvhOrder kOrder, typename VisitLeaf>
 [[gnu::flatten, gnu::target("avx2")]] void traverse_wide_bvh_avx2(const Bvh& bvh, const Ray& ray,
                                                                   double t_max,
                                                                   std::uint64_t& nodes_visited,
                                                                   VisitLeaf& visit_leaf) {
-  traverse_wide_bvh_below_root(bvh, ray, t_max, nodes_visited, visit_leaf,
-                               WideBoxKernelTag<WideBoxKernel::Avx2>{},
-                               intersect_float_child_boxes_avx2);
+  traverse_wide_bvh_below_root<kOrder>(bvh, ray, t_max, nodes_visited, visit_leaf,
+                                       WideBoxKernelTag<WideBoxKernel::Avx2>{},
+                                       intersect_float_child_boxes_avx2);
 }
 #endif
 
-// Visits the leaves whose boxes the ray [0, t_max] may enter, nearer children first:
+// Visits the leaves whose boxes the ray [0, t_max] may enter, in the order `order` names:
 // `visit_leaf(first, count, t_max, kernel)` gets the leaf's range [first, first + count) of
 // Bvh::primitive_order and returns the possibly shrunk t_max (closest hit) or a negative value to
 // stop the traversal (any-hit queries); `kernel`, a WideBoxKernelTag, names the instruction set
@@ -115,9 +139,10 @@ template <typename VisitLeaf>
 // `make_visit_leaf()` makes it once the ray enters the root's box, so that a ray that misses the
 // whole tree (most rays of a scene, for a mesh that fills little of it) skips the leaves' per-ray
 // preparation. Counts the boxes tested in `nodes_visited` (kWideChildren per wide node).
-template <typename MakeVisitLeaf>
+template <WideBvhOrder kOrder, typename MakeVisitLeaf>
 void traverse_wide_bvh_leaves(const Bvh& bvh, const Ray& ray, double t_max,
-                              std::uint64_t& nodes_visited, MakeVisitLeaf&& make_visit_leaf) {
+                              std::uint64_t& nodes_visited, WideBvhOrderTag<kOrder>,
+                              MakeVisitLeaf&& make_visit_leaf) {
   if (bvh.nodes.empty()) return;
   ++nodes_visited;
   const BvhNode& root = bvh.nodes[0];
@@ -134,12 +159,12 @@ void traverse_wide_bvh_leaves(const Bvh& bvh, const Ray& ray, double t_max,
   switch (wide_box_kernel()) {
 #if defined(__SSE2__)
     case WideBoxKernel::Avx2:
-      return traverse_wide_bvh_avx2(bvh, ray, t_max, nodes_visited, visit_leaf);
+      return traverse_wide_bvh_avx2<kOrder>(bvh, ray, t_max, nodes_visited, visit_leaf);
     case WideBoxKernel::Sse2:
-      return traverse_wide_bvh_sse2(bvh, ray, t_max, nodes_visited, visit_leaf);
+      return traverse_wide_bvh_sse2<kOrder>(bvh, ray, t_max, nodes_visited, visit_leaf);
 #endif
     default:
-      return traverse_wide_bvh_scalar(bvh, ray, t_max, nodes_visited, visit_leaf);
+      return traverse_wide_bvh_scalar<kOrder>(bvh, ray, t_max, nodes_visited, visit_leaf);
   }
 }
 

@@ -43,11 +43,11 @@ bool intersect_mesh(const MeshAccel& accel, bool interpolate_normals, const Ray&
                     LocalHit& hit, IntersectionCounters& counters) {
   if (accel.mesh == nullptr) return false;
   bool found = false;
-  std::uint32_t found_triangle = 0;
+  std::uint32_t found_triangle = 0, found_position = 0;
   TriangleHit nearest;
   // Hits at equal t go to the smaller triangle index, whichever the traversal meets first: once
   // one is found, triangles are tested up to the next double above its t.
-  traverse_wide_bvh_leaves(accel.bvh, ray, t_max, counters.bvh_nodes, [&] {
+  traverse_wide_bvh_leaves(accel.bvh, ray, t_max, counters.bvh_nodes, kNearestFirst, [&] {
     return [&, lanes_ray = prepare_triangle_lanes_ray(ray) ](
         std::uint32_t first, std::uint32_t count, double t_limit, auto kernel)
         __attribute__((always_inline)) {
@@ -55,7 +55,7 @@ bool intersect_mesh(const MeshAccel& accel, bool interpolate_normals, const Ray&
       const auto take = [&](const TriangleHit& h, std::uint32_t position) {
         const std::uint32_t triangle = accel.bvh.primitive_order[position];
         if (found && h.t == nearest.t && triangle > found_triangle) return;
-        nearest = h, found_triangle = triangle, found = true;
+        nearest = h, found_triangle = triangle, found_position = position, found = true;
         t_limit = h.t;
       };
       const std::uint32_t end = first + count;
@@ -82,7 +82,11 @@ bool intersect_mesh(const MeshAccel& accel, bool interpolate_normals, const Ray&
     };
   });
   if (!found) return false;
-  hit = triangle_local_hit(*accel.mesh, found_triangle, interpolate_normals, nearest);
+  const TrianglePair& pair = accel.leaf_pairs[found_position / 2];
+  const int lane = static_cast<int>(found_position % 2);
+  hit = triangle_local_hit(*accel.mesh, found_triangle, pair_corner(pair, 0, lane),
+                           pair_corner(pair, 1, lane), pair_corner(pair, 2, lane),
+                           interpolate_normals, nearest);
   return true;
 }
 
@@ -90,7 +94,7 @@ bool occluded_mesh(const MeshAccel& accel, const Ray& ray, double t_max,
                    IntersectionCounters& counters) {
   if (accel.mesh == nullptr) return false;
   bool found = false;
-  traverse_wide_bvh_leaves(accel.bvh, ray, t_max, counters.bvh_nodes, [&] {
+  traverse_wide_bvh_leaves(accel.bvh, ray, t_max, counters.bvh_nodes, kAnyOrder, [&] {
     return [&, lanes_ray = prepare_triangle_lanes_ray(ray) ](
         std::uint32_t first, std::uint32_t count, double t_limit, auto kernel)
         __attribute__((always_inline)) {
@@ -120,7 +124,7 @@ std::vector<LocalHit> mesh_crossings(const MeshAccel& accel, bool interpolate_no
   if (accel.mesh == nullptr) return crossings;
   const Mesh& mesh = *accel.mesh;
   std::vector<std::pair<TriangleHit, std::uint32_t>> hits;
-  traverse_wide_bvh_leaves(accel.bvh, ray, t_max, counters.bvh_nodes, [&] {
+  traverse_wide_bvh_leaves(accel.bvh, ray, t_max, counters.bvh_nodes, kAnyOrder, [&] {
     return [&, lanes_ray = prepare_triangle_lanes_ray(ray) ](
         std::uint32_t first, std::uint32_t count, double limit, auto kernel)
         __attribute__((always_inline)) {

@@ -39,9 +39,12 @@ bool intersect_triangle(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Ra
 LocalHit triangle_local_hit(const Mesh& mesh, std::uint32_t index, bool interpolate_normals,
                             const TriangleHit& hit) {
   const MeshTriangle& tri = mesh.triangles[index];
-  const Vec3& p0 = mesh.positions[tri.v[0]];
-  const Vec3& p1 = mesh.positions[tri.v[1]];
-  const Vec3& p2 = mesh.positions[tri.v[2]];
+  return triangle_local_hit(mesh, index, mesh.positions[tri.v[0]], mesh.positions[tri.v[1]],
+                            mesh.positions[tri.v[2]], interpolate_normals, hit);
+}
+
+LocalHit triangle_local_hit(const Mesh& mesh, std::uint32_t index, const Vec3& p0, const Vec3& p1,
+                            const Vec3& p2, bool interpolate_normals, const TriangleHit& hit) {
   const Vec3 w0 = p0 * hit.b0, w1 = p1 * hit.b1, w2 = p2 * hit.b2;
 
   LocalHit out;
@@ -53,10 +56,12 @@ LocalHit triangle_local_hit(const Mesh& mesh, std::uint32_t index, bool interpol
   out.shading_normal = out.normal;
   out.part = index;
 
+  if (!interpolate_normals) return out;
+  const MeshTriangle& tri = mesh.triangles[index];
   const bool has_normals = tri.n[0] != MeshTriangle::kNoNormal &&
                            tri.n[1] != MeshTriangle::kNoNormal &&
                            tri.n[2] != MeshTriangle::kNoNormal;
-  if (interpolate_normals && has_normals) {
+  if (has_normals) {
     const Vec3 n = mesh.normals[tri.n[0]] * hit.b0 + mesh.normals[tri.n[1]] * hit.b1 +
                    mesh.normals[tri.n[2]] * hit.b2;
     // A vanishing interpolation (opposite corner normals) falls back to the geometric normal.

@@ -1,7 +1,9 @@
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 #include <random>
+#include <vector>
 
 #include "common/geometry/instance.h"
 #include "common/geometry/shapes.h"
@@ -136,6 +138,45 @@ TEST(Mesh, CountsTestsAndFindsTheNearestTriangle) {
     ASSERT_TRUE(intersect_mesh(accel, false, {{0.1, 0.3, 0}, {0, 0, 1}}, kInfinity, hit, counters));
     EXPECT_EQ(hit.t, 1);
     EXPECT_GT(hit.normal.z, 0);
+  }
+}
+
+// intersect_mesh builds its hit from the corners in the leaf it tested (MeshAccel::leaf_pairs):
+// bit for bit the hit that the mesh's own positions give, in either lane of a pair, with the
+// BVH and without, with normals interpolated and not.
+TEST(Mesh, HitFromTheLeafCornersEqualsTheHitFromTheMesh) {
+  Mesh mesh = subdivided_cube(5);
+  for (std::size_t i = 0; i < mesh.positions.size(); ++i)
+    mesh.normals.push_back(mesh.positions[i] + Vec3{0.1, 0.2, 0.3});
+  for (MeshTriangle& t : mesh.triangles) t.n = t.v;
+  std::mt19937_64 rng(18);
+  for (BvhMode mode : {BvhMode::Sah, BvhMode::None}) {
+    const MeshAccel accel = build_mesh_accel(mesh, mode);
+    IntersectionCounters counters;
+    std::vector<bool> lane_seen(2);
+    for (int i = 0; i < 2000; ++i) {
+      const Ray ray{random_unit(rng) * 0.5, random_unit(rng)};
+      for (const bool interpolate : {false, true}) {
+        LocalHit hit;
+        ASSERT_TRUE(intersect_mesh(accel, interpolate, ray, kInfinity, hit, counters));
+        TriangleHit th;
+        const MeshTriangle& t = mesh.triangles[hit.part];
+        ASSERT_TRUE(intersect_triangle(mesh.positions[t.v[0]], mesh.positions[t.v[1]],
+                                       mesh.positions[t.v[2]], ray, kInfinity, th));
+        const LocalHit expected = triangle_local_hit(mesh, hit.part, interpolate, th);
+        ASSERT_EQ(hit.t, expected.t);
+        ASSERT_EQ(hit.point, expected.point);
+        ASSERT_EQ(hit.point_error, expected.point_error);
+        ASSERT_EQ(hit.normal, expected.normal);
+        ASSERT_EQ(hit.shading_normal, expected.shading_normal);
+      }
+      LocalHit hit;
+      intersect_mesh(accel, false, ray, kInfinity, hit, counters);
+      const auto& order = accel.bvh.primitive_order;
+      const auto position = std::find(order.begin(), order.end(), hit.part) - order.begin();
+      lane_seen[static_cast<std::size_t>(position % 2)] = true;
+    }
+    EXPECT_TRUE(lane_seen[0] && lane_seen[1]);
   }
 }
 
