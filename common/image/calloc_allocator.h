@@ -3,7 +3,8 @@
 // malloc's mmap threshold, 128 kB at first: a whole image's pixels): each page is zeroed by the
 // kernel when it is first written, on the thread that writes it. render_image's tile threads
 // so fault in the image between them, where a filled vector had the thread that made it fault
-// in all of it before they started (docs/PERFORMANCE.md, "The image's pages").
+// in all of it before they started (docs/PERFORMANCE.md, "The image's pages, and one pass
+// without a frame buffer").
 //
 // Only calloc and free, inline: OpenImageIO's module (common/image/oiio/), which links none of
 // Tessera's sources, makes and frees images too.
