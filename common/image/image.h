@@ -8,6 +8,7 @@
 #include <string_view>
 #include <vector>
 
+#include "common/image/calloc_allocator.h"
 #include "common/scene/rgb.h"
 
 namespace tessera {
@@ -15,10 +16,12 @@ namespace tessera {
 struct Image {
   int width = 0;
   int height = 0;
-  std::vector<float> rgb;  // row-major, top row first, 3 floats per pixel
+  // Row-major, top row first, 3 floats per pixel. From calloc: a new image is black without a
+  // pass over its pixels, and its pages are faulted in by whoever first writes them.
+  std::vector<float, CallocAllocator<float>> rgb;
 
   Image() = default;
-  Image(int w, int h) : width(w), height(h), rgb(static_cast<std::size_t>(w) * h * 3, 0.0f) {}
+  Image(int w, int h) : width(w), height(h), rgb(static_cast<std::size_t>(w) * h * 3) {}
   std::size_t index(int x, int y) const { return (static_cast<std::size_t>(y) * width + x) * 3; }
   void set(int x, int y, const Rgb& c) {
     const std::size_t i = index(x, y);

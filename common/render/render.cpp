@@ -230,21 +230,35 @@ Image render_image(const PreparedScene& scene, const RenderSettings& settings, i
         const PixelRect rect{area.x0 + tx * kTileSize, area.y0 + ty * kTileSize,
                              std::min(area.x1, area.x0 + (tx + 1) * kTileSize),
                              std::min(area.y1, area.y0 + (ty + 1) * kTileSize)};
-        tile.clear();
-        for (int pass = 0; pass < settings.passes; ++pass) {
-          render_pass(scene, settings, rect, pass, values, local, interrupt);
+        if (settings.passes == 1) {
+          // One pass is its own mean: written straight into the image, as the tile's buffer
+          // would give it back (its float sum of the one value, from +0, divided by 1).
+          render_pass(scene, settings, rect, 0, values, local, interrupt);
           std::size_t i = 0;
-          for (int y = 0; y < rect.height(); ++y)
-            for (int x = 0; x < rect.width(); ++x, ++i) {
-              const float rgb[3] = {static_cast<float>(values[i].r),
-                                    static_cast<float>(values[i].g),
-                                    static_cast<float>(values[i].b)};
-              tile.add_pass(x, y, rgb);
+          for (int y = rect.y0; y < rect.y1; ++y)
+            for (int x = rect.x0; x < rect.x1; ++x, ++i) {
+              const std::size_t at = image.index(x, y);
+              image.rgb[at] = 0.0f + static_cast<float>(values[i].r);
+              image.rgb[at + 1] = 0.0f + static_cast<float>(values[i].g);
+              image.rgb[at + 2] = 0.0f + static_cast<float>(values[i].b);
             }
+        } else {
+          tile.clear();
+          for (int pass = 0; pass < settings.passes; ++pass) {
+            render_pass(scene, settings, rect, pass, values, local, interrupt);
+            std::size_t i = 0;
+            for (int y = 0; y < rect.height(); ++y)
+              for (int x = 0; x < rect.width(); ++x, ++i) {
+                const float rgb[3] = {static_cast<float>(values[i].r),
+                                      static_cast<float>(values[i].g),
+                                      static_cast<float>(values[i].b)};
+                tile.add_pass(x, y, rgb);
+              }
+          }
+          for (int y = 0; y < rect.height(); ++y)
+            for (int x = 0; x < rect.width(); ++x)
+              image.set(rect.x0 + x, rect.y0 + y, tile.mean(x, y));
         }
-        for (int y = 0; y < rect.height(); ++y)
-          for (int x = 0; x < rect.width(); ++x)
-            image.set(rect.x0 + x, rect.y0 + y, tile.mean(x, y));
         const long long finished = done.fetch_add(1) + 1;
         if (progress) progress(finished, tile_count);
       }

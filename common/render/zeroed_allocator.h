@@ -10,22 +10,21 @@
 // faults again to copy it; that pair of faults per 4 kB was a fifth of the coordinator's merging
 // time (docs/SCALING.md). Where huge pages are off the advice does nothing. A freed mapping is
 // kept a little while for the next buffer that asks (mapping_pool.h): zeroing pages still mapped
-// costs a hundredth of having the kernel make new ones.
+// costs a hundredth of having the kernel make new ones. Smaller buffers come from calloc
+// (CallocAllocator, whose construction this shares).
 #pragma once
 
 #include <cstddef>
-#include <cstdlib>
 #include <limits>
 #include <new>
-#include <utility>
 
+#include "common/image/calloc_allocator.h"
 #include "common/render/mapping_pool.h"
 
 namespace tessera {
 
 template <typename T>
-struct ZeroedAllocator {
-  using value_type = T;
+struct ZeroedAllocator : CallocAllocator<T> {
   // At and above this size a buffer is mapped, with the huge-page advice, through the pool.
   static constexpr std::size_t kMappedBytes = std::size_t{2} << 20;
 
@@ -39,21 +38,13 @@ struct ZeroedAllocator {
     const std::size_t bytes = n * sizeof(T);
     if (bytes >= kMappedBytes) return static_cast<T*>(MappingPool::shared().take(bytes));
 #endif
-    if (void* p = std::calloc(n, sizeof(T))) return static_cast<T*>(p);
-    throw std::bad_alloc();
+    return CallocAllocator<T>::allocate(n);
   }
   void deallocate(T* p, std::size_t n) {
 #if defined(__linux__)
     if (n * sizeof(T) >= kMappedBytes) return MappingPool::shared().give(p, n * sizeof(T));
 #endif
-    std::free(p);
-  }
-  // A value-initialized element is already there: zero bits.
-  template <typename U>
-  void construct(U*) {}
-  template <typename U, typename... Args>
-  void construct(U* p, Args&&... args) {
-    ::new (static_cast<void*>(p)) U(std::forward<Args>(args)...);
+    CallocAllocator<T>::deallocate(p, n);
   }
   friend bool operator==(const ZeroedAllocator&, const ZeroedAllocator&) { return true; }
 };

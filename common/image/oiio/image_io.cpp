@@ -27,7 +27,7 @@ void write_image(const Image& image, const std::string& path) {
   const bool as_float = is_float_format(path);
   OIIO::ImageSpec spec(image.width, image.height, 3,
                        as_float ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
-  std::vector<float> data = image.rgb;
+  std::vector<float> data(image.rgb.begin(), image.rgb.end());
   if (!as_float)  // 8-bit formats hold [0, 1]; out-of-range intensities clip as in OpenGL
     for (float& v : data) v = std::isfinite(v) ? std::clamp(v, 0.0f, 1.0f) : 0.0f;
   if (!out->open(path, spec) || !out->write_image(OIIO::TypeDesc::FLOAT, data.data()) ||

@@ -16,7 +16,7 @@ constexpr float kEightBitStep = 1.0f / 255.0f;
 
 OIIO::ImageBuf displayed(const Image& image) {
   OIIO::ImageBuf buffer(OIIO::ImageSpec(image.width, image.height, 3, OIIO::TypeDesc::FLOAT));
-  std::vector<float> values = image.rgb;
+  std::vector<float> values(image.rgb.begin(), image.rgb.end());
   for (float& v : values) v = std::isfinite(v) ? std::clamp(v, 0.0f, 1.0f) : 0.0f;
   buffer.set_pixels(OIIO::ROI::All(), OIIO::TypeDesc::FLOAT, values.data());
   return buffer;
