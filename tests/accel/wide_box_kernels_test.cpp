@@ -131,6 +131,56 @@ TEST(WideBoxKernels, EveryKernelRendersMeshScenesAlike) {
   }
 }
 
+// Stacks of n triangles whose boxes overlap, each a fifth higher than the one below, which the SAH
+// keeps in leaves of up to eight, among them those of five or six (13, 25 and 29 triangles), whose
+// test of eight reads the next leaf's first pair (or the padding pair after the last leaf); those
+// lanes must not count. A ray through the stack crosses each triangle once; rays from each triangle
+// up and down (its leaf's triangles behind them, the next leaf's maybe ahead) are occluded alike,
+// with the same counts, by every kernel.
+TEST(WideBoxKernels, EveryKernelTracesStacksOfTrianglesAlike) {
+  for (int n = 1; n <= 40; ++n) {
+    SCOPED_TRACE(std::to_string(n) + " triangles");
+    Mesh mesh;
+    std::vector<double> heights;  // where the rays below meet each triangle
+    for (int k = 0; k < n; ++k) {
+      const double base = 0.2 * k;
+      const auto first = static_cast<std::uint32_t>(mesh.positions.size());
+      for (const Vec3& p : {Vec3{-1, -1, base}, Vec3{3, -1, base + 1}, Vec3{-1, 3, base + 0.5}})
+        mesh.positions.push_back(p);
+      mesh.triangles.push_back(MeshTriangle{{first, first + 1, first + 2}});
+      // (0.25, 0.25) has weights 0.375, 0.3125 and 0.3125 in every triangle.
+      heights.push_back(base + 0.3125 + 0.3125 * 0.5);
+    }
+    const MeshAccel accel = build_mesh_accel(mesh, BvhMode::Sah);
+    std::optional<std::vector<std::uint64_t>> reference;
+    for (const WideBoxKernel kernel : selectable_kernels()) {
+      SCOPED_TRACE(std::string(wide_box_kernel_name(kernel)));
+      const ForcedKernel forced(kernel);
+      IntersectionCounters counters;
+      std::vector<int> crossed(static_cast<std::size_t>(n), 0);
+      for (const LocalHit& crossing :
+           mesh_crossings(accel, false, Ray{{0.25, 0.25, -1}, {0, 0, 1}}, kInfinity, counters))
+        ++crossed.at(crossing.part);
+      EXPECT_EQ(crossed, std::vector<int>(static_cast<std::size_t>(n), 1));
+      std::vector<std::uint64_t> answers;
+      for (const double height : heights) {
+        for (const double dz : {1.0, -1.0}) {
+          IntersectionCounters ray_counters;
+          const Ray ray{{0.25, 0.25, height}, {0, 0, dz}};
+          answers.push_back(occluded_mesh(accel, ray, kInfinity, ray_counters) ? 1 : 0);
+          answers.push_back(ray_counters.triangle_tests);
+          answers.push_back(ray_counters.bvh_nodes);
+        }
+      }
+      if (!reference) {
+        reference = answers;
+      } else {
+        EXPECT_EQ(answers, *reference);
+      }
+    }
+  }
+}
+
 TEST(WideBoxKernels, NamesRoundTripAndScalarIsAlwaysThere) {
   for (const auto kernel : {WideBoxKernel::Scalar, WideBoxKernel::Sse2, WideBoxKernel::Avx2})
     EXPECT_EQ(parse_wide_box_kernel(wide_box_kernel_name(kernel)), kernel);
