@@ -146,7 +146,7 @@ double Tracer::shadow_factor(const Feeler& feeler) {
   const std::vector<SceneObject>& objects = scene_.scene().objects;
   double factor = 1;
   // Each object counts once, however often the feeler crosses its surface (eq. 4.24).
-  traverse_bvh(
+  traverse_scene_bvh(
       scene_.bvh(), ray, feeler.t_max, stats_.intersections.bvh_nodes,
       [&](std::uint32_t index, double t_limit) {
         std::uint32_t object = 0;
