@@ -416,26 +416,20 @@ void make_bvh_pairs(Bvh& bvh) {
   }
 }
 
-namespace {
-
-// Collapses bvh.nodes into nodes of up to kWidth children: each interior node takes the
-// children of its largest-area interior children until it has kWidth. `set_box(node, c, box)`
-// stores child c's box in the wide form.
-template <int kWidth, typename WideNode, typename SetBox>
-void collapse_bvh(const Bvh& bvh, std::vector<WideNode>& out, SetBox set_box) {
-  out.clear();
+void make_bvh_wide(Bvh& bvh) {
+  bvh.wide.clear();
   if (bvh.nodes.empty() || bvh.nodes[0].count > 0) return;
   const auto second_child = [&](std::size_t n) { return bvh.nodes[n].first_or_second_child; };
   // Wide nodes are made in the order they are reached (the root first); `pending` holds a
   // wide node still to fill and the binary node it stands for.
   std::vector<std::pair<std::uint32_t, std::size_t>> pending = {{0, 0}};
-  out.emplace_back();
+  bvh.wide.emplace_back();
   while (!pending.empty()) {
     const auto [wide_index, binary] = pending.back();
     pending.pop_back();
-    std::size_t children[kWidth] = {binary + 1, second_child(binary)};
+    std::size_t children[kWideChildren] = {binary + 1, second_child(binary)};
     int n = 2;
-    while (n < kWidth) {
+    while (n < kWideChildren) {
       int widest = -1;
       double widest_area = -1;
       for (int c = 0; c < n; ++c) {
@@ -448,35 +442,21 @@ void collapse_bvh(const Bvh& bvh, std::vector<WideNode>& out, SetBox set_box) {
       children[widest] = opened + 1;
       children[n++] = second_child(opened);
     }
-    WideNode node;
+    BvhWideNode node;
     for (int c = 0; c < n; ++c) {
       const BvhNode& child = bvh.nodes[children[c]];
-      set_box(node, c, child.bounds);
+      set_float_child_box(node.boxes, c, child.bounds);
       node.count[c] = child.count;
       if (child.count > 0) {
         node.child[c] = child.first_or_second_child;
       } else {
-        node.child[c] = static_cast<std::uint32_t>(out.size());
+        node.child[c] = static_cast<std::uint32_t>(bvh.wide.size());
         pending.emplace_back(node.child[c], children[c]);
-        out.emplace_back();
+        bvh.wide.emplace_back();
       }
     }
-    out[wide_index] = node;
+    bvh.wide[wide_index] = node;
   }
-}
-
-}  // namespace
-
-void make_bvh_wide(Bvh& bvh) {
-  collapse_bvh<kWideChildren>(bvh, bvh.wide, [](BvhWideNode& node, int c, const Bounds3& box) {
-    set_float_child_box(node.boxes, c, box);
-  });
-}
-
-void make_bvh_quads(Bvh& bvh) {
-  collapse_bvh<kQuadChildren>(bvh, bvh.quads, [](BvhQuadNode& node, int c, const Bounds3& box) {
-    set_quad_child_box(node.boxes, c, box);
-  });
 }
 
 }  // namespace tessera

@@ -15,7 +15,6 @@
 
 #include "common/accel/child_boxes.h"
 #include "common/accel/float_child_boxes.h"
-#include "common/accel/quad_child_boxes.h"
 #include "common/math/ray.h"
 #include "common/settings/bvh_mode.h"
 
@@ -51,15 +50,6 @@ struct alignas(64) BvhWideNode {
 };
 static_assert(sizeof(BvhWideNode) == 256);
 
-// The scene BVH's form under AVX2: the binary tree collapsed into nodes of up to four children
-// (make_bvh_quads), their boxes side by side in double (quad_child_boxes.h), tested four at once.
-struct alignas(32) BvhQuadNode {
-  QuadChildBoxes boxes = empty_quad_child_boxes();
-  std::uint32_t child[kQuadChildren] = {};  // as BvhWideNode's
-  std::uint32_t count[kQuadChildren] = {};
-};
-static_assert(sizeof(BvhQuadNode) == 224);
-
 // The build keeps trees shallower than this (bvh.cpp), so the traversals' fixed stacks cannot
 // overflow.
 inline constexpr int kBvhMaxDepth = 128;
@@ -70,7 +60,6 @@ struct Bvh {
   // The form a traversal reads, made from nodes; [0] is the root's, if interior. Either one:
   std::vector<BvhPair> pairs;     // make_bvh_pairs (build_bvh), for bvh_traverse.h
   std::vector<BvhWideNode> wide;  // make_bvh_wide, for wide_bvh_traverse.h
-  std::vector<BvhQuadNode> quads;  // make_bvh_quads, for bvh_traverse.h under AVX2
 };
 
 // How the SAH prices a leaf: its primitives are tested `group` at a time, so a leaf of n costs
@@ -94,8 +83,6 @@ void make_bvh_pairs(Bvh& bvh);
 // interior children until it has kWideChildren (Embree's and pbrt-v4's collapse of a binary SAH
 // tree).
 void make_bvh_wide(Bvh& bvh);
-// Fills bvh.quads from bvh.nodes, collapsed as make_bvh_wide does, to kQuadChildren.
-void make_bvh_quads(Bvh& bvh);
 // Traversals: common/accel/bvh_traverse.h, common/accel/wide_bvh_traverse.h.
 
 }  // namespace tessera

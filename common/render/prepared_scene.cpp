@@ -216,7 +216,6 @@ Bvh build_scene_bvh(const std::vector<Bounds3>& bounds, const std::vector<bool>&
   }
   Bvh bvh = build_bvh(top_bounds, mode);
   for (std::uint32_t& index : bvh.primitive_order) index = top_level[index];
-  make_bvh_quads(bvh);
   return bvh;
 }
 

@@ -7,7 +7,7 @@
 #include <new>
 #include <numbers>
 
-#include "common/accel/bvh_quad_traverse.h"
+#include "common/accel/bvh_traverse.h"
 #include "common/math/float_error.h"
 #include "common/render/cone.h"
 #include "common/render/optics.h"
@@ -120,7 +120,7 @@ bool Tracer::closest_hit(const Ray& ray, Hit& hit) {
   hit.time = ray.time;
   // Straight into hit.world, which intersect_instance leaves alone on a miss: a WorldHit of
   // its own per shape test cost a zeroing (rep stos) and a copy, some 5 % of the traversal's time.
-  traverse_scene_bvh(
+  traverse_bvh(
       scene_.bvh(), ray, kInfinity, stats_.intersections.bvh_nodes,
       [&](std::uint32_t index, double t_max) {
         if (!intersect_instance(instances[index], ray, t_max, hit.world, stats_.intersections))
@@ -146,7 +146,7 @@ double Tracer::shadow_factor(const Feeler& feeler) {
   const std::vector<SceneObject>& objects = scene_.scene().objects;
   double factor = 1;
   // Each object counts once, however often the feeler crosses its surface (eq. 4.24).
-  traverse_scene_bvh(
+  traverse_bvh(
       scene_.bvh(), ray, feeler.t_max, stats_.intersections.bvh_nodes,
       [&](std::uint32_t index, double t_limit) {
         std::uint32_t object = 0;
