@@ -1,5 +1,6 @@
 // tessera-render: renders a scene file to an image on this machine, with all cores.
 #include <cstdio>
+#include <ctime>
 #include <exception>
 #include <string>
 #include <thread>
@@ -50,13 +51,16 @@ int main(int argc, char** argv) {
     }
     TerminalProgress progress;
     RenderStats stats;
+    const std::clock_t cpu_start = std::clock();
     const Image image = render_image(
         prepared, options.settings, options.threads, stats,
         options.quiet ? ProgressFn{}
                       : ProgressFn{[&](long long d, long long t) { progress.update(d, t); }});
+    const double cpu_seconds = static_cast<double>(std::clock() - cpu_start) / CLOCKS_PER_SEC;
     progress.finish();
     write_image(image, options.output_path);
-    if (!options.quiet) print_report(prepared, options.settings, stats, options.output_path);
+    if (!options.quiet)
+      print_report(prepared, options.settings, stats, cpu_seconds, options.output_path);
     return 0;
   } catch (const std::exception& e) {
     std::fprintf(stderr, "tessera-render: %s\n", e.what());

@@ -14,13 +14,17 @@ void print_warnings(const Scene& scene, const PreparedScene& prepared) {
 }
 
 void print_report(const PreparedScene& prepared, const RenderSettings& settings,
-                  const RenderStats& stats, const std::string& output_path) {
+                  const RenderStats& stats, double cpu_seconds, const std::string& output_path) {
   std::string effects;
   for (const std::string& name : render_effects(prepared, settings).names())
     effects += (effects.empty() ? "" : ", ") + name;
   std::printf("wrote %s (%dx%d)\n", output_path.c_str(), settings.width, settings.height);
   std::printf("effects: %s\n", effects.empty() ? "none" : effects.c_str());
   std::printf("time: %.3f s\n", stats.seconds);
+  // The render's wall time above includes whatever else ran on its cores: on a shared machine
+  // one thread's render of the demo took 0.174-0.269 s while its CPU time stayed at 0.174-0.176 s
+  // (docs/PERFORMANCE.md, "Where the one-thread render time goes").
+  std::printf("cpu: %.3f s\n", cpu_seconds);
   std::printf("rays: camera %llu, shadow %llu, reflection %llu, refraction %llu\n",
               static_cast<unsigned long long>(stats.camera_rays),
               static_cast<unsigned long long>(stats.shadow_rays),

@@ -11,7 +11,8 @@
 namespace tessera {
 
 void print_warnings(const Scene& scene, const PreparedScene& prepared);
+// `cpu_seconds`: the process's CPU time over the render, all its threads (the "cpu:" line).
 void print_report(const PreparedScene& prepared, const RenderSettings& settings,
-                  const RenderStats& stats, const std::string& output_path);
+                  const RenderStats& stats, double cpu_seconds, const std::string& output_path);
 
 }  // namespace tessera
