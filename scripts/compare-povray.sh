@@ -5,10 +5,12 @@
 # and their ratio.
 #
 # Usage: scripts/compare-povray.sh [--scenes "demo torus teapot100k"] [--width W] [--height H]
-#                                  [--repeats N] [--threads "1 2"] [--tessera PATH]
+#                                  [--repeats N] [--threads "1 2"] [--tessera PATH] [--out DIR]
 #
 # --tessera: the tessera-render to time (default build/worker/tessera-render), for example
-# another build of it to compare with the same POV-Ray runs.
+# another build of it to compare with the same POV-Ray runs. --out: where images, logs and
+# times go (default out/povray). CTest runs it tiny (bench_smoke_compare_povray) when povray is
+# installed, so that a change to either renderer's report cannot break it unnoticed.
 #
 # Scenes (SDL file, POV-Ray file):
 #   demo        scenes/demo.sdl, bench/povray/demo.pov: glass, mirror, spotlight, reflections.
@@ -33,7 +35,9 @@
 # Times are the wall times of the whole process (start-up, parsing, rendering, writing the PNG),
 # measured with date +%s.%N; the medians of the repeats are printed. A second table gives each
 # renderer's own render time (Tessera's report "time:", POV-Ray's "Trace Time"), which leaves
-# out start-up and parsing. Images and logs go to out/povray/.
+# out start-up and parsing, and a third their render's CPU time over all threads (Tessera's
+# "cpu:", POV-Ray's CPU-seconds after its Trace Time): on a shared machine the wall times also
+# count the time other processes held the cores, the CPU times do not.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 
@@ -43,6 +47,7 @@ height=600
 repeats=3
 threads="1 2"
 tessera=build/worker/tessera-render
+out_root=out/povray
 while (($#)); do
   case "$1" in
     --scenes) scenes=$2; shift 2 ;;
@@ -51,12 +56,12 @@ while (($#)); do
     --repeats) repeats=$2; shift 2 ;;
     --threads) threads=$2; shift 2 ;;
     --tessera) tessera=$2; shift 2 ;;
+    --out) out_root=$2; shift 2 ;;
     -h | --help) sed -n '2,/^set -euo/p' "$0" | sed '$d; s/^# \{0,1\}//'; exit 0 ;;
     *) echo "compare-povray.sh: unknown option $1 (see --help)" >&2; exit 2 ;;
   esac
 done
 
-out_root=out/povray
 
 missing=0
 if [[ ! -x $tessera ]]; then
@@ -95,22 +100,36 @@ use_scene() {
 now() { date +%s.%N; }
 elapsed() { awk -v a="$1" -v b="$2" 'BEGIN { printf "%.3f", b - a }'; }
 
+# log_field SED_SCRIPT LOG: the figure SED_SCRIPT prints from a renderer's log; a log without it
+# (a renderer whose report changed) stops the script rather than leaving a blank in the tables.
+log_field() {
+  local value
+  value=$(sed -n "$1" "$2")
+  if [[ -z $value ]]; then
+    echo "compare-povray.sh: $2 has no line that matches $1" >&2
+    return 1
+  fi
+  echo "$value"
+}
+
 # run_tessera AA THREADS REPEAT
 run_tessera() {
-  local aa=$1 t=$2 rep=$3 log start end
+  local aa=$1 t=$2 rep=$3 log start end render cpu
   log=$out/logs/tessera-aa$aa-t$t-$rep.log
   start=$(now)
   # stderr is not a terminal, so there is no progress output; stdout is the report.
   "$tessera" "$scene" -o "$out/tessera-aa$aa-t$t.png" --width "$width" --height "$height" \
     --aa "$aa" --threads "$t" >"$log" 2>&1 || { cat "$log" >&2; exit 1; }
   end=$(now)
-  printf 'tessera\t%s\t%s\t%s\t%s\t%s\n' "$aa" "$t" "$rep" "$(elapsed "$start" "$end")" \
-    "$(sed -n 's/^time: \([0-9.]*\) s$/\1/p' "$log")" >>"$times"
+  render=$(log_field 's/^time: \([0-9.]*\) s$/\1/p' "$log")
+  cpu=$(log_field 's/^cpu: \([0-9.]*\) s$/\1/p' "$log")
+  printf 'tessera\t%s\t%s\t%s\t%s\t%s\t%s\n' "$aa" "$t" "$rep" "$(elapsed "$start" "$end")" \
+    "$render" "$cpu" >>"$times"
 }
 
 # run_povray AA THREADS REPEAT
 run_povray() {
-  local aa=$1 t=$2 rep=$3 log start end aa_options
+  local aa=$1 t=$2 rep=$3 log start end render cpu aa_options
   log=$out/logs/povray-aa$aa-t$t-$rep.log
   if ((aa == 1)); then aa_options=(-A); else aa_options=(+A0.0 +AM1 +R3 -J); fi
   start=$(now)
@@ -120,8 +139,11 @@ run_povray() {
   "$povray" +I"$pov_scene" +L"$(dirname "$pov_scene")" +O"$out/povray-aa$aa-t$t.png" \
     +W"$width" +H"$height" +FN File_Gamma=1.0 -D -P -V +WT"$t" "${aa_options[@]}" >"$log" 2>&1 || { cat "$log" >&2; exit 1; }
   end=$(now)
-  printf 'povray\t%s\t%s\t%s\t%s\t%s\n' "$aa" "$t" "$rep" "$(elapsed "$start" "$end")" \
-    "$(sed -n 's/^ *Trace Time:.*(\([0-9.]*\) seconds)$/\1/p' "$log")" >>"$times"
+  render=$(log_field 's/^ *Trace Time:.*(\([0-9.]*\) seconds)$/\1/p' "$log")
+  # The line after "Trace Time" gives the trace's CPU time over all threads.
+  cpu=$(log_field '/Trace Time:/{n;s/.* with \([0-9.]*\) CPU-seconds total$/\1/p}' "$log")
+  printf 'povray\t%s\t%s\t%s\t%s\t%s\t%s\n' "$aa" "$t" "$rep" "$(elapsed "$start" "$end")" \
+    "$render" "$cpu" >>"$times"
 }
 
 # median COLUMN RENDERER AA THREADS
@@ -228,7 +250,7 @@ PY
 compare() {
   use_scene "$1"
   times=$out/times.tsv
-  printf 'renderer\taa\tthreads\trepeat\twall_s\trender_s\n' >"$times"
+  printf 'renderer\taa\tthreads\trepeat\twall_s\trender_s\tcpu_s\n' >"$times"
   echo
   echo "== $1: $scene vs $pov_scene"
   # One untimed warm-up of each, so that neither pays for a cold page cache.
@@ -255,6 +277,7 @@ compare() {
 
   table 5 "Wall time of the whole process"
   table 6 "Render time as each renderer reports it (Tessera 'time:', POV-Ray 'Trace Time')"
+  table 7 "Render CPU time, all threads, as each renderer reports it (Tessera 'cpu:', POV-Ray's Trace CPU-seconds)"
 
   image_difference
   echo

@@ -16,6 +16,7 @@ packages=(
   libsqlite3-dev    # the coordinator's job store
   libgtest-dev libgmock-dev libbenchmark-dev
   libembree-dev     # benchmark only: bench/embree_bench.cpp traces the same rays through Embree 3
+  povray            # benchmark only: scripts/compare-povray.sh renders the same scenes
   # tools used by tests and benchmarks; chromium and node drive the web page's test
   openimageio-tools python3 curl chromium
   # network namespaces for the multi-host test (ip, tc)
