@@ -3,8 +3,8 @@
 again while a job of several levels and passes renders, restarted each time with the same
 --data-dir, and the job's final image is still bit-identical to tessera-render's; jobs finished
 before the crashes keep their ids and images, and every job its camera and Viewpoints (issue 21
-§3). And a store over --max-disk fails only the job it could not store. Cases: crash_resume,
-max_disk, read_only."""
+§3). And a store over --max-disk fails only the job it could not store, as does a store that
+cannot take a done job's images. Cases: crash_resume, max_disk, unstored_images, read_only."""
 import hashlib
 import json
 import os
@@ -248,6 +248,42 @@ def case_max_disk():
             c.start()
             assert c.get("/api/jobs/%d" % big)["state"] == "failed"
             assert c.image(small, "png") == small_png
+        except BaseException:
+            show_logs(tmp)
+            raise
+        finally:
+            if c.proc and c.proc.poll() is None:
+                c.kill()
+
+
+def case_unstored_images():
+    """A done job whose images cannot be stored (JobPersistence::fail_unstored): the store's
+    images folder is swapped for a plain file once the coordinator runs, so writing the job's
+    PNG and EXR fails after all its results were stored. That job fails with the store's
+    reason, and the coordinator serves the next job as before, also after a restart."""
+    with tempfile.TemporaryDirectory() as tmp:
+        c = Coordinator(tmp)
+        try:
+            c.start()
+            images = os.path.join(c.data, "images")
+            os.rmdir(images)  # empty: no job has finished yet
+            open(images, "w").close()
+            unstored = c.submit(SMALL)
+            # Done first: the job fails once the store has refused its encoded images.
+            failed = c.wait(unstored, lambda j: j["state"] == "failed", timeout=30)
+            assert failed["error"].startswith("cannot store the job's results: "), failed
+            assert images in failed["error"], failed
+            status, _ = c.request("GET", "/api/jobs/%d/image?format=png" % unstored)
+            assert status == 404, status
+            os.remove(images)
+            os.mkdir(images)
+            served = c.submit(SMALL)
+            assert c.finished(served)["state"] == "done"
+            served_png = c.image(served, "png")
+            c.kill()
+            c.start()
+            assert c.get("/api/jobs/%d" % unstored)["state"] == "failed"
+            assert c.image(served, "png") == served_png
         except BaseException:
             show_logs(tmp)
             raise
