@@ -65,7 +65,7 @@ void write_port_file(const std::filesystem::path& path, unsigned short http_port
 // stays until the coordinator is idle (idle_memory.h). Not only up to 64 MB: the store writes
 // a tick's results (250 ms of them, 75 MB when workers return 25 M pixel passes a second) and
 // frees them at once, so a 64 MB limit gave the rest back and the next tick's results faulted
-// it in again (3,000-16,000 faults a later job). Trimming then never lowered the peak, which
+// it in again (up to 32,000 page faults a later job). Trimming then never lowered the peak, which
 // the next tick reaches again.
 void keep_freed_heap() {
   mallopt(M_MMAP_THRESHOLD, 1 << 20);
