@@ -6,6 +6,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <limits>
 #include <stdexcept>
 #include <string>
 #include <thread>
@@ -60,11 +61,15 @@ void write_port_file(const std::filesystem::path& path, unsigned short http_port
 // store's thread once written, a few hundred at a time. With glibc's defaults the freed heap
 // went back to the system whenever more than twice the largest such buffer lay free at its top,
 // and the next results faulted it in again, zeroed: 6,000-16,000 page faults a 2048x2048 job on
-// the io thread (docs/SCALING.md). Buffers below 1 MB come from the heap, and up to 64 MB of it
-// stays when freed until the coordinator is idle (idle_memory.h).
+// the io thread (docs/SCALING.md). Buffers below 1 MB come from the heap, and what is freed
+// stays until the coordinator is idle (idle_memory.h). Not only up to 64 MB: the store writes
+// a tick's results (250 ms of them, 75 MB when workers return 25 M pixel passes a second) and
+// frees them at once, so a 64 MB limit gave the rest back and the next tick's results faulted
+// it in again (up to 32,000 page faults a later job). Trimming then never lowered the peak, which
+// the next tick reaches again.
 void keep_freed_heap() {
   mallopt(M_MMAP_THRESHOLD, 1 << 20);
-  mallopt(M_TRIM_THRESHOLD, 64 << 20);
+  mallopt(M_TRIM_THRESHOLD, std::numeric_limits<int>::max());
 }
 
 }  // namespace

@@ -3,8 +3,9 @@
 again while a job of several levels and passes renders, restarted each time with the same
 --data-dir, and the job's final image is still bit-identical to tessera-render's; jobs finished
 before the crashes keep their ids and images, and every job its camera and Viewpoints (issue 21
-§3). And a store over --max-disk fails only the job it could not store. Cases: crash_resume,
-max_disk, read_only."""
+§3). And a store over --max-disk fails only the job it could not store, as does a store that
+cannot take a done job's images. Cases: crash_resume, max_disk, unstored_images, read_only."""
+import contextlib
 import hashlib
 import json
 import os
@@ -148,112 +149,136 @@ def show_logs(tmp):
             print(open(os.path.join(tmp, name)).read()[-2000:])
 
 
+@contextlib.contextmanager
+def running(tmp, *extra):
+    """A started Coordinator over `tmp`: its logs shown when the case fails, killed after."""
+    c = Coordinator(tmp, *extra)
+    try:
+        c.start()
+        yield c
+    except BaseException:
+        show_logs(tmp)
+        raise
+    finally:
+        if c.proc and c.proc.poll() is None:
+            c.kill()
+
+
 def case_crash_resume():
-    with tempfile.TemporaryDirectory() as tmp:
-        c = Coordinator(tmp)
-        try:
-            c.start()
-            first = c.submit(SMALL)
-            assert c.finished(first)["state"] == "done"
-            first_exr = c.image(first)
-            job = c.submit(CRASHED)
-            assert job == first + 1
-            # The demo scene's own camera: a resumed job shows it again.
-            job_views = c.views(job)
-            assert job_views[0] is not None, job_views
-            seen, restored = set(), [0.0]
-            for k in range(1, KILLS + 1):
-                # Kill points spread evenly over the job's work, so over its levels and passes.
-                at = c.wait(job, lambda j, k=k: j["progress"] >= k / (KILLS + 5)
-                            or j["state"] != "running" and j["state"] != "queued")
-                assert at["state"] == "running", ("finished before kill %d" % k, at)
-                seen.add((at["level"], at["pass"]))
-                # A crash loses at most the last tick's results (250 ms): let one tick store
-                # what reached the kill point, or on a fast machine every kill would come
-                # before the next flush and the job would never get further.
-                time.sleep(0.3)
-                c.kill()
-                c.start()
-                # Resumed, not restarted: what was stored is back before any new unit (a
-                # crash loses at most the last tick's results), and never less than last time.
-                back = c.get("/api/jobs/%d" % job)
-                assert back["state"] in ("queued", "running"), back
-                assert back["progress"] >= restored[-1], (restored, back["progress"])
-                assert (back["camera"], back["viewpoints"]) == job_views, back
-                restored.append(back["progress"])
-            assert restored[-1] > 0.5, restored
-            final = c.finished(job)
-            assert final["state"] == "done", final
-            assert len(seen) >= 3, "kills hit only %s" % seen
-            with open(os.path.join(tmp, "resumed.exr"), "wb") as f:
-                f.write(c.image(job))
-            render_cli(demo_scene(), CRASHED, os.path.join(tmp, "cli.exr"))
-            assert_identical(os.path.join(tmp, "resumed.exr"), os.path.join(tmp, "cli.exr"))
-            # Finished jobs from before the crashes: same ids, same images; ids go on.
-            assert [j["id"] for j in c.get("/api/jobs")] == [first, job]
-            assert c.get("/api/jobs/%d" % first)["state"] == "done"
-            assert c.image(first) == first_exr
-            assert [j["id"] for j in c.get("/api/jobs?limit=1&after=%d" % first)] == [job]
-            assert [j["id"] for j in c.get("/api/jobs?limit=1")] == [first]
-            for bad in ("limit=0", "limit=1001", "after=-1", "limit=x"):
-                status, body = c.request("GET", "/api/jobs?" + bad)
-                assert status == 400 and json.loads(body)["error"] == "bad_query", (bad, body)
-            # A world with two Viewpoints, and an SDL job whose camera is a setting.
-            world = c.submit({"width": 8, "height": 8}, CAMERA_VRML, "vrml")
-            world_views = c.views(world)
-            assert [v["name"] for v in world_views[1]] == ["Start", "Above"], world_views
-            camera = {"eye": [-2, 0.5, 6], "look_at": [0, -0.25, 0], "up": [0.1, 1, 0],
-                      "fov": 33.5}
-            moved = c.submit({"width": 8, "height": 8, "camera": camera}, CAMERA_SDL)
-            assert c.views(moved) == (camera, []), c.views(moved)
-            for extra in (world, moved):
-                assert c.finished(extra)["state"] == "done"
+    with tempfile.TemporaryDirectory() as tmp, running(tmp) as c:
+        first = c.submit(SMALL)
+        assert c.finished(first)["state"] == "done"
+        first_exr = c.image(first)
+        job = c.submit(CRASHED)
+        assert job == first + 1
+        # The demo scene's own camera: a resumed job shows it again.
+        job_views = c.views(job)
+        assert job_views[0] is not None, job_views
+        seen, restored = set(), [0.0]
+        for k in range(1, KILLS + 1):
+            # Kill points spread evenly over the job's work, so over its levels and passes.
+            at = c.wait(job, lambda j, k=k: j["progress"] >= k / (KILLS + 5)
+                        or j["state"] != "running" and j["state"] != "queued")
+            assert at["state"] == "running", ("finished before kill %d" % k, at)
+            seen.add((at["level"], at["pass"]))
+            # A crash loses at most the last tick's results (250 ms): let one tick store
+            # what reached the kill point, or on a fast machine every kill would come
+            # before the next flush and the job would never get further.
+            time.sleep(0.3)
             c.kill()
             c.start()
-            assert c.get("/api/jobs/%d" % job)["state"] == "done"
-            assert c.views(job) == job_views, c.views(job)
-            assert c.views(world) == world_views, c.views(world)
-            assert c.views(moved) == (camera, []), c.views(moved)
-            with open(os.path.join(tmp, "after.exr"), "wb") as f:
-                f.write(c.image(job))
-            assert_identical(os.path.join(tmp, "after.exr"), os.path.join(tmp, "cli.exr"))
-            assert c.submit(SMALL) == moved + 1
-            print("killed %d times at (level, pass) %s; progress back after each restart: %s" %
-                  (KILLS, sorted(seen), " ".join("%.2f" % p for p in restored[1:])))
-        except BaseException:
-            show_logs(tmp)
-            raise
-        finally:
-            if c.proc and c.proc.poll() is None:
-                c.kill()
+            # Resumed, not restarted: what was stored is back before any new unit (a
+            # crash loses at most the last tick's results), and never less than last time.
+            back = c.get("/api/jobs/%d" % job)
+            assert back["state"] in ("queued", "running"), back
+            assert back["progress"] >= restored[-1], (restored, back["progress"])
+            assert (back["camera"], back["viewpoints"]) == job_views, back
+            restored.append(back["progress"])
+        assert restored[-1] > 0.5, restored
+        final = c.finished(job)
+        assert final["state"] == "done", final
+        assert len(seen) >= 3, "kills hit only %s" % seen
+        with open(os.path.join(tmp, "resumed.exr"), "wb") as f:
+            f.write(c.image(job))
+        render_cli(demo_scene(), CRASHED, os.path.join(tmp, "cli.exr"))
+        assert_identical(os.path.join(tmp, "resumed.exr"), os.path.join(tmp, "cli.exr"))
+        # Finished jobs from before the crashes: same ids, same images; ids go on.
+        assert [j["id"] for j in c.get("/api/jobs")] == [first, job]
+        assert c.get("/api/jobs/%d" % first)["state"] == "done"
+        assert c.image(first) == first_exr
+        assert [j["id"] for j in c.get("/api/jobs?limit=1&after=%d" % first)] == [job]
+        assert [j["id"] for j in c.get("/api/jobs?limit=1")] == [first]
+        for bad in ("limit=0", "limit=1001", "after=-1", "limit=x"):
+            status, body = c.request("GET", "/api/jobs?" + bad)
+            assert status == 400 and json.loads(body)["error"] == "bad_query", (bad, body)
+        # A world with two Viewpoints, and an SDL job whose camera is a setting.
+        world = c.submit({"width": 8, "height": 8}, CAMERA_VRML, "vrml")
+        world_views = c.views(world)
+        assert [v["name"] for v in world_views[1]] == ["Start", "Above"], world_views
+        camera = {"eye": [-2, 0.5, 6], "look_at": [0, -0.25, 0], "up": [0.1, 1, 0],
+                  "fov": 33.5}
+        moved = c.submit({"width": 8, "height": 8, "camera": camera}, CAMERA_SDL)
+        assert c.views(moved) == (camera, []), c.views(moved)
+        for extra in (world, moved):
+            assert c.finished(extra)["state"] == "done"
+        c.kill()
+        c.start()
+        assert c.get("/api/jobs/%d" % job)["state"] == "done"
+        assert c.views(job) == job_views, c.views(job)
+        assert c.views(world) == world_views, c.views(world)
+        assert c.views(moved) == (camera, []), c.views(moved)
+        with open(os.path.join(tmp, "after.exr"), "wb") as f:
+            f.write(c.image(job))
+        assert_identical(os.path.join(tmp, "after.exr"), os.path.join(tmp, "cli.exr"))
+        assert c.submit(SMALL) == moved + 1
+        print("killed %d times at (level, pass) %s; progress back after each restart: %s" %
+              (KILLS, sorted(seen), " ".join("%.2f" % p for p in restored[1:])))
 
 
 def case_max_disk():
-    with tempfile.TemporaryDirectory() as tmp:
-        c = Coordinator(tmp, "--max-disk", "160K")
-        try:
-            c.start()
-            small = c.submit(SMALL)
-            assert c.finished(small)["state"] == "done"
-            small_png = c.image(small, "png")
-            big = c.submit(SETTINGS)
-            failed = c.finished(big)
-            assert failed["state"] == "failed", failed
-            assert failed["error"].startswith("cannot store the job's results: "), failed
-            assert "full" in failed["error"] or "over its limit" in failed["error"], failed
-            # The service goes on, and what it stored before is intact, also after a restart.
-            assert [j["id"] for j in c.get("/api/jobs")] == [small, big]
-            assert c.image(small, "png") == small_png
-            c.kill()
-            c.start()
-            assert c.get("/api/jobs/%d" % big)["state"] == "failed"
-            assert c.image(small, "png") == small_png
-        except BaseException:
-            show_logs(tmp)
-            raise
-        finally:
-            if c.proc and c.proc.poll() is None:
-                c.kill()
+    with tempfile.TemporaryDirectory() as tmp, running(tmp, "--max-disk", "160K") as c:
+        small = c.submit(SMALL)
+        assert c.finished(small)["state"] == "done"
+        small_png = c.image(small, "png")
+        big = c.submit(SETTINGS)
+        failed = c.finished(big)
+        assert failed["state"] == "failed", failed
+        assert failed["error"].startswith("cannot store the job's results: "), failed
+        assert "full" in failed["error"] or "over its limit" in failed["error"], failed
+        # The service goes on, and what it stored before is intact, also after a restart.
+        assert [j["id"] for j in c.get("/api/jobs")] == [small, big]
+        assert c.image(small, "png") == small_png
+        c.kill()
+        c.start()
+        assert c.get("/api/jobs/%d" % big)["state"] == "failed"
+        assert c.image(small, "png") == small_png
+
+
+def case_unstored_images():
+    """A done job whose images cannot be stored (JobPersistence::fail_unstored): the store's
+    images folder is swapped for a plain file once the coordinator runs, so writing the job's
+    PNG and EXR fails after all its results were stored. That job fails with the store's
+    reason, and the coordinator serves the next job as before, also after a restart."""
+    with tempfile.TemporaryDirectory() as tmp, running(tmp) as c:
+        images = os.path.join(c.data, "images")
+        os.rmdir(images)  # empty: no job has finished yet
+        open(images, "w").close()
+        unstored = c.submit(SMALL)
+        # Done first: the job fails once the store has refused its encoded images.
+        failed = c.wait(unstored, lambda j: j["state"] == "failed", timeout=30)
+        assert failed["error"].startswith("cannot store the job's results: "), failed
+        assert images in failed["error"], failed
+        status, _ = c.request("GET", "/api/jobs/%d/image?format=png" % unstored)
+        assert status == 404, status
+        os.remove(images)
+        os.mkdir(images)
+        served = c.submit(SMALL)
+        assert c.finished(served)["state"] == "done"
+        served_png = c.image(served, "png")
+        c.kill()
+        c.start()
+        assert c.get("/api/jobs/%d" % unstored)["state"] == "failed"
+        assert c.image(served, "png") == served_png
 
 
 def tree_digest(folder):
@@ -277,9 +302,7 @@ def case_read_only():
         sys.exit(77)
     with tempfile.TemporaryDirectory() as tmp:
         os.chmod(tmp, 0o755)  # nobody reaches the data directory inside
-        c = Coordinator(tmp)
-        try:
-            c.start()
+        with running(tmp) as c:
             small = c.submit(SMALL)
             assert c.finished(small)["state"] == "done"
             small_png = c.image(small, "png")
@@ -302,12 +325,6 @@ def case_read_only():
             back = c.get("/api/jobs/%d" % small)
             assert back["state"] == "done", back
             assert c.image(small, "png") == small_png
-        except BaseException:
-            show_logs(tmp)
-            raise
-        finally:
-            if c.proc and c.proc.poll() is None:
-                c.kill()
 
 
 if __name__ == "__main__":
