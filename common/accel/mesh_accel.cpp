@@ -10,11 +10,10 @@
 namespace tessera {
 namespace {
 
-// Moves every leaf of the binary tree to a position of primitive_order that is a multiple of
-// MeshAccel::kLeafAlignment, leaving a gap (MeshAccel::kNoTriangle) after each leaf up to the
-// next, so that a leaf's triangles fill whole quads (and pairs). Before make_bvh_wide, which
-// copies the leaves' ranges.
-void align_leaves(Bvh& bvh) {
+// Moves every leaf of the binary tree to an even position of primitive_order, leaving a gap
+// (MeshAccel::kNoTriangle) after each leaf of odd size, so that a leaf's triangles fill whole
+// pairs. Before make_bvh_wide, which copies the leaves' ranges.
+void start_leaves_at_even_positions(Bvh& bvh) {
   std::vector<BvhNode*> leaves;
   for (BvhNode& node : bvh.nodes)
     if (node.count > 0) leaves.push_back(&node);
@@ -27,8 +26,7 @@ void align_leaves(Bvh& bvh) {
     const auto first = static_cast<std::uint32_t>(order.size());
     const auto old_first = bvh.primitive_order.begin() + leaf->first_or_second_child;
     order.insert(order.end(), old_first, old_first + leaf->count);
-    if (leaf != leaves.back())
-      while (order.size() % MeshAccel::kLeafAlignment != 0) order.push_back(MeshAccel::kNoTriangle);
+    if (order.size() % 2 != 0 && leaf != leaves.back()) order.push_back(MeshAccel::kNoTriangle);
     leaf->first_or_second_child = first;
   }
   bvh.primitive_order = std::move(order);
@@ -54,28 +52,20 @@ MeshAccel build_mesh_accel(const Mesh& mesh, BvhMode mode, int threads) {
   // AVX2, and the larger leaves save node visits, which wait on memory (docs/PERFORMANCE.md
   // "Four triangles a step").
   accel.bvh = build_bvh_nodes(bounds, mode, threads, BvhLeafTests{.group = 4, .max_size = 8});
-  align_leaves(accel.bvh);
+  start_leaves_at_even_positions(accel.bvh);
   make_bvh_wide(accel.bvh);
   constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
   TrianglePair never_hit;
   for (int lane = 0; lane < 2; ++lane)
     for (int c = 0; c < 3; ++c) set_pair_corner(never_hit, c, lane, Vec3{kNaN, kNaN, kNaN});
-  FloatTriangleQuad never_hit_quad;
-  for (int lane = 0; lane < 4; ++lane) set_float_quad_lane_never_hit(never_hit_quad, lane);
   const std::vector<std::uint32_t>& order = accel.bvh.primitive_order;
-  // Whole quads, so that a quad's two pairs are always there.
-  const std::size_t quads = (order.size() + 3) / 4;
-  accel.leaf_quads.assign(quads, never_hit_quad);
-  accel.leaf_pairs.assign(2 * quads, never_hit);
+  accel.leaf_pairs.assign((order.size() + 1) / 2, never_hit);
   for (std::size_t i = 0; i < order.size(); ++i) {
     const std::uint32_t index = order[i];
     if (index == MeshAccel::kNoTriangle || degenerate[index]) continue;
-    Vec3 corners[3];
-    for (int c = 0; c < 3; ++c) {
-      corners[c] = mesh.positions[mesh.triangles[index].v[c]];
-      set_pair_corner(accel.leaf_pairs[i / 2], c, static_cast<int>(i % 2), corners[c]);
-    }
-    set_float_quad_lane(accel.leaf_quads[i / 4], static_cast<int>(i % 4), corners);
+    for (int c = 0; c < 3; ++c)
+      set_pair_corner(accel.leaf_pairs[i / 2], c, static_cast<int>(i % 2),
+                      mesh.positions[mesh.triangles[index].v[c]]);
   }
   return accel;
 }

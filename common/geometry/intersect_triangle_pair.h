@@ -12,7 +12,6 @@
 #include <limits>
 
 #include "common/geometry/triangle.h"
-#include "common/geometry/triangle_float_reject.h"
 #include "common/geometry/triangle_pair.h"
 
 #if defined(__SSE2__)
@@ -54,15 +53,13 @@ inline unsigned intersect_triangle_lanes_scalar(const TrianglePair* pairs, int p
   return lanes;
 }
 
-// A ray prepared for the lane tests: the triangle test's ray, its permuted origin (components
-// kx, ky, kz) and its share of the float pre-test (triangle_float_reject.h), once per ray rather
-// than once per test. Small, as the leaf visitors
+// A ray prepared for the lane tests: the triangle test's ray and its permuted origin
+// (components kx, ky, kz), once per ray rather than once per test. Small, as the leaf visitors
 // hold a copy: repeating each value once per lane here cost more in stores and copies than the
 // tests' broadcasts (one instruction each, from memory).
 struct TriangleLanesRay {
   TriangleRay ray;
   double origin[3];
-  FloatTriangleRay float_ray;
 };
 
 inline TriangleLanesRay prepare_triangle_lanes_ray(const Ray& ray) {
@@ -72,7 +69,6 @@ inline TriangleLanesRay prepare_triangle_lanes_ray(const Ray& ray) {
   r.origin[0] = origin.x;
   r.origin[1] = origin.y;
   r.origin[2] = origin.z;
-  r.float_ray = prepare_float_triangle_ray(r.ray);
   return r;
 }
 

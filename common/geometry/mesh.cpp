@@ -12,42 +12,24 @@
 namespace tessera {
 namespace {
 
-// Tests the four triangles at positions q to q + 3 of a leaf (q a multiple of 4; the lanes past
-// the leaf's end are gaps, never hit): first the float reject test on leaf_quads, then the
-// double test on the pairs of leaf_pairs with lanes it could not reject, both pairs at once in
-// the traversal compiled for AVX2. The double test decides every hit, and the float test rejects
-// only lanes it would miss, so the lanes hit are those of the double test alone. Returns them as
-// bits, lane l for the triangle at q + l, with their hits in `hits`' lane l.
+// Tests the triangles of a leaf ending at `end` from its position i (even) on: four (two pairs)
+// in the traversal compiled for AVX2 while more than two remain, else one pair; `next` receives
+// the position after them. Returns the lanes hit as bits, lane l for the triangle at i + l.
 template <typename Kernel>
-[[gnu::always_inline]] inline unsigned intersect_leaf_quad(Kernel, const MeshAccel& accel,
-                                                           std::uint32_t q,
-                                                           const TriangleLanesRay& lanes_ray,
-                                                           double t_max, TriangleLaneHits& hits) {
-  const unsigned doubtful =
-      float_triangle_survivors(accel.leaf_quads[q / 4], lanes_ray.ray, lanes_ray.float_ray);
-  if (doubtful == 0) return 0;
-  const TrianglePair* pairs = &accel.leaf_pairs[q / 2];
+[[gnu::always_inline]] inline unsigned intersect_leaf_triangles(
+    Kernel, const MeshAccel& accel, std::uint32_t i, std::uint32_t end,
+    const TriangleLanesRay& lanes_ray, double t_max, TriangleLaneHits& hits, std::uint32_t& next) {
+  const TrianglePair* pairs = &accel.leaf_pairs[i / 2];
 #if defined(__SSE2__)
   if constexpr (Kernel::value == WideBoxKernel::Avx2) {
-    if ((doubtful & 3u) != 0 && (doubtful & 12u) != 0)
+    if (end - i > 2) {
+      next = i + 4;
       return intersect_triangle_quad(pairs, lanes_ray, t_max, hits);
+    }
   }
 #endif
-  unsigned lanes = 0;
-  if ((doubtful & 3u) != 0) lanes = intersect_triangle_pair(pairs[0], lanes_ray, t_max, hits);
-  if ((doubtful & 12u) != 0) {
-    TriangleLaneHits second;
-    const unsigned second_lanes = intersect_triangle_pair(pairs[1], lanes_ray, t_max, second);
-    for (unsigned rest = second_lanes; rest != 0; rest &= rest - 1) {
-      const int lane = std::countr_zero(rest);
-      hits.t[lane + 2] = second.t[lane];
-      hits.b0[lane + 2] = second.b0[lane];
-      hits.b1[lane + 2] = second.b1[lane];
-      hits.b2[lane + 2] = second.b2[lane];
-    }
-    lanes |= second_lanes << 2;
-  }
-  return lanes;
+  next = i + 2;
+  return intersect_triangle_pair(*pairs, lanes_ray, t_max, hits);
 }
 
 }  // namespace
@@ -77,10 +59,11 @@ bool intersect_mesh(const MeshAccel& accel, bool interpolate_normals, const Ray&
         t_limit = h.t;
       };
       const std::uint32_t end = first + count;
-      for (std::uint32_t i = first; i < end; i += 4) {
+      for (std::uint32_t i = first, next; i < end; i = next) {
         const double limit = found ? next_up(t_limit) : t_limit;
         TriangleLaneHits hits;
-        const unsigned lanes = intersect_leaf_quad(kernel, accel, i, lanes_ray, limit, hits);
+        const unsigned lanes =
+            intersect_leaf_triangles(kernel, accel, i, end, lanes_ray, limit, hits, next);
         for (unsigned rest = lanes; rest != 0; rest &= rest - 1) {
           const int lane = std::countr_zero(rest);
           // One triangle at a time, a lane would have been tested against the limit after the
@@ -116,9 +99,10 @@ bool occluded_mesh(const MeshAccel& accel, const Ray& ray, double t_max,
         std::uint32_t first, std::uint32_t count, double t_limit, auto kernel)
         __attribute__((always_inline)) {
       const std::uint32_t end = first + count;
-      for (std::uint32_t i = first; i < end; i += 4) {
+      for (std::uint32_t i = first, next; i < end; i = next) {
         TriangleLaneHits hits;
-        const unsigned lanes = intersect_leaf_quad(kernel, accel, i, lanes_ray, t_limit, hits);
+        const unsigned lanes =
+            intersect_leaf_triangles(kernel, accel, i, end, lanes_ray, t_limit, hits, next);
         if (lanes != 0) {
           // Counted as one at a time: up to the first triangle hit.
           counters.triangle_tests +=
@@ -146,9 +130,10 @@ std::vector<LocalHit> mesh_crossings(const MeshAccel& accel, bool interpolate_no
         __attribute__((always_inline)) {
       counters.triangle_tests += count;
       const std::uint32_t end = first + count;
-      for (std::uint32_t i = first; i < end; i += 4) {
+      for (std::uint32_t i = first, next; i < end; i = next) {
         TriangleLaneHits lane_hits;
-        const unsigned lanes = intersect_leaf_quad(kernel, accel, i, lanes_ray, limit, lane_hits);
+        const unsigned lanes =
+            intersect_leaf_triangles(kernel, accel, i, end, lanes_ray, limit, lane_hits, next);
         for (unsigned rest = lanes; rest != 0; rest &= rest - 1) {
           const auto lane = static_cast<std::uint32_t>(std::countr_zero(rest));
           hits.emplace_back(lane_hits.lane(static_cast<int>(lane)),

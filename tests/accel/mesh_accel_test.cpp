@@ -208,23 +208,21 @@ TEST(MeshAccel, OccludedMatchesBruteForceAndStopsEarly) {
   EXPECT_LT(any_hit.triangle_tests, closest.triangle_tests);
 }
 
-// Every leaf starts a quad of leaf_quads (and a pair of leaf_pairs); each triangle of the tree
-// sits in its lanes once, in double and rounded to float with a magnitude that bounds its
-// corners, and every other lane (gaps after leaves, the tail) holds NaN corners, which never hit.
-TEST(MeshAccel, LeavesFillWholeQuads) {
+// Every leaf starts a pair of leaf_pairs; each triangle of the tree sits in its lane once, and
+// every other lane (gaps after odd leaves, the tail) holds NaN corners, which never hit.
+TEST(MeshAccel, LeavesFillWholePairs) {
   std::mt19937_64 rng(79);
   const Mesh mesh = random_triangles(rng, 999, 10, 1.2);
   for (const BvhMode mode : {BvhMode::Sah, BvhMode::None}) {
     const MeshAccel accel = build_mesh_accel(mesh, mode);
     const std::vector<std::uint32_t>& order = accel.bvh.primitive_order;
-    ASSERT_EQ(accel.leaf_quads.size(), (order.size() + 3) / 4);
-    ASSERT_EQ(accel.leaf_pairs.size(), 2 * accel.leaf_quads.size());
+    ASSERT_EQ(accel.leaf_pairs.size(), (order.size() + 1) / 2);
     std::vector<bool> in_leaf(order.size() + 1, false);
-    int unaligned_ends = 0;
+    int odd_leaves = 0;
     for (const BvhNode& node : accel.bvh.nodes) {
       if (node.count == 0) continue;
-      EXPECT_EQ(node.first_or_second_child % MeshAccel::kLeafAlignment, 0u);
-      unaligned_ends += node.count % MeshAccel::kLeafAlignment != 0;
+      EXPECT_EQ(node.first_or_second_child % 2, 0u);
+      odd_leaves += node.count % 2;
       for (std::uint32_t i = node.first_or_second_child;
            i < node.first_or_second_child + node.count; ++i)
         in_leaf.at(i) = true;
@@ -232,34 +230,25 @@ TEST(MeshAccel, LeavesFillWholeQuads) {
     for (const BvhWideNode& node : accel.bvh.wide)
       for (int c = 0; c < kWideChildren; ++c)
         if (node.count[c] > 0) {
-          EXPECT_EQ(node.child[c] % MeshAccel::kLeafAlignment, 0u);
+          EXPECT_EQ(node.child[c] % 2, 0u);
         }
     if (mode == BvhMode::Sah) {
-      EXPECT_GT(unaligned_ends, 10);  // so that there are gaps
+      EXPECT_GT(odd_leaves, 10);  // so that there are gaps
     }
     std::vector<int> seen(mesh.triangles.size(), 0);
-    for (std::size_t i = 0; i < 4 * accel.leaf_quads.size(); ++i) {
+    for (std::size_t i = 0; i < 2 * accel.leaf_pairs.size(); ++i) {
       const TrianglePair& pair = accel.leaf_pairs[i / 2];
       const int lane = static_cast<int>(i % 2);
-      const FloatTriangleQuad& quad = accel.leaf_quads[i / 4];
-      const std::size_t quad_lane = i % 4;
       if (i < order.size() && in_leaf[i]) {
         const MeshTriangle& tri = mesh.triangles.at(order[i]);
         ++seen[order[i]];
-        for (int c = 0; c < 3; ++c) {
-          const Vec3& p = mesh.positions[tri.v[static_cast<std::size_t>(c)]];
-          EXPECT_EQ(pair_corner(pair, c, lane), p);
-          EXPECT_EQ(quad.corner[c][0][quad_lane], static_cast<float>(p.x));
-          EXPECT_EQ(quad.corner[c][1][quad_lane], static_cast<float>(p.y));
-          EXPECT_EQ(quad.corner[c][2][quad_lane], static_cast<float>(p.z));
-          EXPECT_GE(static_cast<double>(quad.magnitude[quad_lane]), max_component(abs(p)));
-        }
+        for (int c = 0; c < 3; ++c)
+          EXPECT_EQ(pair_corner(pair, c, lane), mesh.positions[tri.v[static_cast<std::size_t>(c)]]);
       } else {
         if (i < order.size()) {
           EXPECT_EQ(order[i], MeshAccel::kNoTriangle);
         }
         for (int c = 0; c < 3; ++c) EXPECT_TRUE(std::isnan(pair_corner(pair, c, lane).x));
-        EXPECT_TRUE(std::isnan(quad.magnitude[quad_lane]));
       }
     }
     for (const int n : seen) EXPECT_EQ(n, 1);
