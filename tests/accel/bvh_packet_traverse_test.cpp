@@ -39,10 +39,7 @@ void expect_lanes_as_alone(const ChildBoxes& boxes, const Ray* rays, const doubl
 TEST(BvhPacket, BoxTestMatchesEachRayAloneOnRandomRays) {
   std::mt19937_64 rng(11);
   std::uniform_real_distribution<double> u(-2, 2);
-  const auto component = [&] {
-    const double r = u(rng);
-    return r > 1.5 ? 0.0 : (r < -1.5 ? -0.0 : r);
-  };
+  const auto component = [&] { return direction_component(rng, u); };
   int same_sides = 0;
   for (int i = 0; i < 5000; ++i) {
     Bounds3 a, b;
