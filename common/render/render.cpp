@@ -46,17 +46,25 @@ double shutter_time(double length, int j, int count, double jitter, double u) {
   return length * ((j + 0.5 + std::min(jitter, 1.0) * (u - 0.5)) / count - 0.5);
 }
 
-// One camera sample along `ray`, which starts in air; a value the image cannot keep counts in
-// stats.nan_samples and becomes black.
-Rgb trace_camera_sample(Tracer& tracer, const Ray& ray, SampleStream& rng, RenderStats& stats) {
+// One camera sample, `trace(air)` for a ray that starts in air; a value the image cannot keep
+// counts in stats.nan_samples and becomes black.
+template <class Trace>
+Rgb camera_sample(RenderStats& stats, Trace&& trace) {
   // Default-initialized, not MediumStack{}: value-initializing zeroes all its entries (264
   // bytes) for every sample.
   MediumStack air;
   ++stats.camera_rays;
-  const Rgb c = tracer.trace(ray, RayKind::Camera, 0, 1.0, air, rng);
+  const Rgb c = trace(air);
   if (fits_float(c)) return c;
   ++stats.nan_samples;  // counted and reported, never written into the image
   return Rgb{};
+}
+
+// The camera sample along `ray`.
+Rgb trace_camera_sample(Tracer& tracer, const Ray& ray, SampleStream& rng, RenderStats& stats) {
+  return camera_sample(stats, [&](const MediumStack& air) {
+    return tracer.trace(ray, RayKind::Camera, 0, 1.0, air, rng);
+  });
 }
 
 // One pass of one pixel: the mean of sample(j, k), sample k at motion-blur time j, added in
@@ -106,6 +114,40 @@ Rgb trace_pixel(const PassContext& c, int x, int y) {
     if (moving) ray.time = shutter_time(shutter, j, times, c.settings.jitter, rng.next());
     return trace_camera_sample(c.tracer, ray, rng, c.stats);
   });
+}
+
+// Whether every pixel traces one sample, at the same offset, with no random number drawn before
+// its camera ray (no jitter, no motion blur): then neighbours' rays may walk the BVH together.
+bool one_fixed_sample(const PassContext& c) {
+  return c.offsets.size() == 1 && !c.settings.stochastic && time_samples(c.scene, c.settings) == 1;
+}
+
+// The pixels of trace_pixel for one_fixed_sample, kPacketLanes at a time: their camera rays'
+// nearest hits found by one walk of the scene BVH (common/accel/bvh_packet_traverse.h), then
+// each pixel traced on from its hit, in order, as trace_pixel would (the same ray, random
+// numbers and statistics, so the same value).
+template <class CheckInterrupt>
+void trace_packets(const PassContext& c, std::span<const PixelCoord> pixels, std::span<Rgb> out,
+                   const CheckInterrupt& check_interrupt) {
+  const SampleOffset offset = c.offsets[0];
+  for (std::size_t i = 0; i < pixels.size(); i += kPacketLanes) {
+    const int count = static_cast<int>(std::min<std::size_t>(kPacketLanes, pixels.size() - i));
+    Ray rays[kPacketLanes];
+    for (int l = 0; l < count; ++l)
+      rays[l] = c.camera.through(pixels[i + l].x + offset.dx, pixels[i + l].y + offset.dy);
+    c.tracer.find_packet_hits(rays, count);
+    for (int l = 0; l < count; ++l) {
+      check_interrupt();
+      const PixelCoord p = pixels[i + l];
+      SampleStream rng(c.settings.seed, static_cast<std::uint32_t>(p.x),
+                       static_cast<std::uint32_t>(p.y), static_cast<std::uint32_t>(c.pass));
+      out[i + l] = pixel_mean(1, 1, c.stats, [&](int, std::uint32_t) {
+        return camera_sample(c.stats, [&](const MediumStack& air) {
+          return c.tracer.trace_packet_ray(l, air, rng);
+        });
+      });
+    }
+  }
 }
 
 // A pixel whose samples are points of `lattice`, traced by the first pixel that needs them.
@@ -188,6 +230,10 @@ void render_pixels(const PreparedScene& scene, const RenderSettings& settings,
       check_interrupt();
       out[i] = shared_pixel(context, lattice, pixels[i].x, pixels[i].y);
     }
+    return;
+  }
+  if (one_fixed_sample(context)) {
+    trace_packets(context, pixels, out, check_interrupt);
     return;
   }
   for (std::size_t i = 0; i < pixels.size(); ++i) {

@@ -132,6 +132,38 @@ bool Tracer::closest_hit(const Ray& ray, Hit& hit) {
   return found;
 }
 
+void Tracer::find_packet_hits(const Ray* rays, int count) {
+  const std::vector<Instance>& instances = scene_.instances();
+  double t_max[kPacketLanes];
+  for (int l = 0; l < count; ++l) {
+    packet_rays_[l] = rays[l];
+    packet_found_[l] = false;
+    packet_hits_[l].time = rays[l].time;
+    t_max[l] = kInfinity;
+  }
+  // The leaf visit of closest_hit's traverse_bvh, per ray.
+  traverse_bvh_packet_leaves(scene_.bvh(), PacketRays(rays, count), t_max,
+                             stats_.intersections.bvh_nodes,
+                             [&](int lane, std::uint32_t first, std::uint32_t size, double limit) {
+                               Hit& hit = packet_hits_[lane];
+                               for (std::uint32_t i = first; i < first + size; ++i) {
+                                 const std::uint32_t index = scene_.bvh().primitive_order[i];
+                                 if (!intersect_instance(instances[index], packet_rays_[lane],
+                                                         limit, hit.world, stats_.intersections))
+                                   continue;
+                                 hit.instance = index;
+                                 packet_found_[lane] = true;
+                                 limit = hit.world.t;
+                               }
+                               return limit;
+                             });
+}
+
+Rgb Tracer::trace_packet_ray(int lane, const MediumStack& media, SampleStream& rng) {
+  return trace_from_hit(packet_rays_[lane], packet_found_[lane], packet_hits_[lane],
+                        RayKind::Camera, 0, 1.0, media, rng);
+}
+
 std::optional<WorldHit> Tracer::first_hit(const Ray& ray) {
   Hit hit;
   if (!closest_hit(ray, hit)) return std::nullopt;
@@ -404,6 +436,18 @@ Rgb Tracer::apply_atmosphere(const Rgb& color, double distance) const {
 
 Rgb Tracer::trace(const Ray& ray_in, RayKind kind, int depth, double weight,
                   const MediumStack& media_in, SampleStream& rng) {
+  // The hit is left unzeroed: closest_hit writes every member it has before any is read, and
+  // zeroing its 152 bytes (the members' initializers, a `rep stos`) for every ray cost the demo
+  // some 2 % of its time. The byte array's lifetime implicitly creates the Hit, an aggregate and
+  // so an implicit-lifetime type, within it (C++20 [intro.object]).
+  alignas(Hit) std::byte hit_storage[sizeof(Hit)];
+  Hit& hit = *std::launder(reinterpret_cast<Hit*>(hit_storage));
+  const bool found = closest_hit(ray_in, hit);
+  return trace_from_hit(ray_in, found, hit, kind, depth, weight, media_in, rng);
+}
+
+Rgb Tracer::trace_from_hit(const Ray& ray_in, bool found, Hit& hit, RayKind kind, int depth,
+                           double weight, const MediumStack& media_in, SampleStream& rng) {
   poll_interrupt();
   const Scene& scene = scene_.scene();
   const SceneGlobals& g = scene.globals;
@@ -416,16 +460,10 @@ Rgb Tracer::trace(const Ray& ray_in, RayKind kind, int depth, double weight,
   std::optional<Ray> continued;
   MediumStack media = media_in;
   double travelled = 0;
-  // The hit is left unzeroed: closest_hit writes every member it has before any is read, and
-  // zeroing its 152 bytes (the members' initializers, a `rep stos`) for every ray cost the demo
-  // some 2 % of its time. The byte array's lifetime implicitly creates the Hit, an aggregate and
-  // so an implicit-lifetime type, within it (C++20 [intro.object]).
-  alignas(Hit) std::byte hit_storage[sizeof(Hit)];
-  Hit& hit = *std::launder(reinterpret_cast<Hit*>(hit_storage));
   const Material* m = nullptr;
   Crossing crossing;
   for (int skipped = 0;; ++skipped) {
-    if (!closest_hit(*ray, hit)) {
+    if (!found) {
       if (kind == RayKind::Reflected) return Rgb{};  // eq. 4.2
       return effects.has(Effect::SkyGradient) ? g.sky->colour(unit_or_zero(ray->direction))
                                               : g.background;
@@ -445,6 +483,7 @@ Rgb Tracer::trace(const Ray& ray_in, RayKind kind, int depth, double weight,
     // parenthesized aggregate initialization either).
     ray = &continued.emplace(
         Ray{spawn_origin(hit, ray->direction, g.transparency_epsilon), ray->direction, ray->time});
+    found = closest_hit(*ray, hit);
   }
 
   Vec3 normal = hit.world.shading_normal;

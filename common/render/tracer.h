@@ -4,6 +4,7 @@
 #include <cstdint>
 #include <vector>
 
+#include "common/accel/bvh_packet_traverse.h"
 #include "common/render/interrupt.h"
 #include "common/render/media.h"
 #include "common/render/prepared_scene.h"
@@ -41,6 +42,13 @@ class Tracer {
   Rgb trace(const Ray& ray, RayKind kind, int depth, double weight, const MediumStack& media,
             SampleStream& rng);
 
+  // Camera rays of up to kPacketLanes neighbouring pixels: their nearest hits, found by one
+  // walk of the scene BVH (common/accel/bvh_packet_traverse.h) and kept for trace_packet_ray.
+  void find_packet_hits(const Ray* rays, int count);
+  // trace(ray, RayKind::Camera, 0, 1, media, rng) of ray `lane` of the last find_packet_hits,
+  // bit for bit, its nearest hit already found.
+  Rgb trace_packet_ray(int lane, const MediumStack& media, SampleStream& rng);
+
   // The nearest surface along `ray`, for the debug views; nothing when it meets none.
   std::optional<WorldHit> first_hit(const Ray& ray);
 
@@ -59,6 +67,9 @@ class Tracer {
     bool known = true;
   };
   bool closest_hit(const Ray& ray, Hit& hit);
+  // trace() once closest_hit has given `found` and `hit` for `ray_in`.
+  Rgb trace_from_hit(const Ray& ray_in, bool found, Hit& hit, RayKind kind, int depth,
+                     double weight, const MediumStack& media_in, SampleStream& rng);
   // Crosses the transparent surface at `hit`, together with every other transparent surface
   // that crosses the ray within rounding of it: coincident boundaries (the same sphere twice,
   // flush faces) are one interface, whichever of them closest_hit returned. `hit` becomes the
@@ -134,6 +145,10 @@ class Tracer {
   std::uint64_t budget_sample_ = kNone;  // stats_.camera_rays of the sample being budgeted
   std::uint64_t budget_start_ = 0;       // secondary_rays() at that sample's first cone
   std::uint64_t budget_pixel_ = kNone;   // stats_.pixels of the last pixel counted as over it
+  // The rays of the last find_packet_hits and their nearest hits.
+  Ray packet_rays_[kPacketLanes];
+  Hit packet_hits_[kPacketLanes];
+  bool packet_found_[kPacketLanes] = {};
 };
 
 }  // namespace tessera

@@ -43,10 +43,7 @@ TEST(ChildBoxes, MatchTheScalarSlabTestOnRandomRays) {
     const double r = u(rng);
     return r > 1.6 ? plane : r;
   };
-  const auto component = [&] {
-    const double r = u(rng);
-    return r > 1.5 ? 0.0 : (r < -1.5 ? -0.0 : r);
-  };
+  const auto component = [&] { return direction_component(rng, u); };
   int hits = 0;
   for (int i = 0; i < 20000; ++i) {
     Bounds3 a, b;

@@ -4,6 +4,7 @@
 // (child_boxes_test.cpp, float_child_boxes_test.cpp) run them.
 #pragma once
 
+#include <random>
 #include <vector>
 
 #include "common/math/ray.h"
@@ -20,6 +21,13 @@ inline std::vector<Ray> edge_case_rays() {
       {{0.5, 0.5, 0.5}, {1e-300, 0, 0}},
       {{0.5, 0.5, 0.5}, {kInfinity, 1, 1}},
   };
+}
+
+// A direction component for random rays: uniform in (-2, 2) by `u`, exactly 0 or -0 one time in
+// eight each (slabs the ray runs along).
+inline double direction_component(std::mt19937_64& rng, std::uniform_real_distribution<double>& u) {
+  const double r = u(rng);
+  return r > 1.5 ? 0.0 : (r < -1.5 ? -0.0 : r);
 }
 
 }  // namespace tessera
