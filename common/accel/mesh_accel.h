@@ -11,6 +11,11 @@
 
 namespace tessera {
 
+// How a mesh's SAH prices its leaves: up to eight triangles, tested four at a time with AVX2
+// (intersect_triangle_pair.h); the larger leaves save node visits, which wait on memory
+// (docs/PERFORMANCE.md "Four triangles a step").
+inline constexpr BvhLeafTests kMeshLeafTests{.group = 4, .max_size = 8};
+
 struct MeshAccel {
   // bvh.primitive_order's entries between leaves (see leaf_pairs), which name no triangle.
   static constexpr std::uint32_t kNoTriangle = std::numeric_limits<std::uint32_t>::max();
