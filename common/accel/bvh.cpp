@@ -1,8 +1,9 @@
 // Binned SAH BVH construction (pbrt-v3 §4.3.2, 16 bins, evaluated on all three axes), and the
-// flat single-leaf "acceleration off". A node with at most 4 primitives becomes a leaf when no
-// split is cheaper; larger nodes are always split, except when all centroids coincide (no
-// split separates anything). Primitives whose bounds are empty or not finite cannot be hit and
-// are left out of the SAH tree; BvhMode::None keeps every primitive, in input order.
+// flat single-leaf "acceleration off". A node with at most BvhLeafTests::max_size primitives
+// becomes a leaf when no split is cheaper (or, holding more than split_above, is split all the
+// same and marked leaf_preferred); larger nodes are always split, except when all centroids
+// coincide (no split separates anything). Primitives whose bounds are empty or not finite cannot be
+// hit and are left out of the SAH tree; BvhMode::None keeps every primitive, in input order.
 //
 // One pass over a node's primitives bins them on all three axes at once, keeping per bin the
 // bounds and the centroid bounds, so that each child's bounds are the union of its side's bins
@@ -454,7 +455,7 @@ void make_bvh_wide(Bvh& bvh) {
       } else if (child.leaf_preferred) {
         // The subtree's leaves lie in order: the range runs from its first to its last.
         std::size_t first = children[c], last = children[c];
-        while (bvh.nodes[first].count == 0) first = first + 1;
+        while (bvh.nodes[first].count == 0) ++first;
         while (bvh.nodes[last].count == 0) last = second_child(last);
         node.child[c] = bvh.nodes[first].first_or_second_child;
         node.count[c] =
