@@ -3,14 +3,17 @@
 // engines trace in the same process, interleaved repeat by repeat, so that the load of a shared
 // machine cancels out of the ratio Tessera / Embree (higher is better; 1 is Embree's pace).
 //
-//   tessera-embree-bench [--repeats N] [--width W] [--height H] [--cpu-time] [--smoke] [OBJ...]
+//   tessera-embree-bench [--repeats N] [--width W] [--height H] [--cpu-time] [--smoke] [--counts]
+//                        [OBJ...]
 //
 // --cpu-time times each engine by its threads' CPU time (the busiest thread's) instead of the
 // wall clock: on a machine shared with other jobs a thread waits for a core much of the time,
 // which wall times count and this does not (caches are still shared, so it is not immune).
 // Without OBJ files it traces the built-in teapot (6,320 triangles). --smoke traces a tiny
 // image once and fails when the engines disagree on which rays hit, so that CTest keeps the
-// benchmark from rotting; its speeds mean nothing.
+// benchmark from rotting; its speeds mean nothing. --counts prints, instead of timing, Tessera's
+// tree (its SAH cost, wide_bvh_cost) and the nodes visited and triangles tested a ray of each
+// kind: they show what a change of the tree does, without the noise of times.
 #include <embree3/rtcore.h>
 
 #include <algorithm>
@@ -60,6 +63,7 @@ struct Options {
   int height = 480;
   bool smoke = false;
   bool cpu_time = false;
+  bool counts = false;
   std::vector<std::string> meshes;
 };
 
@@ -237,6 +241,45 @@ double median(std::vector<double> values) {
   return n % 2 ? values[n / 2] : (values[n / 2 - 1] + values[n / 2]) / 2;
 }
 
+// Prints Tessera's tree and the work a ray of each kind does in it.
+void count_mesh(const std::string& name, const Mesh& mesh, const Options& options) {
+  const MeshAccel accel = build_mesh_accel(mesh, BvhMode::Sah);
+  std::size_t children = 0, leaves = 0, leaf_positions = 0, gaps = 0;
+  for (const BvhWideNode& node : accel.bvh.wide)
+    for (int c = 0; c < kWideChildren; ++c) {
+      if (node.boxes.bound[0][0][c] <= node.boxes.bound[0][1][c]) ++children;
+      if (node.count[c] == 0) continue;
+      ++leaves, leaf_positions += node.count[c];
+      for (std::uint32_t i = node.child[c]; i < node.child[c] + node.count[c]; ++i)
+        gaps += accel.bvh.primitive_order[i] == MeshAccel::kNoTriangle;
+    }
+  const WideBvhCost cost = wide_bvh_cost(accel.bvh, kMeshLeafTests);
+  const auto ratio = [](std::size_t a, std::size_t b) {
+    return static_cast<double>(a) / static_cast<double>(std::max<std::size_t>(b, 1));
+  };
+  std::printf(
+      "%s: %zu wide nodes of %.2f children, %zu leaves of %.2f triangles and %.2f gaps; "
+      "SAH: %.3f node steps + %.3f leaf tests a ray through the root's box\n\n",
+      name.c_str(), accel.bvh.wide.size(), ratio(children, accel.bvh.wide.size()), leaves,
+      ratio(leaf_positions - gaps, leaves), ratio(gaps, leaves), cost.node_steps, cost.leaf_tests);
+  std::printf("| rays | wide nodes a ray | triangles tested a ray |\n| --- | --- | --- |\n");
+  for (const RaySet& set : make_rays(accel, options.width, options.height)) {
+    IntersectionCounters counters;
+    for (std::size_t i = 0; i < set.rays.size(); ++i) {
+      LocalHit hit;
+      if (set.kind == RayKind::Shadow)
+        occluded_mesh(accel, set.rays[i], set.t_max[i], counters);
+      else
+        intersect_mesh(accel, false, set.rays[i], set.t_max[i], hit, counters);
+    }
+    const double n = static_cast<double>(std::max<std::size_t>(set.rays.size(), 1));
+    // bvh_nodes counts the root's box once a ray, then eight boxes a wide node.
+    std::printf("| %s | %.2f | %.2f |\n", kind_name(set.kind),
+                static_cast<double>(counters.bvh_nodes - set.rays.size()) / kWideChildren / n,
+                static_cast<double>(counters.triangle_tests) / n);
+  }
+}
+
 // Traces one mesh; prints its rows; returns false when the engines disagree on the hits.
 bool bench_mesh(const std::string& name, const Mesh& mesh, const Options& options) {
   const MeshAccel accel = build_mesh_accel(mesh, BvhMode::Sah);
@@ -307,6 +350,8 @@ int main_impl(int argc, char** argv) {
       options.height = std::max(1, value());
     else if (arg == "--cpu-time")
       options.cpu_time = true;
+    else if (arg == "--counts")
+      options.counts = true;
     else if (arg == "--smoke")
       options.smoke = true;
     else if (arg.starts_with("--"))
@@ -315,6 +360,12 @@ int main_impl(int argc, char** argv) {
       options.meshes.push_back(arg);
   }
   if (options.smoke) options.width = 32, options.height = 24, options.repeats = 1;
+  if (options.counts) {
+    if (options.meshes.empty()) count_mesh("teapot", teapot_mesh(), options);
+    for (const std::string& path : options.meshes)
+      count_mesh(path.substr(path.find_last_of('/') + 1), read_obj(path), options);
+    return 0;
+  }
   std::printf("%d×%d camera rays; Mrays/s (%s) are medians of %d interleaved repeats\n\n",
               options.width, options.height, options.cpu_time ? "CPU time" : "wall clock",
               options.repeats);

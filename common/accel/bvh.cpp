@@ -1,8 +1,9 @@
 // Binned SAH BVH construction (pbrt-v3 §4.3.2, 16 bins, evaluated on all three axes), and the
-// flat single-leaf "acceleration off". A node with at most 4 primitives becomes a leaf when no
-// split is cheaper; larger nodes are always split, except when all centroids coincide (no
-// split separates anything). Primitives whose bounds are empty or not finite cannot be hit and
-// are left out of the SAH tree; BvhMode::None keeps every primitive, in input order.
+// flat single-leaf "acceleration off". A node with at most BvhLeafTests::max_size primitives
+// becomes a leaf when no split is cheaper (or, holding more than split_above, is split all the
+// same and marked leaf_preferred); larger nodes are always split, except when all centroids
+// coincide (no split separates anything). Primitives whose bounds are empty or not finite cannot be
+// hit and are left out of the SAH tree; BvhMode::None keeps every primitive, in input order.
 //
 // One pass over a node's primitives bins them on all three axes at once, keeping per bin the
 // bounds and the centroid bounds, so that each child's bounds are the union of its side's bins
@@ -34,8 +35,6 @@ namespace tessera {
 namespace {
 
 constexpr int kBins = 16;
-// Cost of a traversal step relative to one primitive test (of BvhLeafTests::group primitives).
-constexpr double kTraversalCost = 0.5;
 // Below this depth the SAH decides; deeper, object-median splits halve the primitive count,
 // which bounds the depth by kSahDepth + 32 < kBvhMaxDepth for any input.
 constexpr int kSahDepth = 64;
@@ -227,9 +226,9 @@ class Builder {
         const auto next = static_cast<std::size_t>(std::countr_zero(rest));
         left.extend(bins[b].bounds);
         n_left += bins[b].count;
-        const double cost = kTraversalCost + (tests(n_left) * left.bounds().surface_area() +
-                                              tests(right_count[next]) * right_area[next]) /
-                                                 area;
+        const double cost = leaf_tests_.step_cost + (tests(n_left) * left.bounds().surface_area() +
+                                                     tests(right_count[next]) * right_area[next]) /
+                                                        area;
         if (cost < best.cost) best.cost = cost, best.axis = a, best.bin = static_cast<int>(b);
       }
     }
@@ -279,6 +278,7 @@ class Builder {
     NodeBoxes first, second;
     const double area = bounds.surface_area();
     SahChoice choice;
+    bool node_leaf_preferred = false;
     // From depth kSahDepth on, and for flat or line-like primitives whose boxes have no area,
     // the node is split by count.
     if (depth < kSahDepth && area > 0) {
@@ -286,8 +286,10 @@ class Builder {
                        extent.z > 0 ? kBins / extent.z : 0};
       bin(begin, end, centroids.lo, scale);
       choice = cheapest_split(area, extent);
-      const bool leaf = choice.axis >= 0 && count <= leaf_tests_.max_size &&
-                        tests(static_cast<std::uint32_t>(count)) <= choice.cost;
+      const bool leaf_preferred = choice.axis >= 0 && count <= leaf_tests_.max_size &&
+                                  tests(static_cast<std::uint32_t>(count)) <= choice.cost;
+      const bool leaf = leaf_preferred && count <= leaf_tests_.split_above;
+      node_leaf_preferred = leaf_preferred;
       if (choice.axis >= 0 && !leaf) {
         axis = choice.axis;
         split = partition(begin, end, choice, centroids, scale, first, second);
@@ -305,6 +307,7 @@ class Builder {
     BvhNode node;
     node.bounds = bounds;
     node.split_axis = static_cast<std::uint8_t>(axis);
+    node.leaf_preferred = node_leaf_preferred;
     bvh_.nodes.push_back(node);
     if (end - split >= kMinParallelPrimitives && take_spare_thread()) {
       // The two children's ranges are disjoint, so both builders may reorder theirs at once.
@@ -449,6 +452,14 @@ void make_bvh_wide(Bvh& bvh) {
       node.count[c] = child.count;
       if (child.count > 0) {
         node.child[c] = child.first_or_second_child;
+      } else if (child.leaf_preferred) {
+        // The subtree's leaves lie in order: the range runs from its first to its last.
+        std::size_t first = children[c], last = children[c];
+        while (bvh.nodes[first].count == 0) ++first;
+        while (bvh.nodes[last].count == 0) last = second_child(last);
+        node.child[c] = bvh.nodes[first].first_or_second_child;
+        node.count[c] =
+            bvh.nodes[last].first_or_second_child + bvh.nodes[last].count - node.child[c];
       } else {
         node.child[c] = static_cast<std::uint32_t>(bvh.wide.size());
         pending.emplace_back(node.child[c], children[c]);
@@ -457,6 +468,37 @@ void make_bvh_wide(Bvh& bvh) {
     }
     bvh.wide[wide_index] = node;
   }
+}
+
+WideBvhCost wide_bvh_cost(const Bvh& bvh, BvhLeafTests leaf_tests) {
+  WideBvhCost cost;
+  if (bvh.wide.empty()) return cost;
+  const double root_area = bvh.nodes[0].bounds.surface_area();
+  if (!(root_area > 0)) return cost;
+  const auto area = [](const FloatChildBoxes& boxes, int c) {
+    const auto side = [&](int a) {
+      return static_cast<double>(boxes.bound[a][1][c]) - static_cast<double>(boxes.bound[a][0][c]);
+    };
+    return 2 * (side(0) * side(1) + side(1) * side(2) + side(2) * side(0));
+  };
+  // (wide node, its area over the root's)
+  std::vector<std::pair<std::uint32_t, double>> pending = {{0, 1.0}};
+  while (!pending.empty()) {
+    const auto [index, weight] = pending.back();
+    pending.pop_back();
+    cost.node_steps += weight;
+    const BvhWideNode& node = bvh.wide[index];
+    for (int c = 0; c < kWideChildren; ++c) {
+      if (!(node.boxes.bound[0][0][c] <= node.boxes.bound[0][1][c])) continue;  // empty slot
+      const double child_weight = area(node.boxes, c) / root_area;
+      if (node.count[c] > 0)
+        cost.leaf_tests +=
+            child_weight * ((node.count[c] + leaf_tests.group - 1) / leaf_tests.group);
+      else
+        pending.emplace_back(node.child[c], child_weight);
+    }
+  }
+  return cost;
 }
 
 }  // namespace tessera

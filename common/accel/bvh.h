@@ -27,6 +27,9 @@ struct BvhNode {
   std::uint32_t first_or_second_child = 0;
   std::uint32_t count = 0;
   std::uint8_t split_axis = 0;
+  // Interior: the SAH would have made this node a leaf, but it holds more than
+  // BvhLeafTests::split_above primitives (make_bvh_wide).
+  bool leaf_preferred = false;
 };
 
 // The form traversal reads: one entry per interior node holding both children, their boxes
@@ -63,12 +66,16 @@ struct Bvh {
 };
 
 // How the SAH prices a leaf: its primitives are tested `group` at a time, so a leaf of n costs
-// ceil(n / group) tests (a traversal step costs half of one), and a leaf holds at most
+// ceil(n / group) tests (a traversal step costs `step_cost` tests), and a leaf holds at most
 // `max_size`. The scene's objects are tested one at a time; a mesh's triangles four at a time
 // with AVX2 (intersect_triangle_pair.h), whose larger leaves save node visits (MeshAccel).
 struct BvhLeafTests {
   std::uint32_t group = 1;
   std::uint32_t max_size = 4;
+  double step_cost = 0.5;
+  // A node of more primitives is split even where the SAH prefers a leaf (it is marked
+  // leaf_preferred), so that make_bvh_wide may still open it to fill a wide node's free slots.
+  std::uint32_t split_above = 0xffffffffu;
 };
 
 // The binary tree (nodes and primitive_order), without a traversal form. `threads` (the
@@ -81,8 +88,19 @@ Bvh build_bvh(std::span<const Bounds3> primitive_bounds, BvhMode mode, int threa
 void make_bvh_pairs(Bvh& bvh);
 // Fills bvh.wide from bvh.nodes: each interior node takes the children of its largest-area
 // interior children until it has kWideChildren (Embree's and pbrt-v4's collapse of a binary SAH
-// tree).
+// tree). An interior child left over that is leaf_preferred becomes one leaf of its subtree's
+// primitive range (with any gaps the caller left between its leaves), as Embree's n-ary build
+// fills a node's slots first and asks the SAH for a leaf only of the children that remain.
 void make_bvh_wide(Bvh& bvh);
+
+// The SAH's two terms for bvh.wide, to compare builds without tracing: the expected wide-node
+// steps and leaf tests (ceil(n / group) each) of a ray through random points of the root's box
+// (each node or leaf weighted by its float box's area over the root's).
+struct WideBvhCost {
+  double node_steps = 0;
+  double leaf_tests = 0;
+};
+WideBvhCost wide_bvh_cost(const Bvh& bvh, BvhLeafTests leaf_tests);
 // Traversals: common/accel/bvh_traverse.h, common/accel/wide_bvh_traverse.h.
 
 }  // namespace tessera

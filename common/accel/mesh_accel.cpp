@@ -48,10 +48,7 @@ MeshAccel build_mesh_accel(const Mesh& mesh, BvhMode mode, int threads) {
     // Never hit, so not worth a place in the tree (an empty box keeps it out).
     if (degenerate[i]) bounds[i] = Bounds3{};
   }
-  // Leaves of up to eight, priced as tests of four: four triangles cost about one test with
-  // AVX2, and the larger leaves save node visits, which wait on memory (docs/PERFORMANCE.md
-  // "Four triangles a step").
-  accel.bvh = build_bvh_nodes(bounds, mode, threads, BvhLeafTests{.group = 4, .max_size = 8});
+  accel.bvh = build_bvh_nodes(bounds, mode, threads, kMeshLeafTests);
   start_leaves_at_even_positions(accel.bvh);
   make_bvh_wide(accel.bvh);
   constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();

@@ -11,6 +11,14 @@
 
 namespace tessera {
 
+// How a mesh's SAH prices its leaves: triangles tested four at a time with AVX2
+// (intersect_triangle_pair.h), a node step worth two such tests (it waits on memory), leaves of
+// up to 16; nodes of more than four are split all the same, so that a wide node fills its eight
+// slots (Embree's n-ary build) before the SAH's leaves are taken (make_bvh_wide). Fewer, fuller
+// nodes, at the price of more triangles a ray (docs/PERFORMANCE.md "The mesh tree").
+inline constexpr BvhLeafTests kMeshLeafTests{
+    .group = 4, .max_size = 16, .step_cost = 2, .split_above = 4};
+
 struct MeshAccel {
   // bvh.primitive_order's entries between leaves (see leaf_pairs), which name no triangle.
   static constexpr std::uint32_t kNoTriangle = std::numeric_limits<std::uint32_t>::max();

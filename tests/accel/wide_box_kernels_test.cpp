@@ -132,9 +132,9 @@ TEST(WideBoxKernels, EveryKernelRendersMeshScenesAlike) {
 }
 
 // Stacks of n triangles whose boxes overlap, each a fifth higher than the one below, which the SAH
-// keeps in leaves of up to eight, among them those of five or six (13, 25 and 29 triangles), whose
-// test of eight reads the next leaf's first pair (or the padding pair after the last leaf); those
-// lanes must not count. A ray through the stack crosses each triangle once; rays from each triangle
+// keeps in leaves of many sizes (up to 16), odd ones among them, whose last test of several reads
+// the next leaf's first pair (or the padding pair after the last leaf); those lanes must not
+// count. A ray through the stack crosses each triangle once; rays from each triangle
 // up and down (its leaf's triangles behind them, the next leaf's maybe ahead) are occluded alike,
 // with the same counts, by every kernel.
 TEST(WideBoxKernels, EveryKernelTracesStacksOfTrianglesAlike) {
