@@ -78,8 +78,11 @@ async function main() {
       // A stage (level or pass) not checked yet, while the job runs: its picture mixes levels.
       if (job.state === "queued" || job.version === 0 || checked.includes(job.stage) ||
           checked.length >= 3) {
+        // The worker runs a moment and, until three stages are checked, is stopped again before
+        // the next look: on a loaded machine a look can take longer than several stages.
         worker.kill("SIGCONT");
         await sleep(5);
+        if (checked.length < 3) worker.kill("SIGSTOP");
         continue;
       }
       worker.kill("SIGSTOP");
