@@ -28,8 +28,9 @@ inline int first_multiple_at_or_after(int v, int step) { return (v + step - 1) /
 
 // Calls visit_run(first, count, stride) for the unit's pixels in scanline order, the order
 // results travel in, as runs along a row: pixels first, first + (stride, 0), ... (count of
-// them). Runs let the coordinator merge a row at a time (FrameBuffer::add_run) instead of a
-// pixel at a time; inline, so that it needs no list of the unit's pixels.
+// them; the stride is the step, or twice it on a row that leaves out every other anchor). Runs let
+// the coordinator merge a row at a time (FrameBuffer::add_run) instead of a pixel at a time;
+// inline, so that it needs no list of the unit's pixels.
 template <typename VisitRun>
 void for_each_run(const UnitPixels& u, VisitRun&& visit_run) {
   const PixelRect& r = u.rect;
@@ -48,6 +49,13 @@ void for_each_run(const UnitPixels& u, VisitRun&& visit_run) {
       if (unclamped < across) visit_run(PixelCoord{r.x1 - 1, cy}, 1, u.step);
     } else if (u.exclude <= 0 || by % u.exclude != 0) {
       visit_run(PixelCoord{x_start, by}, across, u.step);
+    } else if (u.exclude == 2 * u.step) {
+      // Every other anchor is the coarser level's (make_plan's levels): the rest are one run,
+      // two blocks apart, rather than a run of one pixel between each two excluded ones (a
+      // call of FrameBuffer::add_run a pixel on half the rows of a plan's finest level).
+      const int first = x_start % u.exclude == 0 ? x_start + u.step : x_start;
+      if (first < r.x1)
+        visit_run(PixelCoord{first, by}, (r.x1 - 1 - first) / u.exclude + 1, u.exclude);
     } else {
       // A row of the coarser level's anchors: the runs between its excluded columns.
       int bx = x_start;

@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <random>
+#include <tuple>
 #include <vector>
 
 namespace tessera {
@@ -41,7 +42,10 @@ TEST(UnitPixels, RunsVisitThePixelsOfTheDefinitionInOrder) {
     long long runs_pixels = 0;
     for_each_run(u, [&](PixelCoord first, int count, int stride) {
       ASSERT_GT(count, 0);
-      EXPECT_EQ(stride, u.step);
+      // Twice the step where the coarser level's anchors are every other one (make_plan's).
+      const bool every_other =
+          u.pattern == PixelPattern::Anchors && u.exclude == 2 * u.step && first.y % u.exclude == 0;
+      EXPECT_EQ(stride, every_other ? 2 * u.step : u.step);
       runs_pixels += count;
       for (int i = 0; i < count; ++i) visited.push_back({first.x + i * stride, first.y});
     });
@@ -65,6 +69,18 @@ TEST(UnitPixels, APassRowIsOneRun) {
     ++runs;
   });
   EXPECT_EQ(runs, 4);
+}
+
+TEST(UnitPixels, ALevelRowWithoutTheCoarserAnchorsIsOneRun) {
+  // The finest level of a plan: its rows at even y leave out the even columns (level above's).
+  const UnitPixels u{.rect = {0, 0, 128, 4}, .step = 1, .exclude = 2};
+  std::vector<std::tuple<int, int, int, int>> runs;
+  for_each_run(u, [&](PixelCoord first, int count, int stride) {
+    runs.emplace_back(first.x, first.y, count, stride);
+  });
+  const std::vector<std::tuple<int, int, int, int>> expected = {
+      {1, 0, 64, 2}, {0, 1, 128, 1}, {1, 2, 64, 2}, {0, 3, 128, 1}};
+  EXPECT_EQ(runs, expected);
 }
 
 }  // namespace
