@@ -213,11 +213,9 @@ class BvhPacketWalk {
 
 // Visits, for each ray l of `rays`, the leaves traverse_bvh_leaves would visit for it alone, in
 // the same order: `visit_leaf(l, first, count, t_max)` gets the leaf's range of
-// Bvh::primitive_order and returns ray l's possibly shrunk t_max (closest hit) or a negative
-// value to stop ray l (any-hit queries: a negative t_max fails every box and every kept entry,
-// so the lane leaves the walk where traverse_bvh_leaves would return). t_max[l] starts as ray
-// l's limit and ends as its last. Counts the box tests as the rays' own traversals would in
-// `nodes_visited`.
+// Bvh::primitive_order and returns ray l's possibly shrunk t_max (closest hit; the walk has no
+// any-hit stop). t_max[l] starts as ray l's limit and ends as its last. Counts the box tests as
+// the rays' own traversals would in `nodes_visited`.
 template <typename VisitLeaf>
 void traverse_bvh_packet_leaves(const Bvh& bvh, const PacketRays& rays, double* t_max,
                                 std::uint64_t& nodes_visited, VisitLeaf&& visit_leaf) {

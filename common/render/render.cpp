@@ -136,22 +136,14 @@ void trace_packets(const PassContext& c, std::span<const PixelCoord> pixels, std
     for (int l = 0; l < count; ++l)
       rays[l] = c.camera.through(pixels[i + l].x + offset.dx, pixels[i + l].y + offset.dy);
     c.tracer.find_packet_hits(rays, count);
-    // Each pixel's random numbers (lanes beyond `count` repeat the last pixel's, unused), and
-    // the air every camera ray starts in, as camera_sample makes it.
-    const auto stream = [&](int l) {
-      const PixelCoord p = pixels[i + static_cast<std::size_t>(std::min(l, count - 1))];
-      return SampleStream(c.settings.seed, static_cast<std::uint32_t>(p.x),
-                          static_cast<std::uint32_t>(p.y), static_cast<std::uint32_t>(c.pass));
-    };
-    static_assert(kPacketLanes == 4);
-    SampleStream rngs[kPacketLanes] = {stream(0), stream(1), stream(2), stream(3)};
-    MediumStack air;
-    if (c.tracer.packet_lighting()) c.tracer.light_packet_hits(air, rngs);
     for (int l = 0; l < count; ++l) {
       check_interrupt();
+      const PixelCoord p = pixels[i + l];
+      SampleStream rng(c.settings.seed, static_cast<std::uint32_t>(p.x),
+                       static_cast<std::uint32_t>(p.y), static_cast<std::uint32_t>(c.pass));
       out[i + l] = pixel_mean(1, 1, c.stats, [&](int, std::uint32_t) {
-        return camera_sample(c.stats, [&](const MediumStack&) {
-          return c.tracer.trace_packet_ray(l, air, rngs[l]);
+        return camera_sample(c.stats, [&](const MediumStack& air) {
+          return c.tracer.trace_packet_ray(l, air, rng);
         });
       });
     }

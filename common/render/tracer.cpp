@@ -12,7 +12,6 @@
 #include "common/render/cone.h"
 #include "common/render/optics.h"
 #include "common/render/render.h"
-#include "common/render/shadow_feelers.h"
 
 namespace tessera {
 
@@ -68,14 +67,6 @@ Rgb blurred(const Vec3& axis, double strength, int count, const Vec3& surface_no
   return true;
 }
 
-// Eq. 4.10-4.11: the diffuse and specular terms scaled by the material's opacity, unless it
-// retains them.
-double diffuse_scale(const Material& m) { return m.retain_diffuse_color ? 1 : 1 - m.transparency; }
-double specular_scale(const Material& m) {
-  return m.retain_specular_reflection ? 1 : 1 - m.transparency;
-}
-bool has_specular_term(const Material& m) { return !m.specular.is_zero() && specular_scale(m) > 0; }
-
 }  // namespace
 
 Tracer::Tracer(const PreparedScene& scene, const RenderSettings& settings, RenderStats& stats,
@@ -89,14 +80,6 @@ Tracer::Tracer(const PreparedScene& scene, const RenderSettings& settings, Rende
       interrupt_(interrupt) {
   for (const Light& light : scene.scene().lights)
     cos_cutoff_.push_back(std::cos(light.spot.cutoff_degrees * std::numbers::pi / 180));
-  packet_lighting_ = effects_.has(Effect::HardShadows) && !effects_.has(Effect::SoftShadows) &&
-                     !effects_.has(Effect::Gloss) && !effects_.has(Effect::Translucency);
-  if (packet_lighting_) {
-    const std::size_t entries = kPacketLanes * scene.scene().lights.size();
-    packet_terms_.resize(entries);
-    packet_lights_.resize(entries);
-    packet_shadows_.resize(entries);
-  }
 }
 
 void Tracer::check_interrupt() {
@@ -158,7 +141,6 @@ void Tracer::find_packet_hits(const Ray* rays, int count) {
     packet_hits_[l].time = rays[l].time;
     t_max[l] = kInfinity;
   }
-  packet_count_ = count;
   // The leaf visit of closest_hit's traverse_bvh, per ray.
   traverse_bvh_packet_leaves(scene_.bvh(), PacketRays(rays, count), t_max,
                              stats_.intersections.bvh_nodes,
@@ -177,75 +159,9 @@ void Tracer::find_packet_hits(const Ray* rays, int count) {
                              });
 }
 
-void Tracer::light_packet_hits(const MediumStack& air, SampleStream* rngs) {
-  const std::vector<Light>& lights = scene_.scene().lights;
-  const double epsilon = scene_.scene().globals.shadow_feeler_epsilon;
-  const bool directional_lights = effects_.has(Effect::DirectionalLight);
-  // Each lane as trace_from_hit and local_illumination go, up to the feelers.
-  Vec3 offsets[kPacketLanes];
-  for (int lane = 0; lane < packet_count_; ++lane) {
-    Surface& s = packet_surfaces_[lane];
-    const Hit& hit = packet_hits_[lane];
-    packet_surface_found_[lane] =
-        find_surface(packet_rays_[lane], packet_found_[lane], packet_hits_[lane], RayKind::Camera,
-                     air, rngs[lane], s, packet_backgrounds_[lane]);
-    const bool lit = packet_surface_found_[lane] && s.colours.lit;
-    if (lit) offsets[lane] = spawn_offset(hit, epsilon);
-    const bool has_specular = lit && has_specular_term(*s.m);
-    for (std::size_t index = 0; index < lights.size(); ++index) {
-      LightTerms& t = packet_terms_[lane * lights.size() + index];
-      const Vec3& view_dir = s.ray->direction;
-      packet_lights_[lane * lights.size() + index] =
-          lit && (directional_lights
-                      ? light_terms<true>(hit, *s.m, s.normal, view_dir, has_specular, index, t)
-                      : light_terms<false>(hit, *s.m, s.normal, view_dir, has_specular, index, t));
-    }
-  }
-  // The feelers towards each light, of the lanes it may light, walk the scene BVH together.
-  for (std::size_t index = 0; index < lights.size(); ++index) {
-    const Light& light = lights[index];
-    if (!light.casts_shadows) continue;
-    const bool directional = directional_lights && light.is_directional;
-    Ray rays[kPacketLanes];
-    double t_max[kPacketLanes], factors[kPacketLanes];
-    int lanes[kPacketLanes];
-    int count = 0;
-    for (int lane = 0; lane < packet_count_; ++lane) {
-      const std::size_t k = lane * lights.size() + index;
-      if (!packet_lights_[k]) continue;
-      const Feeler f = feeler(packet_hits_[lane], offsets[lane], directional, packet_terms_[k].l,
-                              light.position);
-      ++stats_.shadow_rays;
-      poll_interrupt();
-      rays[count] = f.ray;
-      t_max[count] = f.t_max;
-      lanes[count++] = lane;
-    }
-    if (count == 0) continue;
-    feeler_transmittance_packet(scene_, rays, t_max, count, factors, stats_.intersections);
-    for (int j = 0; j < count; ++j) packet_shadows_[lanes[j] * lights.size() + index] = factors[j];
-  }
-}
-
 Rgb Tracer::trace_packet_ray(int lane, const MediumStack& media, SampleStream& rng) {
-  if (!packet_lighting_)
-    return trace_from_hit(packet_rays_[lane], packet_found_[lane], packet_hits_[lane],
-                          RayKind::Camera, 0, 1.0, media, rng);
-  if (!packet_surface_found_[lane]) return packet_backgrounds_[lane];
-  // local_illumination<ShadowMode::Hard> from light_packet_hits' terms and shadows.
-  const Surface& s = packet_surfaces_[lane];
-  const std::vector<Light>& lights = scene_.scene().lights;
-  Rgb color = unlit_colour(*s.m, s.colours);
-  if (s.colours.lit) {
-    for (std::size_t index = 0; index < lights.size(); ++index) {
-      const std::size_t k = lane * lights.size() + index;
-      if (!packet_lights_[k]) continue;
-      const double shadow = lights[index].casts_shadows ? packet_shadows_[k] : 1;
-      if (shadow <= 0) continue;
-      color += light_contribution(lights[index], packet_terms_[k], *s.m, s.colours, shadow);
-    }
-  }
-  return finish_surface(s, packet_hits_[lane], color, 0, 1.0, rng);
+  return trace_from_hit(packet_rays_[lane], packet_found_[lane], packet_hits_[lane],
+                        RayKind::Camera, 0, 1.0, media, rng);
 }
 
 std::optional<WorldHit> Tracer::first_hit(const Ray& ray) {
@@ -257,7 +173,21 @@ std::optional<WorldHit> Tracer::first_hit(const Ray& ray) {
 double Tracer::shadow_factor(const Feeler& feeler) {
   ++stats_.shadow_rays;
   poll_interrupt();
-  return feeler_transmittance(scene_, feeler.ray, feeler.t_max, stats_.intersections);
+  const Ray& ray = feeler.ray;
+  const std::vector<Instance>& instances = scene_.instances();
+  const std::vector<SceneObject>& objects = scene_.scene().objects;
+  double factor = 1;
+  // Each object counts once, however often the feeler crosses its surface (eq. 4.24).
+  traverse_bvh(
+      scene_.bvh(), ray, feeler.t_max, stats_.intersections.bvh_nodes,
+      [&](std::uint32_t index, double t_limit) {
+        std::uint32_t object = 0;
+        if (!occluded_instance(instances[index], ray, t_limit, object, stats_.intersections))
+          return t_limit;
+        factor *= objects[object].material.transparency;
+        return factor > 0 ? t_limit : -1.0;
+      });
+  return factor;
 }
 
 Vec3 Tracer::spawn_offset(const Hit& hit, double epsilon) const {
@@ -354,95 +284,78 @@ double Tracer::soft_visibility(const Hit& hit, const Vec3& offset, const Light& 
   });
 }
 
-Rgb Tracer::unlit_colour(const Material& m, const SurfaceColours& colours) {
-  Rgb color = m.emissive;  // eq. 4.4
-  Rgb ambient = colours.ambient_term;
-  if (!m.retain_ambient_color) ambient *= 1 - m.transparency;  // eq. 4.6
-  color += ambient;
-  return color;
-}
-
-template <bool kDirectionalLights>
-[[gnu::always_inline]] inline bool Tracer::light_terms(const Hit& hit, const Material& m,
-                                                       const Vec3& normal, const Vec3& view_dir,
-                                                       bool has_specular, std::size_t index,
-                                                       LightTerms& t) const {
-  const Light& light = scene_.scene().lights[index];
-  const bool directional = kDirectionalLights && light.is_directional;
-  if (directional && !light.lights(hit.world.object)) return false;
-  if (!towards_light(light, directional, hit.world.point, t.l, t.distance)) return false;
-
-  // Spotlight: zero outside the cut-off, cos^exponent inside (§4.1.3); the power is taken in
-  // light_contribution, once the point is known to be lit.
-  t.cos_alpha = 1;
-  if (light.is_spot) {
-    t.cos_alpha = std::clamp(dot(-t.l, light.spot.direction), -1.0, 1.0);
-    if (t.cos_alpha < cos_cutoff_[index]) return false;
-  }
-
-  t.n_dot_l = facing(dot(normal, t.l), m.light_back_faces);
-  t.n_dot_h = 0;
-  if (has_specular) {
-    // The halfway vector -V + L vanishes when light and view are opposite: no highlight.
-    const Vec3 h = normalize_or(t.l - view_dir, Vec3{});
-    t.n_dot_h = facing(dot(normal, h), m.light_back_faces);
-  }
-  if (t.n_dot_l <= 0 && t.n_dot_h <= 0) return false;
-
-  t.attenuation = 1;  // eq. 4.12
-  if (effects_.has(Effect::LightAttenuation) && !directional) {
-    if (t.distance > light.radius) return false;
-    const SceneGlobals& g = scene_.scene().globals;
-    const LightAttenuation& a = light.attenuation ? *light.attenuation : g.light_attenuation;
-    const double denominator =
-        a.constant + a.linear * t.distance + a.quadratic * t.distance * t.distance;
-    if (denominator > 1) t.attenuation = 1 / denominator;
-  }
-  return true;
-}
-
-[[gnu::always_inline]] inline Rgb Tracer::light_contribution(const Light& light,
-                                                             const LightTerms& t, const Material& m,
-                                                             const SurfaceColours& colours,
-                                                             double shadow) {
-  const double cone = light.is_spot && light.spot.exponent != 0
-                          ? std::pow(std::max(t.cos_alpha, 0.0), light.spot.exponent)
-                          : 1;
-  Rgb contribution = colours.diffuse * light.color * (t.n_dot_l * diffuse_scale(m));  // eq. 4.8
-  if (t.n_dot_h > 0)                                                                  // eq. 4.9
-    contribution +=
-        m.specular * light.color * (std::pow(t.n_dot_h, m.specular_exponent) * specular_scale(m));
-  return contribution * (t.attenuation * shadow * cone);  // eq. 4.7
-}
-
 template <ShadowMode kShadows, bool kDirectionalLights>
 Rgb Tracer::local_illumination(const Hit& hit, const Material& m, const SurfaceColours& colours,
                                const Vec3& normal, const Vec3& view_dir, SampleStream& rng) {
   const Scene& scene = scene_.scene();
-  Rgb color = unlit_colour(m, colours);
+  const SceneGlobals& g = scene.globals;
+  const double opacity = 1 - m.transparency;  // eq. 4.6, 4.10, 4.11
+
+  Rgb color = m.emissive;  // eq. 4.4
+  Rgb ambient = colours.ambient_term;
+  if (!m.retain_ambient_color) ambient *= opacity;
+  color += ambient;
   if (!colours.lit) return color;
   // Every feeler leaves the hit by the same offset; only its side depends on the light.
   Vec3 feeler_offset;
   if constexpr (kShadows != ShadowMode::None)
-    feeler_offset = spawn_offset(hit, scene.globals.shadow_feeler_epsilon);
+    feeler_offset = spawn_offset(hit, g.shadow_feeler_epsilon);
 
-  const bool has_specular = has_specular_term(m);
+  const double diffuse_scale = m.retain_diffuse_color ? 1 : opacity;
+  const double specular_scale = m.retain_specular_reflection ? 1 : opacity;
+  const bool has_specular = !m.specular.is_zero() && specular_scale > 0;
   for (std::size_t index = 0; index < scene.lights.size(); ++index) {
-    LightTerms t;
-    if (!light_terms<kDirectionalLights>(hit, m, normal, view_dir, has_specular, index, t))
-      continue;
     const Light& light = scene.lights[index];
+    const bool directional = kDirectionalLights && light.is_directional;
+    if (directional && !light.lights(hit.world.object)) continue;
+    Vec3 l;
+    double distance = 0;
+    if (!towards_light(light, directional, hit.world.point, l, distance)) continue;
+
+    // Spotlight: zero outside the cut-off, cos^exponent inside (§4.1.3); the power is taken
+    // below, once the point is known to be lit.
+    double cos_alpha = 1;
+    if (light.is_spot) {
+      cos_alpha = std::clamp(dot(-l, light.spot.direction), -1.0, 1.0);
+      if (cos_alpha < cos_cutoff_[index]) continue;
+    }
+
+    const double n_dot_l = facing(dot(normal, l), m.light_back_faces);
+    double n_dot_h = 0;
+    if (has_specular) {
+      // The halfway vector -V + L vanishes when light and view are opposite: no highlight.
+      const Vec3 h = normalize_or(l - view_dir, Vec3{});
+      n_dot_h = facing(dot(normal, h), m.light_back_faces);
+    }
+    if (n_dot_l <= 0 && n_dot_h <= 0) continue;
+
+    double attenuation = 1;  // eq. 4.12
+    if (effects_.has(Effect::LightAttenuation) && !directional) {
+      if (distance > light.radius) continue;
+      const LightAttenuation& a = light.attenuation ? *light.attenuation : g.light_attenuation;
+      const double denominator =
+          a.constant + a.linear * distance + a.quadratic * distance * distance;
+      if (denominator > 1) attenuation = 1 / denominator;
+    }
+
     double shadow = 1;  // eq. 4.24-4.26: the share of the light that reaches the hit
     if constexpr (kShadows == ShadowMode::Hard) {
       if (light.casts_shadows)
-        shadow = shadow_factor(feeler(
-            hit, feeler_offset, kDirectionalLights && light.is_directional, t.l, light.position));
+        shadow = shadow_factor(feeler(hit, feeler_offset, directional, l, light.position));
     } else if constexpr (kShadows == ShadowMode::Soft) {
       if (light.casts_shadows)
-        shadow = soft_visibility(hit, feeler_offset, light, t.l, t.distance, rng);
+        shadow = soft_visibility(hit, feeler_offset, light, l, distance, rng);
     }
     if (shadow <= 0) continue;
-    color += light_contribution(light, t, m, colours, shadow);
+    const double cone = light.is_spot && light.spot.exponent != 0
+                            ? std::pow(std::max(cos_alpha, 0.0), light.spot.exponent)
+                            : 1;
+
+    Rgb contribution = colours.diffuse * light.color * (n_dot_l * diffuse_scale);  // eq. 4.8
+    if (n_dot_h > 0)                                                               // eq. 4.9
+      contribution +=
+          m.specular * light.color * (std::pow(n_dot_h, m.specular_exponent) * specular_scale);
+    color += contribution * (attenuation * shadow * cone);  // eq. 4.7
   }
   return color;
 }
@@ -535,17 +448,6 @@ Rgb Tracer::trace(const Ray& ray_in, RayKind kind, int depth, double weight,
 
 Rgb Tracer::trace_from_hit(const Ray& ray_in, bool found, Hit& hit, RayKind kind, int depth,
                            double weight, const MediumStack& media_in, SampleStream& rng) {
-  Surface s;
-  Rgb background;
-  if (!find_surface(ray_in, found, hit, kind, media_in, rng, s, background)) return background;
-  const Rgb color = (this->*illuminate_)(hit, *s.m, s.colours, s.normal, s.ray->direction, rng);
-  return finish_surface(s, hit, color, depth, weight, rng);
-}
-
-[[gnu::always_inline]] inline bool Tracer::find_surface(const Ray& ray_in, bool found, Hit& hit,
-                                                        RayKind kind, const MediumStack& media_in,
-                                                        SampleStream& rng, Surface& s,
-                                                        Rgb& background) {
   poll_interrupt();
   const Scene& scene = scene_.scene();
   const SceneGlobals& g = scene.globals;
@@ -554,66 +456,55 @@ Rgb Tracer::trace_from_hit(const Ray& ray_in, bool found, Hit& hit, RayKind kind
   // The ray itself until it passes a false interface, then its continuation. Not copied up
   // front: its caller has just written its origin a component at a time, and a copy reads it
   // two at a time, which waits for those stores to reach the cache (store forwarding fails).
-  s.ray = &ray_in;
-  s.continued.reset();
-  s.media = media_in;
-  s.travelled = 0;
+  const Ray* ray = &ray_in;
+  std::optional<Ray> continued;
+  MediumStack media = media_in;
+  double travelled = 0;
+  const Material* m = nullptr;
+  Crossing crossing;
   for (int skipped = 0;; ++skipped) {
     if (!found) {
-      if (kind == RayKind::Reflected) {
-        background = Rgb{};  // eq. 4.2
-      } else {
-        background = effects.has(Effect::SkyGradient)
-                         ? g.sky->colour(unit_or_zero(s.ray->direction))
-                         : g.background;
-      }
-      return false;
+      if (kind == RayKind::Reflected) return Rgb{};  // eq. 4.2
+      return effects.has(Effect::SkyGradient) ? g.sky->colour(unit_or_zero(ray->direction))
+                                              : g.background;
     }
-    s.travelled += hit.world.t;
-    s.m = &scene.objects[hit.world.object].material;
-    if (!effects.has(Effect::Refraction) || !(s.m->transparency > g.min_transparency)) break;
-    s.crossing = cross_interface(*s.ray, hit, s.media);
-    s.m = &scene.objects[hit.world.object].material;
+    travelled += hit.world.t;
+    m = &scene.objects[hit.world.object].material;
+    if (!effects.has(Effect::Refraction) || !(m->transparency > g.min_transparency)) break;
+    crossing = cross_interface(*ray, hit, media);
+    m = &scene.objects[hit.world.object].material;
     // A transparent surface whose crossing leaves the governing medium unchanged is a false
     // interface: it neither shades nor refracts.
-    if (skipped == kMaxFalseInterfaces || !s.crossing.known ||
-        s.crossing.after.top().instance != s.media.top().instance)
+    if (skipped == kMaxFalseInterfaces || !crossing.known ||
+        crossing.after.top().instance != media.top().instance)
       break;
-    s.media = s.crossing.after;
-    // A whole Ray, made before emplace replaces what `s.ray` may point to (Clang 14 has no
+    media = crossing.after;
+    // A whole Ray, made before emplace replaces what `ray` may point to (Clang 14 has no
     // parenthesized aggregate initialization either).
-    s.ray = &s.continued.emplace(Ray{spawn_origin(hit, s.ray->direction, g.transparency_epsilon),
-                                     s.ray->direction, s.ray->time});
-    found = closest_hit(*s.ray, hit);
+    ray = &continued.emplace(
+        Ray{spawn_origin(hit, ray->direction, g.transparency_epsilon), ray->direction, ray->time});
+    found = closest_hit(*ray, hit);
   }
 
-  s.normal = hit.world.shading_normal;
-  if (effects.has(Effect::SurfaceRoughness) && s.m->surface_roughness > 0)
-    s.normal = perturb_normal(s.normal, s.m->surface_roughness, rng);
+  Vec3 normal = hit.world.shading_normal;
+  if (effects.has(Effect::SurfaceRoughness) && m->surface_roughness > 0)
+    normal = perturb_normal(normal, m->surface_roughness, rng);
 
-  s.colours = {s.m->ambient * g.global_ambient, s.m->diffuse};  // eq. 4.5
+  SurfaceColours colours{m->ambient * g.global_ambient, m->diffuse};  // eq. 4.5
   if (scene_.textured()) {
     const ObjectTexture& texture = scene_.texture(hit.world.object);
     if (!texture.empty())
-      s.colours =
-          textured_colours(texture, scene_.instances()[hit.world.object], hit.world, s.colours);
+      colours = textured_colours(texture, scene_.instances()[hit.world.object], hit.world, colours);
   }
-  return true;
-}
-
-[[gnu::always_inline]] inline Rgb Tracer::finish_surface(const Surface& s, const Hit& hit,
-                                                         Rgb color, int depth, double weight,
-                                                         SampleStream& rng) {
-  const SceneGlobals& g = scene_.scene().globals;
-  const EffectSet& effects = effects_;
+  Rgb color = (this->*illuminate_)(hit, *m, colours, normal, ray->direction, rng);
   if (depth < g.max_recursion_depth) {
-    if (effects.has(Effect::Reflection) && weight * s.m->reflectivity > g.min_reflectivity)
-      color += reflection(*s.ray, hit, *s.m, s.normal, depth, weight, s.media, rng);
-    if (effects.has(Effect::Refraction) && weight * s.m->transparency > g.min_transparency)
-      color += transmission(*s.ray, hit, *s.m, s.normal, depth, weight, s.media, s.crossing, rng);
+    if (effects.has(Effect::Reflection) && weight * m->reflectivity > g.min_reflectivity)
+      color += reflection(*ray, hit, *m, normal, depth, weight, media, rng);
+    if (effects.has(Effect::Refraction) && weight * m->transparency > g.min_transparency)
+      color += transmission(*ray, hit, *m, normal, depth, weight, media, crossing, rng);
   }
   if (effects.has(Effect::AtmosphericAttenuation) || effects.has(Effect::Fog))
-    color = apply_atmosphere(color, s.travelled);
+    color = apply_atmosphere(color, travelled);
   return color;
 }
 

@@ -2,7 +2,6 @@
 #pragma once
 
 #include <cstdint>
-#include <optional>
 #include <vector>
 
 #include "common/accel/bvh_packet_traverse.h"
@@ -46,15 +45,8 @@ class Tracer {
   // Camera rays of up to kPacketLanes neighbouring pixels: their nearest hits, found by one
   // walk of the scene BVH (common/accel/bvh_packet_traverse.h) and kept for trace_packet_ray.
   void find_packet_hits(const Ray* rays, int count);
-  // With hard shadows and no cones (packet_lighting()), lights the last find_packet_hits in
-  // phases: each lane's surface found past false interfaces (drawing from rngs[lane]), its
-  // lights' terms worked out, then the lanes' feelers towards each light traced together
-  // (shadow_feelers.h). Their statistics are counted here; trace_packet_ray finishes.
-  void light_packet_hits(const MediumStack& air, SampleStream* rngs);
-  bool packet_lighting() const { return packet_lighting_; }
   // trace(ray, RayKind::Camera, 0, 1, media, rng) of ray `lane` of the last find_packet_hits,
-  // bit for bit, its nearest hit already found; after light_packet_hits, `media` and `rng` must
-  // be the air and rngs[lane] it was given.
+  // bit for bit, its nearest hit already found.
   Rgb trace_packet_ray(int lane, const MediumStack& media, SampleStream& rng);
 
   // The nearest surface along `ray`, for the debug views; nothing when it meets none.
@@ -74,28 +66,10 @@ class Tracer {
     MediumStack after;
     bool known = true;
   };
-  // What trace_from_hit knows of the surface a ray shades before lighting it.
-  struct Surface {
-    const Ray* ray;  // the ray, or `continued` once it passed a false interface
-    std::optional<Ray> continued;
-    MediumStack media;
-    double travelled = 0;
-    const Material* m = nullptr;
-    Crossing crossing;
-    Vec3 normal;  // the shading normal, perturbed by roughness
-    SurfaceColours colours;
-  };
   bool closest_hit(const Ray& ray, Hit& hit);
   // trace() once closest_hit has given `found` and `hit` for `ray_in`.
   Rgb trace_from_hit(const Ray& ray_in, bool found, Hit& hit, RayKind kind, int depth,
                      double weight, const MediumStack& media_in, SampleStream& rng);
-  // trace_from_hit up to the lighting: the surface `ray_in` shades past false interfaces (`hit`
-  // becomes it), into `s`; false when the ray leaves the scene, `background` then what it sees.
-  bool find_surface(const Ray& ray_in, bool found, Hit& hit, RayKind kind,
-                    const MediumStack& media_in, SampleStream& rng, Surface& s, Rgb& background);
-  // trace_from_hit after the lighting, which gave `color`: reflection, refraction, atmosphere.
-  Rgb finish_surface(const Surface& s, const Hit& hit, Rgb color, int depth, double weight,
-                     SampleStream& rng);
   // Crosses the transparent surface at `hit`, together with every other transparent surface
   // that crosses the ray within rounding of it: coincident boundaries (the same sphere twice,
   // flush faces) are one interface, whichever of them closest_hit returned. `hit` becomes the
@@ -128,27 +102,6 @@ class Tracer {
   template <ShadowMode kShadows, bool kDirectionalLights>
   Rgb local_illumination(const Hit& hit, const Material& m, const SurfaceColours& colours,
                          const Vec3& normal, const Vec3& view_dir, SampleStream& rng);
-  // One light's share at a hit before its shadow: the unit direction `l` towards it and its
-  // `distance` (infinite when directional), the spotlight's cosine, the diffuse and specular
-  // cosines, eq. 4.12's attenuation.
-  struct LightTerms {
-    Vec3 l;
-    double distance = 0;
-    double cos_alpha = 1;
-    double n_dot_l = 0;
-    double n_dot_h = 0;
-    double attenuation = 1;
-  };
-  // The terms of light `index` at the hit into `t`; false when the light adds nothing there
-  // whatever the shadow (behind the surface, outside the spotlight's cone, beyond its radius).
-  template <bool kDirectionalLights>
-  bool light_terms(const Hit& hit, const Material& m, const Vec3& normal, const Vec3& view_dir,
-                   bool has_specular, std::size_t index, LightTerms& t) const;
-  // Eq. 4.7-4.9: what a light with terms `t` adds, `shadow` of it reaching the hit.
-  static Rgb light_contribution(const Light& light, const LightTerms& t, const Material& m,
-                                const SurfaceColours& colours, double shadow);
-  // The emissive and ambient terms (eq. 4.4-4.6), which need no light.
-  static Rgb unlit_colour(const Material& m, const SurfaceColours& colours);
   using Illumination = Rgb (Tracer::*)(const Hit&, const Material&, const SurfaceColours&,
                                        const Vec3&, const Vec3&, SampleStream&);
   static Illumination lighting_for(const EffectSet& effects);
@@ -196,18 +149,6 @@ class Tracer {
   Ray packet_rays_[kPacketLanes];
   Hit packet_hits_[kPacketLanes];
   bool packet_found_[kPacketLanes] = {};
-  int packet_count_ = 0;
-  // light_packet_hits applies: hard shadows, and no cone whose ray budget would count the
-  // lanes' feelers out of their samples' order.
-  bool packet_lighting_ = false;
-  // Its results: each lane's surface (or background), and per lane and light (lane * lights +
-  // light) the terms, whether the light adds anything, and the share of it that arrives.
-  Surface packet_surfaces_[kPacketLanes];
-  Rgb packet_backgrounds_[kPacketLanes];
-  bool packet_surface_found_[kPacketLanes] = {};
-  std::vector<LightTerms> packet_terms_;
-  std::vector<char> packet_lights_;
-  std::vector<double> packet_shadows_;
 };
 
 }  // namespace tessera
