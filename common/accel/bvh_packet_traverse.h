@@ -13,9 +13,10 @@
 #include <cstdint>
 
 #include "common/accel/bvh.h"
+#include "common/accel/wide_box_kernel.h"
 
 #if defined(__SSE2__)
-#include <emmintrin.h>
+#include <immintrin.h>
 #endif
 
 namespace tessera {
@@ -110,7 +111,41 @@ struct PacketRays {
   }
 }
 
-// The walk of traverse_bvh_packet_leaves.
+#if defined(__SSE2__)
+// intersect_child_boxes_packet with the four lanes in one AVX register when they share their
+// near sides: the same operations per lane (max and min keep their operand order, and the
+// ordered-signaling <= is cmplepd's), so the same bits.
+[[gnu::target("avx2")]] inline void intersect_child_boxes_packet_avx2(const ChildBoxes& boxes,
+                                                                      const PacketRays& rays,
+                                                                      const double* t_max,
+                                                                      double entry[2][kPacketLanes],
+                                                                      unsigned hits[2]) {
+  static_assert(kPacketLanes == 4);
+  if (!rays.same_sides) return intersect_child_boxes_packet(boxes, rays, t_max, entry, hits);
+  const __m256d far_scale = _mm256_set1_pd(1 + 2 * gamma_bound(3));
+  for (int c = 0; c < 2; ++c) {
+    __m256d t0 = _mm256_setzero_pd();
+    __m256d t1 = _mm256_loadu_pd(t_max);
+    for (int a = 0; a < 3; ++a) {
+      const int near = rays.backward[a][0] ? 1 : 0;
+      const __m256d near_bound = _mm256_set1_pd(boxes.bound[a][near][c]);
+      const __m256d far_bound = _mm256_set1_pd(boxes.bound[a][1 - near][c]);
+      const __m256d o = _mm256_loadu_pd(rays.origin[a]);
+      const __m256d inv = _mm256_loadu_pd(rays.inv_dir[a]);
+      const __m256d t_near = _mm256_mul_pd(_mm256_sub_pd(near_bound, o), inv);
+      const __m256d t_far =
+          _mm256_mul_pd(_mm256_mul_pd(_mm256_sub_pd(far_bound, o), inv), far_scale);
+      t0 = _mm256_max_pd(t_near, t0);
+      t1 = _mm256_min_pd(t_far, t1);
+    }
+    _mm256_storeu_pd(entry[c], t0);
+    hits[c] = static_cast<unsigned>(_mm256_movemask_pd(_mm256_cmp_pd(t0, t1, _CMP_LE_OS)));
+  }
+}
+#endif
+
+// The walk of traverse_bvh_packet_leaves: run() tests boxes with intersect_child_boxes_packet,
+// run_avx2() with intersect_child_boxes_packet_avx2 (wide_box_kernel() chooses).
 template <typename VisitLeaf>
 class BvhPacketWalk {
  public:
@@ -134,6 +169,22 @@ class BvhPacketWalk {
   // Walks the lanes `walk` from `current` on, then through `stack` (`size` entries, the top
   // last), which it consumes.
   void run(unsigned walk, Pending current, Pending* stack, int size) {
+    walk_from<WideBoxKernel::Sse2>(walk, current, stack, size);
+  }
+#if defined(__SSE2__)
+  // Compiled for AVX2 (no FMA), flattened: the leaf visitor inlined here keeps its IEEE
+  // operations, only their encoding changes. The box test stays a call (GCC inlines no
+  // target-specific function into the always-inline walk_from; inlining it through a flattened,
+  // not always-inline walk_from measured the same).
+  [[gnu::flatten, gnu::target("avx2")]] void run_avx2(unsigned walk, Pending current,
+                                                      Pending* stack, int size) {
+    walk_from<WideBoxKernel::Avx2>(walk, current, stack, size);
+  }
+#endif
+
+ private:
+  template <WideBoxKernel kKernel>
+  [[gnu::always_inline]] void walk_from(unsigned walk, Pending current, Pending* stack, int size) {
     for (;;) {
       if (current.count > 0) {
         for (unsigned m = current.lanes; m != 0; m &= m - 1) {
@@ -145,7 +196,12 @@ class BvhPacketWalk {
         double entry[2][kPacketLanes];
         unsigned hits[2];
         nodes_visited_ += 2 * kLaneCount[current.lanes];
-        intersect_child_boxes_packet(pair.boxes, rays_, t_max_, entry, hits);
+#if defined(__SSE2__)
+        if constexpr (kKernel == WideBoxKernel::Avx2)
+          intersect_child_boxes_packet_avx2(pair.boxes, rays_, t_max_, entry, hits);
+        else
+#endif
+          intersect_child_boxes_packet(pair.boxes, rays_, t_max_, entry, hits);
         hits[0] &= current.lanes;
         hits[1] &= current.lanes;
         // The lanes that enter both children and, as a ray alone would, take the second first.
@@ -161,7 +217,12 @@ class BvhPacketWalk {
           const unsigned fork_hits[2] = {hits[0] & second_first, hits[1] & second_first};
           int fork_size = size;
           Pending fork_current = descend(pair, 1, fork_hits, entry, fork, fork_size);
-          run(second_first, fork_current, fork, fork_size);
+#if defined(__SSE2__)
+          if constexpr (kKernel == WideBoxKernel::Avx2)
+            run_avx2(second_first, fork_current, fork, fork_size);
+          else
+#endif
+            run(second_first, fork_current, fork, fork_size);
           walk &= ~second_first;
           hits[0] &= ~second_first;
           hits[1] &= ~second_first;
@@ -188,7 +249,6 @@ class BvhPacketWalk {
     }
   }
 
- private:
   // The child `near` of `pair` to visit next, for the lanes hits[near]; the other one, when some
   // lane enters it, pushed onto `stack` for its lanes hits[1 - near].
   static Pending descend(const BvhPair& pair, int near, const unsigned hits[2],
@@ -235,8 +295,12 @@ void traverse_bvh_packet_leaves(const Bvh& bvh, const PacketRays& rays, double* 
   // As traverse_bvh_leaves, the interior root's own box is not tested.
   using Walk = BvhPacketWalk<VisitLeaf>;
   typename Walk::Pending stack[kBvhMaxDepth];
-  Walk(bvh, rays, t_max, nodes_visited, visit_leaf)
-      .run(rays.lanes, {0, 0, rays.lanes, {}}, stack, 0);
+  Walk walk(bvh, rays, t_max, nodes_visited, visit_leaf);
+#if defined(__SSE2__)
+  if (wide_box_kernel() == WideBoxKernel::Avx2)
+    return walk.run_avx2(rays.lanes, {0, 0, rays.lanes, {}}, stack, 0);
+#endif
+  walk.run(rays.lanes, {0, 0, rays.lanes, {}}, stack, 0);
 }
 
 }  // namespace tessera

@@ -14,17 +14,30 @@
 #include <vector>
 
 #include "common/accel/bvh_traverse.h"
+#include "common/accel/wide_box_kernel.h"
 #include "tests/accel/edge_case_rays.h"
 #include "tests/accel/random_boxes.h"
 
 namespace tessera {
 namespace {
 
-void expect_lanes_as_alone(const ChildBoxes& boxes, const Ray* rays, const double* t_max) {
+// The box kernels this machine runs: the SSE2 (and scalar) packet test, and AVX2's.
+std::vector<WideBoxKernel> packet_kernels() {
+  std::vector<WideBoxKernel> kernels = {WideBoxKernel::Sse2};
+  if (wide_box_kernel_supported(WideBoxKernel::Avx2)) kernels.push_back(WideBoxKernel::Avx2);
+  return kernels;
+}
+
+void expect_lanes_as_alone(const ChildBoxes& boxes, const Ray* rays, const double* t_max,
+                           WideBoxKernel kernel) {
+  SCOPED_TRACE(wide_box_kernel_name(kernel));
   const PacketRays packet(rays, kPacketLanes);
   double entry[2][kPacketLanes];
   unsigned hits[2];
-  intersect_child_boxes_packet(boxes, packet, t_max, entry, hits);
+  if (kernel == WideBoxKernel::Avx2)
+    intersect_child_boxes_packet_avx2(boxes, packet, t_max, entry, hits);
+  else
+    intersect_child_boxes_packet(boxes, packet, t_max, entry, hits);
   for (int l = 0; l < kPacketLanes; ++l) {
     double alone[2] = {-1, -1};
     const unsigned alone_hits = intersect_child_boxes(boxes, BoxRay(rays[l]), t_max[l], alone);
@@ -34,6 +47,12 @@ void expect_lanes_as_alone(const ChildBoxes& boxes, const Ray* rays, const doubl
           << "lane " << l << " child " << c << ": " << entry[c][l] << " vs " << alone[c];
     }
   }
+}
+
+void expect_lanes_as_alone(const ChildBoxes& boxes, const Ray* rays,
+                           const double* t_max) {  // with each kernel
+  for (const WideBoxKernel kernel : packet_kernels())
+    expect_lanes_as_alone(boxes, rays, t_max, kernel);
 }
 
 TEST(BvhPacket, BoxTestMatchesEachRayAloneOnRandomRays) {
@@ -100,8 +119,8 @@ double nearest_entry(const std::vector<Bounds3>& boxes, const Bvh& bvh, const Ra
   return t_max;
 }
 
-void expect_packet_walks_as_alone(const std::vector<Bounds3>& boxes, const Bvh& bvh,
-                                  const Ray* rays, int count) {
+void expect_packet_walks_as_alone_now(const std::vector<Bounds3>& boxes, const Bvh& bvh,
+                                      const Ray* rays, int count) {
   std::vector<Visit> alone[kPacketLanes], together[kPacketLanes];
   std::uint64_t alone_nodes = 0, together_nodes = 0;
   double alone_t[kPacketLanes], together_t[kPacketLanes];
@@ -127,6 +146,16 @@ void expect_packet_walks_as_alone(const std::vector<Bounds3>& boxes, const Bvh& 
         << "lane " << l;
   }
   for (int l = count; l < kPacketLanes; ++l) EXPECT_TRUE(together[l].empty()) << "lane " << l;
+}
+
+void expect_packet_walks_as_alone(const std::vector<Bounds3>& boxes, const Bvh& bvh,
+                                  const Ray* rays, int count) {
+  for (const WideBoxKernel kernel : packet_kernels()) {
+    SCOPED_TRACE(wide_box_kernel_name(kernel));
+    force_wide_box_kernel(kernel);
+    expect_packet_walks_as_alone_now(boxes, bvh, rays, count);
+    force_wide_box_kernel(std::nullopt);
+  }
 }
 
 TEST(BvhPacket, EachRayWalksAsAlone) {
