@@ -9,7 +9,10 @@
 //    ((rho - R)^2 + z^2 - r^2) ((rho + R)^2 + z^2 - r^2), which does not cancel near the tube;
 //  - its roots are isolated and polished by bracketing (common/math/polynomial.h) on the
 //    ray's span through the bounding box, so grazing rays get a touching root rather than
-//    nothing or garbage; a ray that needs only the nearest hit stops the search there;
+//    nothing or garbage; a ray that needs only the nearest hit stops the search there, and
+//    usually skips it: when the quartic is shown to fall through one root from the span's start
+//    to a point inside the tube (quartic_first_root.h), that is the search's first root, and it
+//    is polished in that bracket (the same root up to the rounding of the polish);
 //  - each hit is re-projected onto the nearest generating circle of its meridian plane (the
 //    circle around +R, or around -R for the inner "lemon" of a spindle torus), whose normal is
 //    the torus' gradient direction; points on the axis (the horn torus' pinch, the spindle's
@@ -23,6 +26,8 @@
 //    change between a point outside the tube and one inside it (quartic_crossing_proof.h).
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <optional>
 #include <vector>
 
 #include "common/geometry/ordered_hits.h"
@@ -31,6 +36,7 @@
 #include "common/math/hypot.h"
 #include "common/math/polynomial.h"
 #include "common/math/quartic_crossing_proof.h"
+#include "common/math/quartic_first_root.h"
 #include "common/math/quartic_miss_proof.h"
 
 namespace tessera {
@@ -108,6 +114,30 @@ LocalHit surface_hit(double big_r, double r, const Vec3& p, const Vec3& u) {
   return hit;
 }
 
+// Half the chord of the ray (f + s u) through the torus' core cylinder rho = R, in units of P:
+// it crosses at (-Q -+ root) / P, where P s^2 + 2 Q s + (f.x^2 + f.y^2 - R^2) = 0; NaN when it
+// does not.
+double core_cylinder_root(const Vec3& f, double big_r, double P, double Q) {
+  const double k = f.x * f.x + f.y * f.y - big_r * big_r, disc = Q * Q - P * k;
+  return P > 0 && disc >= 0 ? std::sqrt(disc) : std::numeric_limits<double>::quiet_NaN();
+}
+
+// The end of a bracket [s_lo, end] of the search's first root, when quartic_first_root.h shows
+// one for the stretch from the span's start to where the ray crosses the torus' plane or, failing
+// that, first crosses its core cylinder: for a ray that enters the tube from outside, usually
+// points deep inside it.
+std::optional<double> first_root_bracket(const Polynomial& quartic, double s_lo, double s_hi,
+                                         const Vec3& f, const Vec3& u, double big_r, double P,
+                                         double Q) {
+  const auto bracket_to = [&](double m) {
+    return m > s_lo && m < s_hi ? quartic_first_root_bracket(quartic, s_lo, m) : std::nullopt;
+  };
+  if (u.z != 0)
+    if (const std::optional<double> end = bracket_to(-f.z / u.z)) return end;
+  // A NaN crossing is not in the span.
+  return bracket_to((-Q - core_cylinder_root(f, big_r, P, Q)) / P);
+}
+
 // Whether a shadow ray is shown blocked without the search (quartic_crossing_proof.h): the
 // quartic clearly changes sign between two points a < b of its span whose stretch, widened by the
 // proof's slack, passes the tests of a hit (stretch_is_hit), so that the search would report a
@@ -132,12 +162,8 @@ bool proven_blocked(const Polynomial& quartic, double s_lo, double s_hi, const V
       return s > s_lo && s < s_hi && signs.clearly_negative(s) && crossing_hits(s_lo, s);
     };
     if (u.z != 0 && inside_at(-f.z / u.z)) return true;
-    // (f + s u) has rho = R where P s^2 + 2 Q s + (f.x^2 + f.y^2 - R^2) = 0.
-    const double k = f.x * f.x + f.y * f.y - big_r * big_r, disc = Q * Q - P * k;
-    if (P > 0 && disc >= 0) {
-      const double root = std::sqrt(disc);
-      if (inside_at((-Q - root) / P) || inside_at((-Q + root) / P)) return true;
-    }
+    const double root = core_cylinder_root(f, big_r, P, Q);
+    if (inside_at((-Q - root) / P) || inside_at((-Q + root) / P)) return true;
     return inside_at(quarter_points[0]) || inside_at(quarter_points[1]) ||
            inside_at(quarter_points[2]);
   }
@@ -156,10 +182,12 @@ bool proven_blocked(const Polynomial& quartic, double s_lo, double s_hi, const V
   return false;
 }
 
-// What a search for the ray's hits is for: every hit, in order; or only whether there is one,
-// which a sign change of the quartic between two split points of the root search well inside
-// the accepted span shows without polishing the root or re-projecting it.
-enum class HitSearch { kInOrder, kAnyHit };
+// What a search for the ray's hits is for: the nearest hit, which a proof that the quartic falls
+// through one root to a point inside the tube usually brackets without the quartic's critical
+// points; every hit, in order; or only whether there is one, which a sign change of the quartic
+// between two split points of the root search well inside the accepted span shows without
+// polishing the root or re-projecting it.
+enum class HitSearch { kNearest, kInOrder, kAnyHit };
 
 // The roots of the ray's quartic with t in (0, t_max), ascending, as hits handed to
 // take(hit, touching) until it returns false: the search stops there, so a caller that needs
@@ -232,6 +260,19 @@ bool visit_torus_hits(const Torus& torus, const Ray& ray, double t_max, HitSearc
     hit.t = t;
     return take(hit, root.touching);
   };
+  // Most rays that form the quartic and hit enter the tube from outside, where the search's first
+  // root is usually bracketed without its critical points (first_root_bracket) and polished in
+  // that bracket: the search's root up to the rounding of the polish. True when at_root took that
+  // root, ending the search; a root that at_root turns down, and the rays the proof leaves, go to
+  // the search.
+  const auto bracketed_first_root_taken = [&] {
+    const std::optional<double> end = first_root_bracket(quartic, s_lo, s_hi, f, u, big_r, P, Q);
+    return end && !at_root(PolynomialRoot{polished_root(quartic, s_lo, *end), false});
+  };
+  if (search == HitSearch::kNearest) {
+    if (bracketed_first_root_taken()) return false;
+    return visit_real_roots(quartic, s_lo, s_hi, at_root);
+  }
   if (search == HitSearch::kInOrder) return visit_real_roots(quartic, s_lo, s_hi, at_root);
 
   // Most shadow rays that form the quartic miss (two thirds on features/torus.sdl, most of them
@@ -254,6 +295,9 @@ bool visit_torus_hits(const Torus& torus, const Ray& ray, double t_max, HitSearc
   // first sign change to say so.
   if (proven_blocked(quartic, s_lo, s_hi, f, u, big_r, P, Q, is_hit_bracket)) return false;
 
+  // The first root as the nearest hit takes it, so that the answer is always intersect_torus'
+  // even where t_max falls between its polish and the search's.
+  if (bracketed_first_root_taken()) return false;
   return visit_real_roots(quartic, s_lo, s_hi, at_root, is_hit_bracket);
 }
 
@@ -261,7 +305,7 @@ bool visit_torus_hits(const Torus& torus, const Ray& ray, double t_max, HitSearc
 
 bool intersect_torus(const Torus& torus, const Ray& ray, double t_max, LocalHit& hit) {
   return nearest_ordered_hit(
-      [&](const auto& take) { visit_torus_hits(torus, ray, t_max, HitSearch::kInOrder, take); },
+      [&](const auto& take) { visit_torus_hits(torus, ray, t_max, HitSearch::kNearest, take); },
       hit);
 }
 
