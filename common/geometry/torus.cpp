@@ -28,6 +28,7 @@
 #include <cmath>
 #include <limits>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include "common/geometry/ordered_hits.h"
@@ -182,12 +183,11 @@ bool proven_blocked(const Polynomial& quartic, double s_lo, double s_hi, const V
   return false;
 }
 
-// What a search for the ray's hits is for: the nearest hit, which a proof that the quartic falls
-// through one root to a point inside the tube usually brackets without the quartic's critical
-// points; every hit, in order; or only whether there is one, which a sign change of the quartic
-// between two split points of the root search well inside the accepted span shows without
-// polishing the root or re-projecting it.
-enum class HitSearch { kNearest, kInOrder, kAnyHit };
+// What a search for the ray's hits is for: every hit, in order (the nearest hit is the first);
+// or only whether there is one, which a sign change of the quartic between two split points of
+// the root search well inside the accepted span shows without polishing the root or
+// re-projecting it.
+enum class HitSearch { kInOrder, kAnyHit };
 
 // The roots of the ray's quartic with t in (0, t_max), ascending, as hits handed to
 // take(hit, touching) until it returns false: the search stops there, so a caller that needs
@@ -236,7 +236,19 @@ bool visit_torus_hits(const Torus& torus, const Ray& ray, double t_max, HitSearc
 
   // F(f + s u) = (A s^2 + B s + C)^2 - 4 R^2 (P s^2 + 2 Q s + S).
   const double big_r2 = big_r * big_r;
-  const double A = dot(u, u), B = 2 * dot(f, u), C = dot(f, f) + big_r2 - r * r;
+  const double A = dot(u, u), B = 2 * dot(f, u), f2 = dot(f, f), C = f2 + big_r2 - r * r;
+  // The torus also lies in the ball of radius R + r about its centre: F >= (|p|^2 - (R + r)^2)
+  // (|p|^2 - (R - r)^2), since rho <= |p|, so a ray that stays outside it, padded as the
+  // cylinders are, misses. |f + s u|^2 = A s^2 + B s + |f|^2 has its vertex at s ~ 0 (B is
+  // rounding), so over the span it is at least |f|^2 + A s_c^2 - |B| max |s|, s_c the span's
+  // point nearest 0. It turns away half the camera rays that the cylinders leave and that miss
+  // (features/torus.sdl), by the box's corners; shadow rays, mostly leaving the torus, not.
+  if (search == HitSearch::kInOrder) {
+    const double s_c = std::clamp(0.0, s_lo, s_hi);
+    if (f2 + A * s_c * s_c - std::fabs(B) * std::max(-s_lo, s_hi) >
+        (big_r + r) * (big_r + r) * pad2)
+      return true;
+  }
   const double rho = hypot_inline(f.x, f.y);
   Polynomial quartic;
   quartic.degree = 4;
@@ -252,28 +264,40 @@ bool visit_torus_hits(const Torus& torus, const Ray& ray, double t_max, HitSearc
   const auto leaves_the_origin = [&](double t, const Vec3& point_error) {
     return t * len > 4 * length(point_error);
   };
-  const auto at_root = [&](const PolynomialRoot& root) {
-    const double t = t_at(root.x);
-    if (!(t > 0 && t < t_max)) return true;
-    LocalHit hit = surface_hit(big_r, r, f + u * root.x, u);
-    if (!leaves_the_origin(t, hit.point_error)) return true;
+  // The hit at the root s, or nullopt when it is not one: outside (0, t_max), or the surface the
+  // ray is leaving.
+  const auto hit_at = [&](double s) -> std::optional<LocalHit> {
+    const double t = t_at(s);
+    if (!(t > 0 && t < t_max)) return std::nullopt;
+    LocalHit hit = surface_hit(big_r, r, f + u * s, u);
+    if (!leaves_the_origin(t, hit.point_error)) return std::nullopt;
     hit.t = t;
-    return take(hit, root.touching);
+    return hit;
   };
   // Most rays that form the quartic and hit enter the tube from outside, where the search's first
   // root is usually bracketed without its critical points (first_root_bracket) and polished in
-  // that bracket: the search's root up to the rounding of the polish. True when at_root took that
-  // root, ending the search; a root that at_root turns down, and the rays the proof leaves, go to
-  // the search.
-  const auto bracketed_first_root_taken = [&] {
+  // that bracket: the search's root up to the rounding of the polish. Every query takes the first
+  // root this way when it can, so that the nearest hit, the crossings and the shadow rays' answer
+  // come from the same arithmetic; the search then passes over its own first root. Returns false
+  // when take ended the search there.
+  bool first_root_taken = false;
+  const auto take_bracketed_first_root = [&] {
     const std::optional<double> end = first_root_bracket(quartic, s_lo, s_hi, f, u, big_r, P, Q);
-    return end && !at_root(PolynomialRoot{polished_root(quartic, s_lo, *end), false});
+    if (!end) return true;
+    const std::optional<LocalHit> hit = hit_at(polished_root(quartic, s_lo, *end));
+    if (!hit) return true;  // to the search, which may take its own polish of the root
+    first_root_taken = true;
+    return take(*hit, false);
   };
-  if (search == HitSearch::kNearest) {
-    if (bracketed_first_root_taken()) return false;
+  const auto at_root = [&](const PolynomialRoot& root) {
+    if (std::exchange(first_root_taken, false)) return true;
+    const std::optional<LocalHit> hit = hit_at(root.x);
+    return !hit || take(*hit, root.touching);
+  };
+  if (search == HitSearch::kInOrder) {
+    if (!take_bracketed_first_root()) return false;
     return visit_real_roots(quartic, s_lo, s_hi, at_root);
   }
-  if (search == HitSearch::kInOrder) return visit_real_roots(quartic, s_lo, s_hi, at_root);
 
   // Most shadow rays that form the quartic miss (two thirds on features/torus.sdl, most of them
   // leaving the torus's own surface): shown here, when it is easy, for less than half the cost
@@ -295,9 +319,7 @@ bool visit_torus_hits(const Torus& torus, const Ray& ray, double t_max, HitSearc
   // first sign change to say so.
   if (proven_blocked(quartic, s_lo, s_hi, f, u, big_r, P, Q, is_hit_bracket)) return false;
 
-  // The first root as the nearest hit takes it, so that the answer is always intersect_torus'
-  // even where t_max falls between its polish and the search's.
-  if (bracketed_first_root_taken()) return false;
+  if (!take_bracketed_first_root()) return false;
   return visit_real_roots(quartic, s_lo, s_hi, at_root, is_hit_bracket);
 }
 
@@ -305,7 +327,7 @@ bool visit_torus_hits(const Torus& torus, const Ray& ray, double t_max, HitSearc
 
 bool intersect_torus(const Torus& torus, const Ray& ray, double t_max, LocalHit& hit) {
   return nearest_ordered_hit(
-      [&](const auto& take) { visit_torus_hits(torus, ray, t_max, HitSearch::kNearest, take); },
+      [&](const auto& take) { visit_torus_hits(torus, ray, t_max, HitSearch::kInOrder, take); },
       hit);
 }
 

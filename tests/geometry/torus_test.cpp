@@ -309,12 +309,6 @@ TEST(Torus, OcclusionAnswersAsTheNearestHit) {
       for (double t_max : {hit.t, std::nextafter(hit.t, 0.0), std::nextafter(hit.t, kInfinity),
                            hit.t * (1 - 1e-9), hit.t * (1 + 1e-9)})
         expect_same_answer(ray, t_max);
-      // And around the search's own polish of that root, which the nearest hit may have polished
-      // in a narrower bracket (quartic_first_root.h), a few ulps away.
-      const std::vector<double> ts = crossing_ts(torus, ray);
-      if (!ts.empty() && ts[0] != hit.t)
-        for (double t_max : {ts[0], std::nextafter(ts[0], 0.0), std::nextafter(ts[0], kInfinity)})
-          expect_same_answer(ray, t_max);
       if (!from_hits) return;
       for (int k = 0; k < 4; ++k) {
         // Not of unit length, so that t's rounding differs from s's.
@@ -352,15 +346,16 @@ TEST(Torus, OcclusionAnswersAsTheNearestHit) {
   EXPECT_LT(occluded, compared * 3 / 4);
 }
 
-// The nearest hit is mostly polished in a bracket of its own (quartic_first_root.h), not the
-// search's that torus_crossings polishes in: the two may differ in the last bits, but the nearest
-// hit is as accurate as the search's, against the exact hit (Newton's method on the torus
-// function along the ray, in quadruple precision).
-TEST(Torus, NearestHitIsAsAccurateAsTheSearchs) {
+// Hits against the exact hit (Newton's method on the torus function along the ray, in quadruple
+// precision), on rays from outside: the nearest hit is mostly polished in a bracket of its own
+// (quartic_first_root.h), no less accurately than the search polishes it (measured when only the
+// nearest hit took that path: 46,685 hits, 516 of them differing from the search's, mean errors
+// 0.4368 and 0.4364 ulps of t, 250 nearer the exact hit and 266 farther).
+TEST(Torus, HitsAreWithinAnUlpOrSoOfTheExactHit) {
   std::mt19937_64 rng(29);
   std::uniform_real_distribution<double> unit(0, 1);
-  int hits = 0, differ = 0, better = 0, worse = 0;
-  double nearest_error = 0, search_error = 0;  // summed, in ulps of t
+  int hits = 0;
+  double total_error = 0, largest_error = 0;  // in ulps of t
   for (const Torus& torus : {kRing, kHorn, kSpindle}) {
     const double big_r = torus.torus_radius, r = torus.tube_radius;
     for (int i = 0; i < 20000; ++i) {
@@ -370,12 +365,9 @@ TEST(Torus, NearestHitIsAsAccurateAsTheSearchs) {
       const Ray ray{origin, (target - origin) * (0.1 + 10 * unit(rng))};
       LocalHit hit;
       if (!intersect_torus(torus, ray, kInfinity, hit)) continue;
-      const std::vector<double> ts = crossing_ts(torus, ray);
-      ASSERT_FALSE(ts.empty());
-      ASSERT_NEAR(hit.t, ts[0], 1e-9 * ts[0]);
-      // Quadruple precision: the torus function cancels some 15 bits from this far away.
+      // The torus function cancels some 15 bits from this far away.
       __extension__ using Quad = __float128;
-      Quad t = ts[0];
+      Quad t = hit.t;
       for (int k = 0; k < 5; ++k) {
         const Quad x = Quad(ray.origin.x) + t * ray.direction.x,
                    y = Quad(ray.origin.y) + t * ray.direction.y,
@@ -388,23 +380,16 @@ TEST(Torus, NearestHitIsAsAccurateAsTheSearchs) {
         t -= value / slope;
       }
       const double ulp = std::nextafter(hit.t, kInfinity) - hit.t;
+      const double error = std::fabs(static_cast<double>((hit.t - t) / ulp));
       ++hits;
-      differ += hit.t != ts[0];
-      const double nearest = std::fabs(static_cast<double>((hit.t - t) / ulp)),
-                   searched = std::fabs(static_cast<double>((ts[0] - t) / ulp));
-      nearest_error += nearest;
-      search_error += searched;
-      better += nearest < searched;
-      worse += nearest > searched;
+      total_error += error;
+      largest_error = std::max(largest_error, error);
     }
   }
-  std::printf(
-      "%d hits, %d differ from the search's (%d nearer the exact hit, %d farther); mean error in "
-      "ulps: nearest %.4f, search %.4f\n",
-      hits, differ, better, worse, nearest_error / hits, search_error / hits);
+  std::printf("%d hits, error in ulps of t: mean %.4f, largest %.1f\n", hits, total_error / hits,
+              largest_error);
   EXPECT_GT(hits, 20000);
-  // On 46,685 hits, 516 differ: 250 nearer, 266 farther, mean errors 0.4368 and 0.4364 ulps.
-  EXPECT_LE(nearest_error, search_error * 1.01);
+  EXPECT_LT(total_error / hits, 0.45);
 }
 
 // For CSG: a ray from outside crosses a closed surface an even number of times (touching roots
