@@ -9,10 +9,11 @@
 //    ((rho - R)^2 + z^2 - r^2) ((rho + R)^2 + z^2 - r^2), which does not cancel near the tube;
 //  - its roots are isolated and polished by bracketing (common/math/polynomial.h) on the
 //    ray's span through the bounding box, so grazing rays get a touching root rather than
-//    nothing or garbage; a ray that needs only the nearest hit stops the search there, and
-//    usually skips it: when the quartic is shown to fall through one root from the span's start
-//    to a point inside the tube (quartic_first_root.h), that is the search's first root, and it
-//    is polished in that bracket (the same root up to the rounding of the polish);
+//    nothing or garbage; a ray that needs only the nearest hit stops the search there. When the
+//    quartic is shown to fall through one root from the span's start to a point inside the tube
+//    (quartic_first_root.h), that root is the search's first, and it is polished in that bracket
+//    without the search's critical points (the same root up to the rounding of the polish; every
+//    query takes it so, and their answers agree);
 //  - each hit is re-projected onto the nearest generating circle of its meridian plane (the
 //    circle around +R, or around -R for the inner "lemon" of a spindle torus), whose normal is
 //    the torus' gradient direction; points on the axis (the horn torus' pinch, the spindle's
@@ -115,9 +116,9 @@ LocalHit surface_hit(double big_r, double r, const Vec3& p, const Vec3& u) {
   return hit;
 }
 
-// Half the chord of the ray (f + s u) through the torus' core cylinder rho = R, in units of P:
-// it crosses at (-Q -+ root) / P, where P s^2 + 2 Q s + (f.x^2 + f.y^2 - R^2) = 0; NaN when it
-// does not.
+// The square root of the discriminant of P s^2 + 2 Q s + (f.x^2 + f.y^2 - R^2) = 0, whose roots
+// (-Q -+ root) / P are where the ray (f + s u) crosses the torus' core cylinder rho = R; NaN when
+// it does not.
 double core_cylinder_root(const Vec3& f, double big_r, double P, double Q) {
   const double k = f.x * f.x + f.y * f.y - big_r * big_r, disc = Q * Q - P * k;
   return P > 0 && disc >= 0 ? std::sqrt(disc) : std::numeric_limits<double>::quiet_NaN();
