@@ -9,7 +9,11 @@
 //    ((rho - R)^2 + z^2 - r^2) ((rho + R)^2 + z^2 - r^2), which does not cancel near the tube;
 //  - its roots are isolated and polished by bracketing (common/math/polynomial.h) on the
 //    ray's span through the bounding box, so grazing rays get a touching root rather than
-//    nothing or garbage; a ray that needs only the nearest hit stops the search there;
+//    nothing or garbage; a ray that needs only the nearest hit stops the search there. When the
+//    quartic is shown to fall through one root from the span's start to a point inside the tube
+//    (quartic_first_root.h), that root is the search's first, and it is polished in that bracket
+//    without the search's critical points (the same root up to the rounding of the polish; every
+//    query takes it so, and their answers agree);
 //  - each hit is re-projected onto the nearest generating circle of its meridian plane (the
 //    circle around +R, or around -R for the inner "lemon" of a spindle torus), whose normal is
 //    the torus' gradient direction; points on the axis (the horn torus' pinch, the spindle's
@@ -23,6 +27,9 @@
 //    change between a point outside the tube and one inside it (quartic_crossing_proof.h).
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <optional>
+#include <utility>
 #include <vector>
 
 #include "common/geometry/ordered_hits.h"
@@ -31,6 +38,7 @@
 #include "common/math/hypot.h"
 #include "common/math/polynomial.h"
 #include "common/math/quartic_crossing_proof.h"
+#include "common/math/quartic_first_root.h"
 #include "common/math/quartic_miss_proof.h"
 
 namespace tessera {
@@ -108,6 +116,30 @@ LocalHit surface_hit(double big_r, double r, const Vec3& p, const Vec3& u) {
   return hit;
 }
 
+// The square root of the discriminant of P s^2 + 2 Q s + (f.x^2 + f.y^2 - R^2) = 0, whose roots
+// (-Q -+ root) / P are where the ray (f + s u) crosses the torus' core cylinder rho = R; NaN when
+// it does not.
+double core_cylinder_root(const Vec3& f, double big_r, double P, double Q) {
+  const double k = f.x * f.x + f.y * f.y - big_r * big_r, disc = Q * Q - P * k;
+  return P > 0 && disc >= 0 ? std::sqrt(disc) : std::numeric_limits<double>::quiet_NaN();
+}
+
+// The end of a bracket [s_lo, end] of the search's first root, when quartic_first_root.h shows
+// one for the stretch from the span's start to where the ray crosses the torus' plane or, failing
+// that, first crosses its core cylinder: for a ray that enters the tube from outside, usually
+// points deep inside it.
+std::optional<double> first_root_bracket(const Polynomial& quartic, double s_lo, double s_hi,
+                                         const Vec3& f, const Vec3& u, double big_r, double P,
+                                         double Q) {
+  const auto bracket_to = [&](double m) {
+    return m > s_lo && m < s_hi ? quartic_first_root_bracket(quartic, s_lo, m) : std::nullopt;
+  };
+  if (u.z != 0)
+    if (const std::optional<double> end = bracket_to(-f.z / u.z)) return end;
+  // A NaN crossing is not in the span.
+  return bracket_to((-Q - core_cylinder_root(f, big_r, P, Q)) / P);
+}
+
 // Whether a shadow ray is shown blocked without the search (quartic_crossing_proof.h): the
 // quartic clearly changes sign between two points a < b of its span whose stretch, widened by the
 // proof's slack, passes the tests of a hit (stretch_is_hit), so that the search would report a
@@ -132,12 +164,8 @@ bool proven_blocked(const Polynomial& quartic, double s_lo, double s_hi, const V
       return s > s_lo && s < s_hi && signs.clearly_negative(s) && crossing_hits(s_lo, s);
     };
     if (u.z != 0 && inside_at(-f.z / u.z)) return true;
-    // (f + s u) has rho = R where P s^2 + 2 Q s + (f.x^2 + f.y^2 - R^2) = 0.
-    const double k = f.x * f.x + f.y * f.y - big_r * big_r, disc = Q * Q - P * k;
-    if (P > 0 && disc >= 0) {
-      const double root = std::sqrt(disc);
-      if (inside_at((-Q - root) / P) || inside_at((-Q + root) / P)) return true;
-    }
+    const double root = core_cylinder_root(f, big_r, P, Q);
+    if (inside_at((-Q - root) / P) || inside_at((-Q + root) / P)) return true;
     return inside_at(quarter_points[0]) || inside_at(quarter_points[1]) ||
            inside_at(quarter_points[2]);
   }
@@ -156,9 +184,10 @@ bool proven_blocked(const Polynomial& quartic, double s_lo, double s_hi, const V
   return false;
 }
 
-// What a search for the ray's hits is for: every hit, in order; or only whether there is one,
-// which a sign change of the quartic between two split points of the root search well inside
-// the accepted span shows without polishing the root or re-projecting it.
+// What a search for the ray's hits is for: every hit, in order (the nearest hit is the first);
+// or only whether there is one, which a sign change of the quartic between two split points of
+// the root search well inside the accepted span shows without polishing the root or
+// re-projecting it.
 enum class HitSearch { kInOrder, kAnyHit };
 
 // The roots of the ray's quartic with t in (0, t_max), ascending, as hits handed to
@@ -208,7 +237,19 @@ bool visit_torus_hits(const Torus& torus, const Ray& ray, double t_max, HitSearc
 
   // F(f + s u) = (A s^2 + B s + C)^2 - 4 R^2 (P s^2 + 2 Q s + S).
   const double big_r2 = big_r * big_r;
-  const double A = dot(u, u), B = 2 * dot(f, u), C = dot(f, f) + big_r2 - r * r;
+  const double A = dot(u, u), B = 2 * dot(f, u), f2 = dot(f, f), C = f2 + big_r2 - r * r;
+  // The torus also lies in the ball of radius R + r about its centre: F >= (|p|^2 - (R + r)^2)
+  // (|p|^2 - (R - r)^2), since rho <= |p|, so a ray that stays outside it, padded as the
+  // cylinders are, misses. |f + s u|^2 = A s^2 + B s + |f|^2 has its vertex at s ~ 0 (B is
+  // rounding), so over the span it is at least |f|^2 + A s_c^2 - |B| max |s|, s_c the span's
+  // point nearest 0. It turns away half the camera rays that the cylinders leave and that miss
+  // (features/torus.sdl), by the box's corners; shadow rays, mostly leaving the torus, not.
+  if (search == HitSearch::kInOrder) {
+    const double s_c = std::clamp(0.0, s_lo, s_hi);
+    if (f2 + A * s_c * s_c - std::fabs(B) * std::max(-s_lo, s_hi) >
+        (big_r + r) * (big_r + r) * pad2)
+      return true;
+  }
   const double rho = hypot_inline(f.x, f.y);
   Polynomial quartic;
   quartic.degree = 4;
@@ -224,15 +265,40 @@ bool visit_torus_hits(const Torus& torus, const Ray& ray, double t_max, HitSearc
   const auto leaves_the_origin = [&](double t, const Vec3& point_error) {
     return t * len > 4 * length(point_error);
   };
-  const auto at_root = [&](const PolynomialRoot& root) {
-    const double t = t_at(root.x);
-    if (!(t > 0 && t < t_max)) return true;
-    LocalHit hit = surface_hit(big_r, r, f + u * root.x, u);
-    if (!leaves_the_origin(t, hit.point_error)) return true;
+  // The hit at the root s, or nullopt when it is not one: outside (0, t_max), or the surface the
+  // ray is leaving.
+  const auto hit_at = [&](double s) -> std::optional<LocalHit> {
+    const double t = t_at(s);
+    if (!(t > 0 && t < t_max)) return std::nullopt;
+    LocalHit hit = surface_hit(big_r, r, f + u * s, u);
+    if (!leaves_the_origin(t, hit.point_error)) return std::nullopt;
     hit.t = t;
-    return take(hit, root.touching);
+    return hit;
   };
-  if (search == HitSearch::kInOrder) return visit_real_roots(quartic, s_lo, s_hi, at_root);
+  // Most rays that form the quartic and hit enter the tube from outside, where the search's first
+  // root is usually bracketed without its critical points (first_root_bracket) and polished in
+  // that bracket: the search's root up to the rounding of the polish. Every query takes the first
+  // root this way when it can, so that the nearest hit, the crossings and the shadow rays' answer
+  // come from the same arithmetic; the search then passes over its own first root. Returns false
+  // when take ended the search there.
+  bool first_root_taken = false;
+  const auto take_bracketed_first_root = [&] {
+    const std::optional<double> end = first_root_bracket(quartic, s_lo, s_hi, f, u, big_r, P, Q);
+    if (!end) return true;
+    const std::optional<LocalHit> hit = hit_at(polished_root(quartic, s_lo, *end));
+    if (!hit) return true;  // to the search, which may take its own polish of the root
+    first_root_taken = true;
+    return take(*hit, false);
+  };
+  const auto at_root = [&](const PolynomialRoot& root) {
+    if (std::exchange(first_root_taken, false)) return true;
+    const std::optional<LocalHit> hit = hit_at(root.x);
+    return !hit || take(*hit, root.touching);
+  };
+  if (search == HitSearch::kInOrder) {
+    if (!take_bracketed_first_root()) return false;
+    return visit_real_roots(quartic, s_lo, s_hi, at_root);
+  }
 
   // Most shadow rays that form the quartic miss (two thirds on features/torus.sdl, most of them
   // leaving the torus's own surface): shown here, when it is easy, for less than half the cost
@@ -254,6 +320,7 @@ bool visit_torus_hits(const Torus& torus, const Ray& ray, double t_max, HitSearc
   // first sign change to say so.
   if (proven_blocked(quartic, s_lo, s_hi, f, u, big_r, P, Q, is_hit_bracket)) return false;
 
+  if (!take_bracketed_first_root()) return false;
   return visit_real_roots(quartic, s_lo, s_hi, at_root, is_hit_bracket);
 }
 

@@ -225,6 +225,14 @@ bool visit_real_roots(const Polynomial& p, double lo, double hi, RootVisitor vis
   return visit_roots_of_any_degree(p, lo, hi, visit, ends_search);
 }
 
+double polished_root(const Polynomial& p, double a, double b) {
+  double dc[kMaxPolynomialDegree];
+  for (int i = 1; i <= p.degree; ++i) dc[i - 1] = i * p.c[i];
+  const double fa = horner(p.c, p.degree, a);
+  return p.degree == 3 ? bracketed_root<3>(p.c, dc, a, b, fa)
+                       : bracketed_root<4>(p.c, dc, a, b, fa);
+}
+
 int real_roots(const Polynomial& p, double lo, double hi,
                PolynomialRoot roots[kMaxPolynomialDegree]) {
   int count = 0;

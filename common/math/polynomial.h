@@ -77,6 +77,10 @@ bool visit_real_roots(const Polynomial& p, double lo, double hi, RootVisitor vis
 bool visit_real_roots(const Polynomial& p, double lo, double hi, RootVisitor visit,
                       BracketTest ends_search);
 
+// The root in (a, b) of p (degree 3 or 4), monotone on [a, b] with values of opposite signs at a
+// and b, polished as visit_real_roots polishes the root of each piece it brackets.
+double polished_root(const Polynomial& p, double a, double b);
+
 // Every real root of p in (lo, hi), ascending, as visit_real_roots finds them; returns how many
 // (at most p.degree).
 int real_roots(const Polynomial& p, double lo, double hi,

@@ -29,23 +29,14 @@
 #include <cmath>
 
 #include "common/math/float_error.h"
+#include "common/math/quartic_bernstein.h"
 
 namespace tessera {
 
 namespace {
 
-constexpr int kDegree = 4;
-
-// p's Bernstein coefficients over [lo, lo + w], from q, p's Taylor coefficients at lo.
-struct Bernstein {
-  double b[kDegree + 1];
-};
-Bernstein bernstein_over(const double* q, double w) {
-  const double w2 = w * w;
-  const double a1 = q[1] * w, a2 = q[2] * w2, a3 = q[3] * (w2 * w), a4 = q[4] * (w2 * w2);
-  return {{q[0], q[0] + a1 * 0.25, q[0] + a1 * 0.5 + a2 * (1.0 / 6),
-           q[0] + a1 * 0.75 + a2 * 0.5 + a3 * 0.25, q[0] + a1 + a2 + a3 + a4}};
-}
+constexpr int kDegree = kQuarticDegree;
+using Bernstein = QuarticBernstein;
 
 // (b1). (Bitwise and: no branch per coefficient.)
 bool above_margin(const Bernstein& p, double margin) {
@@ -67,28 +58,16 @@ bool rises_clear(const Bernstein& p, double w, double m, double margin) {
 
 bool quartic_proven_root_free(const Polynomial& p, double lo, double hi) {
   if (p.degree != kDegree || p.c[kDegree] == 0 || !(lo < hi)) return false;
-  // p's Taylor coefficients at lo (synthetic division). The first pass is Horner's rule at lo,
-  // the search's own operations in the same order (up to the order of each product's and sum's
-  // operands), so q[0] is the value it computes there.
+  // p's Taylor coefficients at lo; the first pass is the search's own value at lo.
   const double* c = p.c;
-  double q[kDegree + 1] = {0, 0, 0, 0, c[4]};
-  q[3] = c[3] + lo * q[4];
-  q[2] = c[2] + lo * q[3];
-  q[1] = c[1] + lo * q[2];
-  q[0] = c[0] + lo * q[1];
+  double q[kDegree + 1];
+  quartic_value_pass(c, lo, q);
   if (!(q[0] > 0)) return false;
-  q[3] += lo * q[4];
-  q[2] += lo * q[3];
-  q[1] += lo * q[2];
-  q[3] += lo * q[4];
-  q[2] += lo * q[3];
-  q[3] += lo * q[4];
+  finish_taylor_shift(lo, q);
   // Rounded up, so that [lo, lo + width] holds [lo, hi].
   const double width = next_up(hi - lo);
   const double m = std::fabs(lo) + width;
-  const double s =
-      (((std::fabs(c[4]) * m + std::fabs(c[3])) * m + std::fabs(c[2])) * m + std::fabs(c[1])) * m +
-      std::fabs(c[0]);
+  const double s = quartic_error_scale(c, m);
   // Far from underflow and overflow, where the relative bounds above hold (and not NaN).
   if (!(s > 1e-100 && s < 1e100) || !std::isfinite(m)) return false;
   const double margin = gamma_bound(128) * s;

@@ -4,6 +4,7 @@
 
 #include <array>
 #include <cmath>
+#include <cstdio>
 #include <random>
 
 #include "common/geometry/instance.h"
@@ -343,6 +344,52 @@ TEST(Torus, OcclusionAnswersAsTheNearestHit) {
   EXPECT_GT(compared, 100000);
   EXPECT_GT(occluded, compared / 4);
   EXPECT_LT(occluded, compared * 3 / 4);
+}
+
+// Hits against the exact hit (Newton's method on the torus function along the ray, in quadruple
+// precision), on rays from outside: the nearest hit is mostly polished in a bracket of its own
+// (quartic_first_root.h), no less accurately than the search polishes it (measured when only the
+// nearest hit took that path: 46,685 hits, 516 of them differing from the search's, mean errors
+// 0.4368 and 0.4364 ulps of t, 250 nearer the exact hit and 266 farther).
+TEST(Torus, HitsAreWithinAnUlpOrSoOfTheExactHit) {
+  std::mt19937_64 rng(29);
+  std::uniform_real_distribution<double> unit(0, 1);
+  int hits = 0;
+  double total_error = 0, largest_error = 0;  // in ulps of t
+  for (const Torus& torus : {kRing, kHorn, kSpindle}) {
+    const double big_r = torus.torus_radius, r = torus.tube_radius;
+    for (int i = 0; i < 20000; ++i) {
+      const Vec3 target{(2 * unit(rng) - 1) * (big_r + r), (2 * unit(rng) - 1) * (big_r + r),
+                        (2 * unit(rng) - 1) * r};
+      const Vec3 origin = target + testing::random_unit(rng) * ((big_r + r) * (2 + 10 * unit(rng)));
+      const Ray ray{origin, (target - origin) * (0.1 + 10 * unit(rng))};
+      LocalHit hit;
+      if (!intersect_torus(torus, ray, kInfinity, hit)) continue;
+      // The torus function cancels some 15 bits from this far away.
+      __extension__ using Quad = __float128;
+      Quad t = hit.t;
+      for (int k = 0; k < 5; ++k) {
+        const Quad x = Quad(ray.origin.x) + t * ray.direction.x,
+                   y = Quad(ray.origin.y) + t * ray.direction.y,
+                   z = Quad(ray.origin.z) + t * ray.direction.z;
+        const Quad rho2 = x * x + y * y, q = rho2 + z * z + Quad(big_r) * big_r - Quad(r) * r;
+        const Quad dq = 2 * (x * ray.direction.x + y * ray.direction.y + z * ray.direction.z),
+                   drho2 = 2 * (x * ray.direction.x + y * ray.direction.y);
+        const Quad value = q * q - 4 * Quad(big_r) * big_r * rho2,
+                   slope = 2 * q * dq - 4 * Quad(big_r) * big_r * drho2;
+        t -= value / slope;
+      }
+      const double ulp = std::nextafter(hit.t, kInfinity) - hit.t;
+      const double error = std::fabs(static_cast<double>((hit.t - t) / ulp));
+      ++hits;
+      total_error += error;
+      largest_error = std::max(largest_error, error);
+    }
+  }
+  std::printf("%d hits, error in ulps of t: mean %.4f, largest %.1f\n", hits, total_error / hits,
+              largest_error);
+  EXPECT_GT(hits, 20000);
+  EXPECT_LT(total_error / hits, 0.45);
 }
 
 // For CSG: a ray from outside crosses a closed surface an even number of times (touching roots

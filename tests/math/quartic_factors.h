@@ -26,4 +26,14 @@ inline double random_gap(std::mt19937_64& rng) {
   return sign * std::pow(10.0, -16 * unit(rng));
 }
 
+// The product of two quadratic factors about the points place() gives, each with a random gap,
+// scaled by 10^-3 to 10^3: roots close together, touching, just apart or none.
+template <class Place>
+Polynomial random_pair_of_quadratics(std::mt19937_64& rng, const Place& place) {
+  std::uniform_real_distribution<double> unit(0, 1);
+  const double scale = std::pow(10.0, 6 * unit(rng) - 3);
+  return scale *
+         (quadratic_about(place(), random_gap(rng)) * quadratic_about(place(), random_gap(rng)));
+}
+
 }  // namespace tessera::testing

@@ -15,6 +15,7 @@ namespace {
 
 using testing::quadratic_about;
 using testing::random_gap;
+using testing::random_pair_of_quadratics;
 
 // x - root.
 Polynomial linear_with_root(double root) {
@@ -54,10 +55,7 @@ TEST(QuarticMissProof, NeverWhereTheSearchFindsARoot) {
       if (u >= 0.25) return lo - 1 + (hi - lo + 2) * unit(rng);
       return (u < 0.125 ? lo : hi) + 1e-8 * (2 * unit(rng) - 1);
     };
-    const double scale = std::pow(10.0, 6 * unit(rng) - 3);
-    check(scale * (quadratic_about(place(), random_gap(rng)) *
-                   quadratic_about(place(), random_gap(rng))),
-          lo, hi);
+    check(random_pair_of_quadratics(rng, place), lo, hi);
     if (HasFatalFailure()) return;
   }
   EXPECT_GT(check.proven, 20000);
