@@ -10,10 +10,10 @@
 namespace tessera {
 namespace {
 
-// Moves every leaf of the binary tree to a position of primitive_order that is a multiple of
-// four, leaving gaps (MeshAccel::kNoTriangle) after it, so that a leaf's triangles fill whole
-// pairs and quads. Before make_bvh_wide, which copies the leaves' ranges.
-void start_leaves_at_multiples_of_four(Bvh& bvh) {
+// Moves every leaf of the binary tree to an even position of primitive_order, leaving a gap
+// (MeshAccel::kNoTriangle) after each leaf of odd size, so that a leaf's triangles fill whole
+// pairs. Before make_bvh_wide, which copies the leaves' ranges.
+void start_leaves_at_even_positions(Bvh& bvh) {
   std::vector<BvhNode*> leaves;
   for (BvhNode& node : bvh.nodes)
     if (node.count > 0) leaves.push_back(&node);
@@ -26,7 +26,7 @@ void start_leaves_at_multiples_of_four(Bvh& bvh) {
     const auto first = static_cast<std::uint32_t>(order.size());
     const auto old_first = bvh.primitive_order.begin() + leaf->first_or_second_child;
     order.insert(order.end(), old_first, old_first + leaf->count);
-    while (order.size() % 4 != 0 && leaf != leaves.back()) order.push_back(MeshAccel::kNoTriangle);
+    if (order.size() % 2 != 0 && leaf != leaves.back()) order.push_back(MeshAccel::kNoTriangle);
     leaf->first_or_second_child = first;
   }
   bvh.primitive_order = std::move(order);
@@ -49,7 +49,7 @@ MeshAccel build_mesh_accel(const Mesh& mesh, BvhMode mode, int threads) {
     if (degenerate[i]) bounds[i] = Bounds3{};
   }
   accel.bvh = build_bvh_nodes(bounds, mode, threads, kMeshLeafTests);
-  start_leaves_at_multiples_of_four(accel.bvh);
+  start_leaves_at_even_positions(accel.bvh);
   make_bvh_wide(accel.bvh);
   constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
   TrianglePair never_hit;
@@ -57,19 +57,12 @@ MeshAccel build_mesh_accel(const Mesh& mesh, BvhMode mode, int threads) {
     for (int c = 0; c < 3; ++c) set_pair_corner(never_hit, c, lane, Vec3{kNaN, kNaN, kNaN});
   const std::vector<std::uint32_t>& order = accel.bvh.primitive_order;
   accel.leaf_pairs.assign((order.size() + 1) / 2, never_hit);
-  FloatTriangleQuad no_quad;
-  for (int lane = 0; lane < 4; ++lane) set_float_quad_lane_never_hit(no_quad, lane);
-  // One quad more, so that an eight-lane test of a leaf's last quad reads inside the vector.
-  accel.leaf_quads.assign((order.size() + 3) / 4 + 1, no_quad);
   for (std::size_t i = 0; i < order.size(); ++i) {
     const std::uint32_t index = order[i];
     if (index == MeshAccel::kNoTriangle || degenerate[index]) continue;
-    Vec3 p[3];
-    for (int c = 0; c < 3; ++c) {
-      p[c] = mesh.positions[mesh.triangles[index].v[c]];
-      set_pair_corner(accel.leaf_pairs[i / 2], c, static_cast<int>(i % 2), p[c]);
-    }
-    set_float_quad_lane(accel.leaf_quads[i / 4], static_cast<int>(i % 4), p);
+    for (int c = 0; c < 3; ++c)
+      set_pair_corner(accel.leaf_pairs[i / 2], c, static_cast<int>(i % 2),
+                      mesh.positions[mesh.triangles[index].v[c]]);
   }
   return accel;
 }

@@ -34,9 +34,6 @@ struct MeshAccel {
   // (their determinant is not finite). The SAH tree leaves degenerate triangles out, but the flat
   // "acceleration off" keeps every one.
   std::vector<TrianglePair> leaf_pairs;
-  // The same corners in float, lane i % 4 of leaf_quads[i / 4], for the float test that decides
-  // most lanes before the double test (triangle_float_lanes.h); every leaf starts a quad.
-  std::vector<FloatTriangleQuad> leaf_quads;
 };
 
 // `threads` as for build_bvh.

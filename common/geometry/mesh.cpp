@@ -1,14 +1,12 @@
 // Ray / triangle mesh intersection through the mesh's own BVH (shapes.h).
 #include <algorithm>
 #include <bit>
-#include <type_traits>
 #include <utility>
 
 #include "common/accel/wide_bvh_traverse.h"
 #include "common/geometry/intersect_triangle_pair.h"
 #include "common/geometry/shapes.h"
 #include "common/geometry/triangle.h"
-#include "common/geometry/triangle_float_lanes.h"
 #include "common/math/float_error.h"
 
 namespace tessera {
@@ -34,59 +32,6 @@ template <typename Kernel>
   return intersect_triangle_pair(*pairs, lanes_ray, t_max, hits);
 }
 
-// The float lanes (triangle_float_lanes.h) a traversal compiled for `Kernel` decides with before
-// the double test: eight with AVX2, four with SSE2; none in the scalar traversal.
-template <typename Kernel>
-struct FloatLanesOf {
-  using type = void;
-};
-#if defined(__SSE2__)
-template <>
-struct FloatLanesOf<WideBoxKernelTag<WideBoxKernel::Sse2>> {
-  using type = Sse2FloatLanes;
-};
-template <>
-struct FloatLanesOf<WideBoxKernelTag<WideBoxKernel::Avx2>> {
-  using type = Avx2FloatLanes;
-};
-#endif
-
-// Runs `test_double(i, next)` (which sets `next` to the position after the triangles it tested
-// and returns whether to stop) over the leaf [first, end): over all of it in the scalar
-// traversal, else only over the double steps that hold a lane the float test, against
-// `limit()`, leaves undecided. An any-hit query (kDecideHits) stops at a lane decided hit
-// (returns true) without the double test.
-template <bool kDecideHits, typename Kernel, typename Limit, typename TestDouble>
-[[gnu::always_inline]] inline bool visit_leaf_lanes(Kernel, const MeshAccel& accel,
-                                                    std::uint32_t first, std::uint32_t end,
-                                                    const FloatLanesRay& float_ray, Limit limit,
-                                                    TestDouble test_double) {
-  using FloatLanes = typename FloatLanesOf<Kernel>::type;
-  if constexpr (std::is_void_v<FloatLanes>) {
-    for (std::uint32_t i = first, next; i < end; i = next)
-      if (test_double(i, next)) return true;
-  } else {
-    // The double test's step: four lanes with AVX2, two with SSE2.
-    constexpr std::uint32_t kStep = FloatLanes::kLanes == 8 ? 4 : 2;
-    for (std::uint32_t block = first; block < end; block += FloatLanes::kLanes) {
-      const std::uint32_t in_block = std::min<std::uint32_t>(end - block, FloatLanes::kLanes);
-      const unsigned lanes = (1u << in_block) - 1;
-      const FloatLaneDecisions decisions = decide_triangle_float_lanes<FloatLanes, kDecideHits>(
-          &accel.leaf_quads[block / 4], float_ray, limit(), lanes);
-      if (decisions.hit != 0) return true;
-      for (unsigned rest = decisions.undecided; rest != 0;) {
-        const auto step = static_cast<std::uint32_t>(std::countr_zero(rest)) & ~(kStep - 1);
-        std::uint32_t next;
-        if (test_double(block + step, next)) return true;
-        // The lanes the double test covered (up to `next`) are done.
-        const std::uint32_t done = next - block;
-        rest = done >= 32 ? 0 : rest & ~((1u << done) - 1);
-      }
-    }
-  }
-  return false;
-}
-
 }  // namespace
 
 // Each traversal prepares the ray for the lane tests (prepare_triangle_lanes_ray) only once it
@@ -102,50 +47,40 @@ bool intersect_mesh(const MeshAccel& accel, bool interpolate_normals, const Ray&
   TriangleHit nearest;
   // Hits at equal t go to the smaller triangle index, whichever the traversal meets first: once
   // one is found, triangles are tested up to the next double above its t.
-  traverse_wide_bvh_leaves(accel.bvh, ray, t_max, counters.bvh_nodes, kNearestFirst,
-                           [&] {
-                             const TriangleLanesRay prepared = prepare_triangle_lanes_ray(ray);
-                             return [&, lanes_ray = prepared, float_ray = prepare_float_lanes_ray(prepared) ](
+  traverse_wide_bvh_leaves(accel.bvh, ray, t_max, counters.bvh_nodes, kNearestFirst, [&] {
+    return [&, lanes_ray = prepare_triangle_lanes_ray(ray) ](
         std::uint32_t first, std::uint32_t count, double t_limit, auto kernel)
         __attribute__((always_inline)) {
-                               counters.triangle_tests += count;
-                               const auto take = [&](const TriangleHit& h, std::uint32_t position) {
-                                 const std::uint32_t triangle = accel.bvh.primitive_order[position];
-                                 if (found && h.t == nearest.t && triangle > found_triangle) return;
-                                 nearest = h, found_triangle = triangle, found_position = position,
-                                 found = true;
-                                 t_limit = h.t;
-                               };
-                               const std::uint32_t end = first + count;
-                               const auto test_double = [&](std::uint32_t i, std::uint32_t& next) {
-                                 const double limit = found ? next_up(t_limit) : t_limit;
-                                 TriangleLaneHits hits;
-                                 const unsigned lanes = intersect_leaf_triangles(
-                                     kernel, accel, i, end, lanes_ray, limit, hits, next);
-                                 for (unsigned rest = lanes; rest != 0; rest &= rest - 1) {
-                                   const int lane = std::countr_zero(rest);
-                                   // One triangle at a time, a lane would have been tested against
-                                   // the limit after the earlier lanes' hits, never a larger one:
-                                   // in the rare case that it changed, test it again with it.
-                                   const double limit_now = found ? next_up(t_limit) : t_limit;
-                                   const TrianglePair& pair =
-                                       accel.leaf_pairs[(i + static_cast<std::uint32_t>(lane)) / 2];
-                                   TriangleHit h = hits.lane(lane);
-                                   if (limit_now == limit ||
-                                       intersect_triangle(pair_corner(pair, 0, lane % 2),
-                                                          pair_corner(pair, 1, lane % 2),
-                                                          pair_corner(pair, 2, lane % 2),
-                                                          lanes_ray.ray, limit_now, h))
-                                     take(h, i + static_cast<std::uint32_t>(lane));
-                                 }
-                                 return false;
-                               };
-                               visit_leaf_lanes<false>(
-                                   kernel, accel, first, end, float_ray,
-                                   [&] { return found ? next_up(t_limit) : t_limit; }, test_double);
-                               return t_limit;
-                             };
-                           });
+      counters.triangle_tests += count;
+      const auto take = [&](const TriangleHit& h, std::uint32_t position) {
+        const std::uint32_t triangle = accel.bvh.primitive_order[position];
+        if (found && h.t == nearest.t && triangle > found_triangle) return;
+        nearest = h, found_triangle = triangle, found_position = position, found = true;
+        t_limit = h.t;
+      };
+      const std::uint32_t end = first + count;
+      for (std::uint32_t i = first, next; i < end; i = next) {
+        const double limit = found ? next_up(t_limit) : t_limit;
+        TriangleLaneHits hits;
+        const unsigned lanes =
+            intersect_leaf_triangles(kernel, accel, i, end, lanes_ray, limit, hits, next);
+        for (unsigned rest = lanes; rest != 0; rest &= rest - 1) {
+          const int lane = std::countr_zero(rest);
+          // One triangle at a time, a lane would have been tested against the limit after the
+          // earlier lanes' hits, never a larger one: in the rare case that it changed, test it
+          // again with it.
+          const double limit_now = found ? next_up(t_limit) : t_limit;
+          const TrianglePair& pair = accel.leaf_pairs[(i + static_cast<std::uint32_t>(lane)) / 2];
+          TriangleHit h = hits.lane(lane);
+          if (limit_now == limit ||
+              intersect_triangle(pair_corner(pair, 0, lane % 2), pair_corner(pair, 1, lane % 2),
+                                 pair_corner(pair, 2, lane % 2), lanes_ray.ray, limit_now, h))
+            take(h, i + static_cast<std::uint32_t>(lane));
+        }
+      }
+      return t_limit;
+    };
+  });
   if (!found) return false;
   const TrianglePair& pair = accel.leaf_pairs[found_position / 2];
   const int lane = static_cast<int>(found_position % 2);
@@ -159,27 +94,27 @@ bool occluded_mesh(const MeshAccel& accel, const Ray& ray, double t_max,
                    IntersectionCounters& counters) {
   if (accel.mesh == nullptr) return false;
   bool found = false;
-  traverse_wide_bvh_leaves(accel.bvh, ray, t_max, counters.bvh_nodes, kAnyOrder,
-                           [&] {
-                             const TriangleLanesRay prepared = prepare_triangle_lanes_ray(ray);
-                             return [&, lanes_ray = prepared, float_ray = prepare_float_lanes_ray(prepared) ](
+  traverse_wide_bvh_leaves(accel.bvh, ray, t_max, counters.bvh_nodes, kAnyOrder, [&] {
+    return [&, lanes_ray = prepare_triangle_lanes_ray(ray) ](
         std::uint32_t first, std::uint32_t count, double t_limit, auto kernel)
         __attribute__((always_inline)) {
-                               const std::uint32_t end = first + count;
-                               const auto test_double = [&](std::uint32_t i, std::uint32_t& next) {
-                                 TriangleLaneHits hits;
-                                 return intersect_leaf_triangles(kernel, accel, i, end, lanes_ray,
-                                                                 t_limit, hits, next) != 0;
-                               };
-                               counters.triangle_tests += count;
-                               if (!visit_leaf_lanes<true>(
-                                       kernel, accel, first, end, float_ray,
-                                       [&] { return t_limit; }, test_double))
-                                 return t_limit;
-                               found = true;
-                               return -1.0;  // any hit will do
-                             };
-                           });
+      const std::uint32_t end = first + count;
+      for (std::uint32_t i = first, next; i < end; i = next) {
+        TriangleLaneHits hits;
+        const unsigned lanes =
+            intersect_leaf_triangles(kernel, accel, i, end, lanes_ray, t_limit, hits, next);
+        if (lanes != 0) {
+          // Counted as one at a time: up to the first triangle hit.
+          counters.triangle_tests +=
+              i - first + static_cast<std::uint32_t>(std::countr_zero(lanes)) + 1;
+          found = true;
+          return -1.0;  // any hit will do
+        }
+      }
+      counters.triangle_tests += count;
+      return t_limit;
+    };
+  });
   return found;
 }
 
