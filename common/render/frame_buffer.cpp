@@ -24,7 +24,10 @@ void FrameBuffer::take_memory() {
   counts_.resize(pixels);
 }
 
-void FrameBuffer::clear() { std::fill(counts_.begin(), counts_.end(), std::uint16_t{0}); }
+void FrameBuffer::clear() {
+  std::fill(sums_.begin(), sums_.end(), 0.0f);
+  std::fill(counts_.begin(), counts_.end(), std::uint16_t{0});
+}
 
 void FrameBuffer::throw_full() {
   throw std::length_error("a pixel of the frame buffer has the most passes it can count");
@@ -59,38 +62,21 @@ void FrameBuffer::add_run(PixelCoord first, int count, int stride, const float* 
     prefetch(sums + 3 * below, 12 * span, 12 * step);
     prefetch(counts + below, 2 * span, 2 * step);
   }
-  std::size_t first_passes = 0;
-  for (std::size_t i = 0; i < n; ++i) {
+  for (std::size_t i = 0; i < n; ++i)
     if (counts[i * step] == kMaxPasses) throw_full();
-    first_passes += counts[i * step] == 0;
-  }
-  if (step == 1 && (first_passes == 0 || first_passes == n)) {
+  if (step == 1) {
     // A row's sums lie side by side: one loop over its floats, four at a time with SSE2 (in
-    // every x86-64 CPU; the same IEEE additions as one at a time). A run of first passes (a
-    // unit of pass 0: every pixel's first) adds its values to zeros without reading the sums,
-    // which hold nothing yet.
+    // every x86-64 CPU; the same IEEE additions as one at a time).
     const std::size_t floats = 3 * n;
-    const bool copies = first_passes == n;
     std::size_t j = 0;
 #if defined(__SSE2__)
-    const __m128 zeros = _mm_setzero_ps();
-    if (copies) {
-      for (; j + 4 <= floats; j += 4)
-        _mm_storeu_ps(sums + j, _mm_add_ps(zeros, _mm_loadu_ps(rgb + j)));
-    } else {
-      for (; j + 4 <= floats; j += 4)
-        _mm_storeu_ps(sums + j, _mm_add_ps(_mm_loadu_ps(sums + j), _mm_loadu_ps(rgb + j)));
-    }
+    for (; j + 4 <= floats; j += 4)
+      _mm_storeu_ps(sums + j, _mm_add_ps(_mm_loadu_ps(sums + j), _mm_loadu_ps(rgb + j)));
 #endif
-    for (; j < floats; ++j) sums[j] = (copies ? 0.0f : sums[j]) + rgb[j];
+    for (; j < floats; ++j) sums[j] += rgb[j];
   } else {
-    for (std::size_t i = 0; i < n; ++i) {
-      const bool fresh = counts[i * step] == 0;
-      for (int c = 0; c < 3; ++c) {
-        float& sum = sums[3 * i * step + c];
-        sum = (fresh ? 0.0f : sum) + rgb[3 * i + c];
-      }
-    }
+    for (std::size_t i = 0; i < n; ++i)
+      for (int c = 0; c < 3; ++c) sums[3 * i * step + c] += rgb[3 * i + c];
   }
   for (std::size_t i = 0; i < n; ++i) ++counts[i * step];
 }
@@ -111,7 +97,7 @@ void FrameBuffer::mean_run(PixelCoord first, int count, int stride, float* out) 
     // double and then to float cannot differ from rounding once (Figueroa, "When is double
     // rounding innocuous?", 1995). Float division is the cheaper one.
     const float divisor = passes;
-    for (int c = 0; c < 3; ++c)  // the sums of a pixel without passes hold nothing yet
+    for (int c = 0; c < 3; ++c)
       out[3 * i + c] = passes == 0 ? 0.0f : sums[3 * i * step + c] / divisor;
   }
 }

@@ -8,9 +8,7 @@
 // relative, far below what a PNG or an EXR's half floats show.
 // A coordinator job's frame buffer is made without memory (deferred) and takes it at its first
 // merge: a queued job holds none, and a running one takes what a finished one gave back
-// (mapping_pool.h). Only the counts start as zeros: a pixel's sums are written by its first
-// pass, as 0 + the value (the same bits as adding it to a zero sum), and read only where the
-// count is not zero, so the sums' memory is never filled first (unfilled_allocator.h).
+// (mapping_pool.h).
 #pragma once
 
 #include <cstdint>
@@ -18,7 +16,6 @@
 
 #include "common/image/image.h"
 #include "common/math/pixel_rect.h"
-#include "common/render/unfilled_allocator.h"
 #include "common/render/zeroed_allocator.h"
 
 namespace tessera {
@@ -36,7 +33,7 @@ class FrameBuffer {
   // passes to a tile's buffer of their own, made with its memory).
   void take_memory();
   // Forgets every pass, keeping the memory: a buffer reused for one tile after another
-  // (render_image's threads) zeroes its counts instead of allocating them again.
+  // (render_image's threads) zeroes its 14 bytes a pixel instead of allocating them again.
   void clear();
   int width() const { return width_; }
   int height() const { return height_; }
@@ -49,7 +46,9 @@ class FrameBuffer {
   void add_pass(int x, int y, const float rgb[3]) {
     const std::size_t i = idx(x, y);
     if (counts_[i] == kMaxPasses) throw_full();
-    for (int c = 0; c < 3; ++c) sums_[3 * i + c] = sum_before(i, c) + rgb[c];
+    sums_[3 * i] += rgb[0];
+    sums_[3 * i + 1] += rgb[1];
+    sums_[3 * i + 2] += rgb[2];
     ++counts_[i];
   }
   // The same for a run of `count` pixels along row first.y, `stride` apart (for_each_run), the
@@ -71,12 +70,10 @@ class FrameBuffer {
 
  private:
   std::size_t idx(int x, int y) const { return static_cast<std::size_t>(y) * width_ + x; }
-  // Pixel i's sum of colour c so far: zero until its first pass writes it.
-  float sum_before(std::size_t i, int c) const { return counts_[i] == 0 ? 0.0f : sums_[3 * i + c]; }
   [[noreturn]] static void throw_full();
   int width_, height_;
   // Empty until take_memory() when deferred.
-  std::vector<float, UnfilledAllocator<float>> sums_;  // 3 per pixel, unwritten where no pass
+  std::vector<float, ZeroedAllocator<float>> sums_;  // 3 per pixel
   std::vector<std::uint16_t, ZeroedAllocator<std::uint16_t>> counts_;
 };
 

@@ -32,7 +32,7 @@ MappingPool& MappingPool::shared() {
   return *pool;
 }
 
-void* MappingPool::take(std::size_t bytes, Clock::time_point now, Fill fill) {
+void* MappingPool::take(std::size_t bytes, Clock::time_point now) {
   {
     std::lock_guard lock(mutex_);
     release_idle_locked(now);
@@ -47,7 +47,7 @@ void* MappingPool::take(std::size_t bytes, Clock::time_point now, Fill fill) {
       if (whole_pages(kept.bytes) > used)
         munmap(static_cast<char*>(kept.mapping) + used, whole_pages(kept.bytes) - used);
       // Outside the lock would let another thread in sooner, but takes are rare (a job's start).
-      if (fill == Fill::Zeros) std::memset(kept.mapping, 0, bytes);
+      std::memset(kept.mapping, 0, bytes);
       return kept.mapping;
     }
   }

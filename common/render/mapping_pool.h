@@ -37,16 +37,9 @@ class MappingPool {
   // The one ZeroedAllocator uses.
   static MappingPool& shared();
 
-  // What a kept mapping holds when it is taken again.
-  enum class Fill {
-    Zeros,     // zero-filled with memset
-    Unfilled,  // whatever its last user left (a new mapping's are still zeros): for a buffer
-               // that writes each value before it reads it (FrameBuffer's sums)
-  };
-  // `bytes` of zeros, or left unfilled: the smallest kept mapping that holds them (its tail
-  // beyond them unmapped), else a new one advised to use transparent huge pages. Throws
-  // std::bad_alloc.
-  void* take(std::size_t bytes, Clock::time_point now = Clock::now(), Fill fill = Fill::Zeros);
+  // `bytes` of zeros: the smallest kept mapping that holds them (its tail beyond them
+  // unmapped), else a new one advised to use transparent huge pages. Throws std::bad_alloc.
+  void* take(std::size_t bytes, Clock::time_point now = Clock::now());
   // A mapping from take(), of the same `bytes`, kept for the next take() or unmapped.
   void give(void* mapping, std::size_t bytes, Clock::time_point now = Clock::now());
   // Unmaps what was kept longer than the idle limit.

@@ -3,7 +3,6 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
-#include <cmath>
 #include <cstdio>
 #include <cstring>
 #include <random>
@@ -102,40 +101,6 @@ TEST(FrameBuffer, ClearedIsLikeNew) {
   fresh.add_pass(1, 1, after);
   EXPECT_EQ(reused.passes_at(1, 1), 1u);
   EXPECT_EQ(reused.resolve(), fresh.resolve());
-}
-
-// A frame buffer's sums are not zeroed when it takes its memory: a large one reuses a finished
-// one's mapping as that left it (mapping_pool.h). Each pixel's first pass must still average
-// as if the sums were zeros, by run of every stride and by pixel.
-TEST(FrameBuffer, FirstPassesIgnoreWhatTheMemoryHeld) {
-  constexpr int kSide = 512;  // 3 MB of sums: mapped through the pool
-  const float old[3] = {1e6f, -3, 7};
-  std::vector<float> row(3 * kSide);
-  for (std::size_t i = 0; i < row.size(); ++i) row[i] = 0.125f * static_cast<float>(i % 13);
-  const std::vector<float> negative_zeros(3 * kSide, -0.0f);
-  for (int stride = 1; stride <= 3; ++stride) {
-    {
-      FrameBuffer used(kSide, kSide);
-      for (int y = 0; y < kSide; ++y)
-        for (int x = 0; x < kSide; ++x) used.add_pass(x, y, old);
-    }  // its mappings go back to the pool, sums and all
-    FrameBuffer frame(kSide, kSide);
-    const int count = (kSide - 1) / stride + 1;
-    frame.add_run({0, 5}, count, stride, row.data());
-    frame.add_run({0, 6}, count, stride, negative_zeros.data());
-    frame.add_pass(1, 7, old);
-    for (int i = 0; i < count; ++i) {
-      const Rgb mean = frame.mean(i * stride, 5);
-      ASSERT_EQ(mean.r, row[3 * i]) << stride << " " << i;
-      ASSERT_EQ(mean.b, row[3 * i + 2]) << stride << " " << i;
-      // 0 + -0 is +0: the first pass's sum is what adding it to zeros gave.
-      ASSERT_FALSE(std::signbit(frame.mean(i * stride, 6).g)) << stride << " " << i;
-    }
-    ASSERT_EQ(frame.mean(1, 7).r, 1e6);
-    ASSERT_EQ(frame.mean(2, 7).r, 0.0);
-    frame.add_run({0, 5}, count, stride, row.data());
-    ASSERT_EQ(frame.mean((count - 1) * stride, 5).g, row[3 * (count - 1) + 1]);
-  }
 }
 
 // The process's mapped and resident memory in bytes (Linux).
