@@ -128,9 +128,17 @@ void FrameBuffer::mean_run(PixelCoord first, int count, int stride, float* out) 
   const auto step = static_cast<std::size_t>(stride);
   const std::uint16_t* counts = counts_.data() + start;
   const float* sums = sums_.data() + 3 * start;
-  for (std::size_t i = 0; i < static_cast<std::size_t>(count); ++i) {
-    const std::uint32_t passes =
-        counts[i * step] + cell_passes(first.x + static_cast<int>(i) * stride, first.y);
+  // The cells along the row, followed without a division a pixel.
+  const std::uint16_t* cells =
+      cell_ == 0 ? nullptr
+                 : cell_counts_.data() + static_cast<std::size_t>(first.y / cell_) * cells_across_;
+  int x = first.x, column = 0, column_end = 0;
+  for (std::size_t i = 0; i < static_cast<std::size_t>(count); ++i, x += stride) {
+    if (cells != nullptr && x >= column_end) {
+      column = x / cell_;
+      column_end = (column + 1) * cell_;
+    }
+    const std::uint32_t passes = counts[i * step] + (cells != nullptr ? cells[column] : 0u);
     // A float divided by a float count, rounded once, equals mean()'s double quotient rounded
     // to float: a double holds more than twice a float's digits plus two, so rounding first to
     // double and then to float cannot differ from rounding once (Figueroa, "When is double
@@ -143,8 +151,8 @@ void FrameBuffer::mean_run(PixelCoord first, int count, int stride, float* out) 
 
 Image FrameBuffer::resolve() const {
   Image image(width_, height_);
-  for (int y = 0; y < height_; ++y)
-    for (int x = 0; x < width_; ++x) image.set(x, y, mean(x, y));
+  // mean_run's float quotients are mean()'s rounded to float, what Image keeps.
+  for (int y = 0; y < height_; ++y) mean_run({0, y}, width_, 1, &image.rgb[image.index(0, y)]);
   return image;
 }
 
