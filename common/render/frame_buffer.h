@@ -14,7 +14,8 @@
 // whole-image passes come in units that are each one square tile of the image, every pixel of
 // it one pass (make_plan's pass_tile): such a unit is counted once for its tile, a cell, so its
 // merge reads and writes only the sums, 12 bytes a pixel instead of 14, with no per-pixel count
-// to check and add (docs/SCALING.md). The CLI counts by pixel only.
+// to check and add (docs/SCALING.md). Exact in any order: a pixel's passes are its own count
+// plus its cell's. The CLI counts by pixel only.
 #pragma once
 
 #include <cstdint>
@@ -68,7 +69,8 @@ class FrameBuffer {
   void add_run(PixelCoord first, int count, int stride, const float* rgb);
   // One pass for each of a unit's pixels, 3 floats a pixel in for_each_run's order: counted by
   // cell when the unit is one (count_by_cells), else by pixel (add_run). Throws
-  // std::length_error, adding nothing, beyond kMaxPasses.
+  // std::length_error beyond kMaxPasses: a cell then adds nothing, a unit counted by pixel
+  // stops at the run with the full pixel (add_run).
   void add_unit(const UnitPixels& unit, const float* rgb);
   std::uint32_t passes_at(int x, int y) const {
     return counts_.empty() ? 0 : counts_[idx(x, y)] + cell_passes(x, y);
