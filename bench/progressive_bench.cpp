@@ -69,7 +69,7 @@ void BM_Progressive(benchmark::State& state) {
 
 // The floor of the coordinator's merge (issue 22 §3: 200 M pixel passes a second on one core):
 // a 2048x2048 job's plan at 4 passes, in the capacity benchmark's units of 16,132 pixels, added
-// into a new frame buffer row by row as Job::apply_result does, with nothing else (no socket, no
+// into a new frame buffer as Job::apply_result does, with nothing else (no socket, no
 // store, no checks). Items are pixel passes.
 void BM_MergeRuns(benchmark::State& state) {
   const int side = static_cast<int>(state.range(0));
@@ -82,13 +82,8 @@ void BM_MergeRuns(benchmark::State& state) {
   const std::vector<float> values(3 * static_cast<std::size_t>(largest), 0.25f);
   for (auto _ : state) {
     FrameBuffer frame(side, side);
-    for (const WorkUnit& unit : plan.units) {
-      const float* rgb = values.data();
-      for_each_run(unit.pixels, [&](PixelCoord first, int count, int stride) {
-        frame.add_run(first, count, stride, rgb);
-        rgb += 3 * static_cast<std::size_t>(count);
-      });
-    }
+    frame.count_by_cells(plan.pass_tile);
+    for (const WorkUnit& unit : plan.units) frame.add_unit(unit.pixels, values.data());
     benchmark::DoNotOptimize(frame);
   }
   state.SetItemsProcessed(state.iterations() * pixel_passes);

@@ -61,6 +61,9 @@ struct Plan {
   std::vector<Stage> stages;    // in dispatch order
   std::vector<WorkUnit> units;  // grouped by stage, each stage's units in dispatch order
   long long total_cost = 0;
+  // The side of the whole-image passes' tiles (multiples of it from the image's corner, clipped
+  // to the area), the same for every such pass; 0 when the plan has none.
+  int pass_tile = 0;
 };
 
 int level_count(int width, int height);

@@ -9,6 +9,13 @@
 // A coordinator job's frame buffer is made without memory (deferred) and takes it at its first
 // merge: a queued job holds none, and a running one takes what a finished one gave back
 // (mapping_pool.h).
+//
+// A pixel's passes are counted in two parts: by pixel, and by cell. A coordinator job's
+// whole-image passes come in units that are each one square tile of the image, every pixel of
+// it one pass (make_plan's pass_tile): such a unit is counted once for its tile, a cell, so its
+// merge reads and writes only the sums, 12 bytes a pixel instead of 14, with no per-pixel count
+// to check and add (docs/SCALING.md). Exact in any order: a pixel's passes are its own count
+// plus its cell's. The CLI counts by pixel only.
 #pragma once
 
 #include <cstdint>
@@ -16,13 +23,14 @@
 
 #include "common/image/image.h"
 #include "common/math/pixel_rect.h"
+#include "common/progressive/unit_pixels.h"
 #include "common/render/zeroed_allocator.h"
 
 namespace tessera {
 
 class FrameBuffer {
  public:
-  // Passes one pixel may receive: the 16-bit count's range.
+  // Passes one pixel may receive by pixel, and as many by its cell: the 16-bit counts' range.
   static constexpr std::uint32_t kMaxPasses = 65535;
 
   FrameBuffer(int width, int height);
@@ -32,6 +40,10 @@ class FrameBuffer {
   // Not thread-safe: one thread calls it before any pass is added (the CLI's threads each add
   // passes to a tile's buffer of their own, made with its memory).
   void take_memory();
+  // Counts add_unit's units that are exactly one square of side `side` (multiples of it from
+  // the corner, clipped only by the image's edges) once for the square. Before any pass is
+  // added; side 0 counts every pass by pixel.
+  void count_by_cells(int side);
   // Forgets every pass, keeping the memory: a buffer reused for one tile after another
   // (render_image's threads) zeroes its 14 bytes a pixel instead of allocating them again.
   void clear();
@@ -55,12 +67,20 @@ class FrameBuffer {
   // passes' values 3 floats a pixel in a row. Throws std::length_error, adding nothing, when
   // one of them has kMaxPasses passes already. Both need the memory (has_memory()).
   void add_run(PixelCoord first, int count, int stride, const float* rgb);
-  std::uint32_t passes_at(int x, int y) const { return counts_.empty() ? 0 : counts_[idx(x, y)]; }
+  // One pass for each of a unit's pixels, 3 floats a pixel in for_each_run's order: counted by
+  // cell when the unit is one (count_by_cells), else by pixel (add_run). Throws
+  // std::length_error beyond kMaxPasses: a cell then adds nothing, a unit counted by pixel
+  // stops at the run with the full pixel (add_run).
+  void add_unit(const UnitPixels& unit, const float* rgb);
+  std::uint32_t passes_at(int x, int y) const {
+    return counts_.empty() ? 0 : counts_[idx(x, y)] + cell_passes(x, y);
+  }
   // The mean of the passes added so far (black where none).
   Rgb mean(int x, int y) const {
+    const std::uint32_t passes = passes_at(x, y);
+    if (passes == 0) return {};
     const std::size_t i = idx(x, y);
-    if (counts_.empty() || counts_[i] == 0) return {};
-    const double n = counts_[i];
+    const double n = passes;
     return {sums_[3 * i] / n, sums_[3 * i + 1] / n, sums_[3 * i + 2] / n};
   }
   // mean() of a run's pixels rounded to float, 3 a pixel into `out`: what the coordinator shows
@@ -70,11 +90,20 @@ class FrameBuffer {
 
  private:
   std::size_t idx(int x, int y) const { return static_cast<std::size_t>(y) * width_ + x; }
+  std::uint32_t cell_passes(int x, int y) const {
+    return cell_ == 0
+               ? 0
+               : cell_counts_[static_cast<std::size_t>(y / cell_) * cells_across_ + x / cell_];
+  }
+  // Adds one pass to every pixel of `rect`, a cell, counting it once.
+  void add_cell(const PixelRect& rect, const float* rgb);
   [[noreturn]] static void throw_full();
   int width_, height_;
   // Empty until take_memory() when deferred.
-  std::vector<float, ZeroedAllocator<float>> sums_;  // 3 per pixel
-  std::vector<std::uint16_t, ZeroedAllocator<std::uint16_t>> counts_;
+  std::vector<float, ZeroedAllocator<float>> sums_;                    // 3 per pixel
+  std::vector<std::uint16_t, ZeroedAllocator<std::uint16_t>> counts_;  // by pixel
+  int cell_ = 0, cells_across_ = 0;
+  std::vector<std::uint16_t> cell_counts_;  // by cell, row by row; a few hundred
 };
 
 }  // namespace tessera

@@ -36,7 +36,9 @@ Job::Job(std::int64_t id_, Bundle bundle_, JobSpec spec_, PlanOptions plan_optio
           kDeltaLogBytes, static_cast<std::size_t>(kDeltaLogBytesPerPixel * spec.settings.width *
                                                    static_cast<double>(spec.settings.height)))),
       stage_timing_(plan.stages.size()),
-      frame_buffer_(FrameBuffer::deferred(spec.settings.width, spec.settings.height)) {}
+      frame_buffer_(FrameBuffer::deferred(spec.settings.width, spec.settings.height)) {
+  frame_buffer_.count_by_cells(plan.pass_tile);
+}
 
 namespace {
 
@@ -68,11 +70,7 @@ void Job::apply_result(int unit_index, std::span<const float> values, const Rend
     if (!spec.settings.normalize_colors) append_tile_values(record.preview_values, values);
   } else {
     if (!frame_buffer_.has_memory()) frame_buffer_.take_memory();
-    for_each_run(unit.pixels,
-                 [&, rgb = values.data()](PixelCoord first, int count, int stride) mutable {
-                   frame_buffer_.add_run(first, count, stride, rgb);
-                   rgb += 3 * static_cast<std::size_t>(count);
-                 });
+    frame_buffer_.add_unit(unit.pixels, values.data());
   }
   // Normalized jobs' values change with the whole image's highest one: the page loads the PNG.
   if (!spec.settings.normalize_colors) delta_bytes_ += 3 * static_cast<std::size_t>(unit.cost);

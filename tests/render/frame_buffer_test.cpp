@@ -1,5 +1,7 @@
 #include "common/render/frame_buffer.h"
 
+#include "common/progressive/plan.h"
+
 #include <gtest/gtest.h>
 
 #include <algorithm>
@@ -101,6 +103,49 @@ TEST(FrameBuffer, ClearedIsLikeNew) {
   fresh.add_pass(1, 1, after);
   EXPECT_EQ(reused.passes_at(1, 1), 1u);
   EXPECT_EQ(reused.resolve(), fresh.resolve());
+}
+
+// A job's units merged with their whole-image passes counted by cell (the plan's pass tiles)
+// leave the frame buffer as counting every pass by pixel does, bit for bit, while they merge and
+// at the end: whole images and regions (whose clipped tiles are not cells), both previews.
+TEST(FrameBuffer, PassesCountedByCellAverageAsByPixel) {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<float> value(-0.25f, 4.0f);
+  const PlanOptions plans[] = {
+      {.width = 300, .height = 170, .passes = 4, .unit_pixels = 900},
+      {.width = 300, .height = 170, .passes = 3, .preview = PreviewMode::Area, .unit_pixels = 700},
+      {.width = 300, .height = 170, .passes = 3, .progressive = false, .unit_pixels = 1024},
+      {.width = 300,
+       .height = 170,
+       .passes = 3,
+       .unit_pixels = 400,
+       .region = PixelRect{17, 30, 250, 160}},
+  };
+  for (const PlanOptions& options : plans) {
+    const Plan plan = make_plan(options);
+    ASSERT_GT(plan.pass_tile, 0);
+    FrameBuffer by_cell(plan.width, plan.height), by_pixel(plan.width, plan.height);
+    by_cell.count_by_cells(plan.pass_tile);
+    for (const WorkUnit& unit : plan.units) {
+      if (plan.stages[unit.stage].preview_only) continue;
+      std::vector<float> rgb(3 * static_cast<std::size_t>(unit.cost));
+      for (float& v : rgb) v = value(rng);
+      by_cell.add_unit(unit.pixels, rgb.data());
+      by_pixel.add_unit(unit.pixels, rgb.data());
+      const PixelCoord probe = expand(unit.pixels).back();
+      ASSERT_EQ(by_cell.passes_at(probe.x, probe.y), by_pixel.passes_at(probe.x, probe.y));
+      const PixelCoord corner{unit.pixels.rect.x0, unit.pixels.rect.y0};
+      const int shown = std::min(8, plan.width - corner.x);
+      std::vector<float> a(3 * static_cast<std::size_t>(shown)), b(a.size());
+      by_cell.mean_run(corner, shown, 1, a.data());
+      by_pixel.mean_run(corner, shown, 1, b.data());
+      ASSERT_EQ(std::memcmp(a.data(), b.data(), a.size() * sizeof(float)), 0);
+    }
+    for (int y = 0; y < plan.height; ++y)
+      for (int x = 0; x < plan.width; ++x)
+        ASSERT_EQ(by_cell.passes_at(x, y), by_pixel.passes_at(x, y)) << x << "," << y;
+    EXPECT_EQ(by_cell.resolve(), by_pixel.resolve());
+  }
 }
 
 // The process's mapped and resident memory in bytes (Linux).
