@@ -47,16 +47,15 @@ namespace {
 
 // The ray's span [t_near, t_far] between the planes at -half and +half on one axis (o, d: the
 // origin's and direction's components), narrowing [t_enter, t_exit]; false when the ray is
-// parallel to the planes and outside them. The plane crossings are the same two divisions for
-// each sign of d, and the nearer is the smaller (rounding keeps division by d monotone), so
-// min and max sort them without a branch on the sign: a shadow ray's direction is as likely to
-// have either, and the branch was mispredicted about half the time.
+// parallel to the planes and outside them. The same divisions in the same order for each sign
+// of d, without a branch on it.
 [[gnu::always_inline]] inline bool narrow_to_slab(double o, double d, double half, double& t_enter,
                                                   double& t_exit) {
   if (d == 0) return std::fabs(o) <= half;
-  const double t_minus = (-half - o) / d, t_plus = (half - o) / d;
-  t_enter = std::max(t_enter, std::min(t_minus, t_plus));
-  t_exit = std::min(t_exit, std::max(t_minus, t_plus));
+  const double near_plane = d < 0 ? half : -half;
+  const double t_near = (near_plane - o) / d, t_far = (-near_plane - o) / d;
+  t_enter = std::max(t_enter, t_near);
+  t_exit = std::min(t_exit, t_far);
   return true;
 }
 
@@ -222,25 +221,19 @@ bool visit_torus_hits(const Torus& torus, const Ray& ray, double t_max, HitSearc
 
   // The tube lies between the cylinders of radius R - r and R + r about the axis. A ray that
   // stays outside the outer one, or (ring tori) inside the inner one, over its span through
-  // the box misses. The squared distance from the axis, P s^2 + 2 Q s + |f.xy|^2, is convex
-  // along the ray: its greatest value over the span is at an end, and its least at an end or,
-  // when the vertex s = -Q / P lies inside the span, (f.xy x u.xy)^2 / P there (Lagrange's
-  // identity). Tested without the division and without branches (bitwise and): where the vertex
-  // falls is as good as random, and clamping it cost a mispredicted branch on most rays. These
-  // tests turn away only rays that miss by the padding, far above their rounding.
+  // the box misses; the squared distance from the axis is convex along the ray, so its least
+  // value over the span is at the clamped vertex and its greatest at an end.
   const double P = u.x * u.x + u.y * u.y, Q = f.x * u.x + f.y * u.y;
   const auto axis_distance2 = [&](double s) {
     const double x = f.x + u.x * s, y = f.y + u.y * s;
     return x * x + y * y;
   };
   const double pad2 = pad * pad;
-  const double outer2 = (big_r + r) * (big_r + r) * pad2;
-  const double at_lo = axis_distance2(s_lo), at_hi = axis_distance2(s_hi);
-  const double cross = f.x * u.y - f.y * u.x;
-  const bool vertex_outside = (P * s_lo >= -Q) | (-Q >= P * s_hi);
-  if ((std::min(at_lo, at_hi) > outer2) & (vertex_outside | (cross * cross > P * outer2)))
+  const double s_nearest = P > 0 ? std::clamp(-Q / P, s_lo, s_hi) : s_lo;
+  if (axis_distance2(s_nearest) > (big_r + r) * (big_r + r) * pad2) return true;
+  if (big_r > r &&
+      std::max(axis_distance2(s_lo), axis_distance2(s_hi)) < (big_r - r) * (big_r - r) / pad2)
     return true;
-  if (big_r > r && std::max(at_lo, at_hi) < (big_r - r) * (big_r - r) / pad2) return true;
 
   // F(f + s u) = (A s^2 + B s + C)^2 - 4 R^2 (P s^2 + 2 Q s + S).
   const double big_r2 = big_r * big_r;
