@@ -82,7 +82,7 @@ void BM_MergeRuns(benchmark::State& state) {
   const std::vector<float> values(3 * static_cast<std::size_t>(largest), 0.25f);
   for (auto _ : state) {
     FrameBuffer frame(side, side);
-    frame.count_by_cells(plan.pass_tile);
+    frame.count_by_units(plan);
     for (const WorkUnit& unit : plan.units) frame.add_unit(unit.pixels, values.data());
     benchmark::DoNotOptimize(frame);
   }
