@@ -71,24 +71,63 @@ void BM_Progressive(benchmark::State& state) {
 // a 2048x2048 job's plan at 4 passes, in the capacity benchmark's units of 16,132 pixels, added
 // into a new frame buffer as Job::apply_result does, with nothing else (no socket, no
 // store, no checks). Items are pixel passes.
+struct MergedJob {
+  Plan plan;
+  long long pixel_passes = 0;
+  std::vector<float> values;  // enough for its largest unit
+};
+MergedJob merged_job(int side) {
+  MergedJob job;
+  job.plan = make_plan({.width = side, .height = side, .passes = 4, .unit_pixels = 16132});
+  long long largest = 0;
+  for (const WorkUnit& unit : job.plan.units) {
+    largest = std::max(largest, unit.cost);
+    job.pixel_passes += unit.cost;
+  }
+  job.values.assign(3 * static_cast<std::size_t>(largest), 0.25f);
+  return job;
+}
+
 void BM_MergeRuns(benchmark::State& state) {
   const int side = static_cast<int>(state.range(0));
-  const Plan plan = make_plan({.width = side, .height = side, .passes = 4, .unit_pixels = 16132});
-  long long largest = 0, pixel_passes = 0;
-  for (const WorkUnit& unit : plan.units) {
-    largest = std::max(largest, unit.cost);
-    pixel_passes += unit.cost;
-  }
-  const std::vector<float> values(3 * static_cast<std::size_t>(largest), 0.25f);
+  const MergedJob job = merged_job(side);
   for (auto _ : state) {
     FrameBuffer frame(side, side);
-    frame.count_by_cells(plan.pass_tile);
-    for (const WorkUnit& unit : plan.units) frame.add_unit(unit.pixels, values.data());
+    frame.count_by_units(job.plan);
+    for (const WorkUnit& unit : job.plan.units) frame.add_unit(unit.pixels, job.values.data());
     benchmark::DoNotOptimize(frame);
   }
-  state.SetItemsProcessed(state.iterations() * pixel_passes);
+  state.SetItemsProcessed(state.iterations() * job.pixel_passes);
 }
 BENCHMARK(BM_MergeRuns)->Arg(2048)->Arg(256)->Unit(benchmark::kMillisecond);
+
+// The same into one frame buffer cleared between rounds, as a job's memory comes from the
+// pool already mapped (mapping_pool.h): MergeRuns' new buffer faults its pages in during pass 0,
+// which hides what the merge itself costs. The second argument 0 counts pass 0 over the levels
+// by pixel, as before branch merge8, 1 by level tile (docs/SCALING.md).
+void BM_MergeRunsReused(benchmark::State& state) {
+  const int side = static_cast<int>(state.range(0));
+  const MergedJob job = merged_job(side);
+  Plan counted = job.plan;
+  if (state.range(1) == 0)
+    std::erase_if(counted.stages, [](const Stage& s) { return s.level > 0; });
+  FrameBuffer frame(side, side);
+  frame.count_by_units(counted);
+  for (auto _ : state) {
+    state.PauseTiming();
+    frame.clear();
+    state.ResumeTiming();
+    for (const WorkUnit& unit : job.plan.units) frame.add_unit(unit.pixels, job.values.data());
+    benchmark::DoNotOptimize(frame);
+  }
+  state.SetItemsProcessed(state.iterations() * job.pixel_passes);
+}
+BENCHMARK(BM_MergeRunsReused)
+    ->Args({2048, 0})
+    ->Args({2048, 1})
+    ->Args({256, 0})
+    ->Args({256, 1})
+    ->Unit(benchmark::kMillisecond);
 
 // Interleaved so that the machine's load drifts across both alike.
 BENCHMARK(BM_Direct)->Arg(1)->Unit(benchmark::kMillisecond);

@@ -41,7 +41,8 @@ void add_stage(Plan& plan, Stage stage, UnitPixels shape, double density,
   const int k = std::max(1, static_cast<int>(std::sqrt(blocks_per_tile)));
   const long long side = std::min<long long>(static_cast<long long>(k) * shape.step,
                                              std::max(plan.width, plan.height));
-  if (stage.level == 0) plan.pass_tile = static_cast<int>(side);
+  stage.tile = static_cast<int>(side);
+  if (stage.level == 0) plan.pass_tile = stage.tile;
   stage.first_unit = static_cast<int>(plan.units.size());
   const int stage_index = static_cast<int>(plan.stages.size());
   for (const PixelRect& r : tiles(plan.area, static_cast<int>(side), options.order)) {

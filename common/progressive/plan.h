@@ -44,6 +44,7 @@ struct Stage {
   bool preview_only = false;  // values are shown, never accumulated (PreviewMode::Area)
   long long blocks = 0;       // blocks in the image (or region) at this block size
   long long traced = 0;       // pixels traced by this stage
+  int tile = 0;  // its units' tiles' side (multiples of it from the image's corner, clipped)
   int first_unit = 0, unit_count = 0;
 };
 

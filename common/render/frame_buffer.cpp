@@ -1,6 +1,7 @@
 #include "common/render/frame_buffer.h"
 
 #include <algorithm>
+#include <array>
 #include <stdexcept>
 
 #if defined(__SSE2__)
@@ -24,17 +25,33 @@ void FrameBuffer::take_memory() {
   counts_.resize(pixels);
 }
 
-void FrameBuffer::count_by_cells(int side) {
-  cell_ = side;
-  cells_across_ = side > 0 ? (width_ + side - 1) / side : 0;
-  const int down = side > 0 ? (height_ + side - 1) / side : 0;
-  cell_counts_.assign(static_cast<std::size_t>(cells_across_) * down, 0);
+void FrameBuffer::TileCounts::assign(int tile_side, int width, int height) {
+  side = tile_side;
+  across = (width + side - 1) / side;
+  counts.assign(static_cast<std::size_t>(across) * ((height + side - 1) / side), 0);
+}
+
+bool FrameBuffer::TileCounts::is_tile(const PixelRect& r, int width, int height) const {
+  return side > 0 && r.x0 % side == 0 && r.y0 % side == 0 && r.x1 == std::min(r.x0 + side, width) &&
+         r.y1 == std::min(r.y0 + side, height);
+}
+
+void FrameBuffer::count_by_units(const Plan& plan) {
+  if (plan.pass_tile > 0) cells_.assign(plan.pass_tile, width_, height_);
+  for (const Stage& stage : plan.stages) {
+    if (stage.level == 0 || stage.preview_only) continue;
+    const int level = std::countr_zero(static_cast<unsigned>(stage.block));
+    if (levels_.size() <= static_cast<std::size_t>(level)) levels_.resize(level + 1);
+    levels_[level].assign(stage.tile, width_, height_);
+    coarsest_level_ = std::max(coarsest_level_, level);
+  }
 }
 
 void FrameBuffer::clear() {
   std::fill(sums_.begin(), sums_.end(), 0.0f);
   std::fill(counts_.begin(), counts_.end(), std::uint16_t{0});
-  std::fill(cell_counts_.begin(), cell_counts_.end(), std::uint16_t{0});
+  std::fill(cells_.counts.begin(), cells_.counts.end(), std::uint16_t{0});
+  for (TileCounts& level : levels_) std::fill(level.counts.begin(), level.counts.end(), 0);
 }
 
 void FrameBuffer::throw_full() {
@@ -64,60 +81,98 @@ void add_floats(float* sums, const float* rgb, std::size_t floats) {
 
 }  // namespace
 
+FrameBuffer::TileCounts* FrameBuffer::counted_by_tile(const UnitPixels& unit) {
+  if (unit.pattern != PixelPattern::Anchors) return nullptr;
+  if (unit.step == 1 && unit.exclude == 0 && cells_.is_tile(unit.rect, width_, height_))
+    return &cells_;
+  // A level's unit: its anchors of its step, leaving out the next coarser level's (none at the
+  // coarsest), so that it covers every pixel of its tile that level_of() gives its level.
+  if (!std::has_single_bit(static_cast<unsigned>(unit.step))) return nullptr;
+  const int level = std::countr_zero(static_cast<unsigned>(unit.step));
+  if (static_cast<std::size_t>(level) >= levels_.size() ||
+      unit.exclude != (level == coarsest_level_ ? 0 : 2 * unit.step) ||
+      !levels_[level].is_tile(unit.rect, width_, height_))
+    return nullptr;
+  return &levels_[level];
+}
+
 void FrameBuffer::add_unit(const UnitPixels& unit, const float* rgb) {
-  const PixelRect& r = unit.rect;
-  if (cell_ > 0 && unit.step == 1 && unit.exclude == 0 && unit.pattern == PixelPattern::Anchors &&
-      r.x0 % cell_ == 0 && r.y0 % cell_ == 0 && r.x1 == std::min(r.x0 + cell_, width_) &&
-      r.y1 == std::min(r.y0 + cell_, height_))
-    return add_cell(r, rgb);
+  if (TileCounts* tiles = counted_by_tile(unit)) {
+    std::uint16_t& passes = tiles->of(unit.rect.x0, unit.rect.y0);
+    if (passes == kMaxPasses) throw_full();
+    add_sums(unit, rgb);
+    ++passes;
+    return;
+  }
   for_each_run(unit, [&](PixelCoord first, int count, int stride) {
     add_run(first, count, stride, rgb);
     rgb += 3 * static_cast<std::size_t>(count);
   });
 }
 
-void FrameBuffer::add_cell(const PixelRect& rect, const float* rgb) {
-  std::uint16_t& passes =
-      cell_counts_[static_cast<std::size_t>(rect.y0 / cell_) * cells_across_ + rect.x0 / cell_];
-  if (passes == kMaxPasses) throw_full();
-  const auto across = static_cast<std::size_t>(rect.width());
-  const std::size_t row = 3 * static_cast<std::size_t>(width_);
-  for (int y = rect.y0; y < rect.y1; ++y, rgb += 3 * across) {
-    float* sums = sums_.data() + 3 * idx(rect.x0, y);
-    // The row two further down fetched while this one adds, as add_run does.
-    if (y + 2 < rect.y1) prefetch(sums + 2 * row, 12 * across, 64);
-    add_floats(sums, rgb, 3 * across);
-  }
-  ++passes;
+void FrameBuffer::add_sums(const UnitPixels& unit, const float* rgb) {
+  for_each_run(unit, [&](PixelCoord first, int count, int stride) {
+    add_run_sums(first, count, stride, rgb);
+    rgb += 3 * static_cast<std::size_t>(count);
+  });
 }
 
-void FrameBuffer::add_run(PixelCoord first, int count, int stride, const float* rgb) {
-  const std::size_t start = idx(first.x, first.y);
+// A unit's runs go down its tile a row of blocks at a time (for_each_run): the run two rows
+// further down is fetched while this one adds. A run is short (about 127 pixels, 1.5 kB of
+// sums, a frame buffer's row from the next), too short for the processor's own prefetcher to
+// follow, so without this every run waited for memory (MergeRuns/2048: 250 M pixel passes a
+// second without, 340 M with; docs/SCALING.md).
+void FrameBuffer::add_run_sums(PixelCoord first, int count, int stride, const float* rgb) {
   const auto step = static_cast<std::size_t>(stride);
   const auto n = static_cast<std::size_t>(count);
-  std::uint16_t* counts = counts_.data() + start;
-  float* sums = sums_.data() + 3 * start;
-  // A unit's runs go down its tile a row of blocks at a time (for_each_run): the run two rows
-  // further down is fetched while this one adds. A run is short (about 127 pixels, 1.5 kB of
-  // sums, a frame buffer's row from the next), too short for the processor's own prefetcher to
-  // follow, so without this every run waited for memory (MergeRuns/2048: 250 M pixel passes a
-  // second without, 340 M with; docs/SCALING.md).
-  if (first.y + 2 * stride < height_) {
-    const std::size_t below = 2 * step * static_cast<std::size_t>(width_),
-                      span = (n - 1) * step + 1;
-    prefetch(sums + 3 * below, 12 * span, 12 * step);
-    prefetch(counts + below, 2 * span, 2 * step);
-  }
-  for (std::size_t i = 0; i < n; ++i)
-    if (counts[i * step] == kMaxPasses) throw_full();
+  float* sums = sums_.data() + 3 * idx(first.x, first.y);
+  if (first.y + 2 * stride < height_)
+    prefetch(sums + 6 * step * static_cast<std::size_t>(width_), 12 * ((n - 1) * step + 1),
+             12 * step);
   if (step == 1) {
     add_floats(sums, rgb, 3 * n);  // a row's sums lie side by side
   } else {
     for (std::size_t i = 0; i < n; ++i)
       for (int c = 0; c < 3; ++c) sums[3 * i * step + c] += rgb[3 * i + c];
   }
+}
+
+void FrameBuffer::add_run(PixelCoord first, int count, int stride, const float* rgb) {
+  const auto step = static_cast<std::size_t>(stride);
+  const auto n = static_cast<std::size_t>(count);
+  std::uint16_t* counts = counts_.data() + idx(first.x, first.y);
+  if (first.y + 2 * stride < height_)  // as add_run_sums fetches the sums
+    prefetch(counts + 2 * step * static_cast<std::size_t>(width_), 2 * ((n - 1) * step + 1),
+             2 * step);
+  for (std::size_t i = 0; i < n; ++i)
+    if (counts[i * step] == kMaxPasses) throw_full();
+  add_run_sums(first, count, stride, rgb);
   for (std::size_t i = 0; i < n; ++i) ++counts[i * step];
 }
+
+namespace {
+
+// One row of tile counts followed along the row, without a division a pixel.
+class TilesAlongRow {
+ public:
+  TilesAlongRow() = default;  // no tiles: no passes anywhere
+  TilesAlongRow(const std::uint16_t* row, int side) : row_(row), side_(side) {}
+  // Pixels x in increasing order.
+  std::uint32_t at(int x) {
+    if (row_ == nullptr) return 0;
+    if (x >= end_) {
+      column_ = x / side_;
+      end_ = (column_ + 1) * side_;
+    }
+    return row_[column_];
+  }
+
+ private:
+  const std::uint16_t* row_ = nullptr;
+  int side_ = 0, column_ = 0, end_ = 0;
+};
+
+}  // namespace
 
 void FrameBuffer::mean_run(PixelCoord first, int count, int stride, float* out) const {
   if (counts_.empty()) {
@@ -128,22 +183,19 @@ void FrameBuffer::mean_run(PixelCoord first, int count, int stride, float* out) 
   const auto step = static_cast<std::size_t>(stride);
   const std::uint16_t* counts = counts_.data() + start;
   const float* sums = sums_.data() + 3 * start;
-  // The cells along the row, followed without a division a pixel.
-  const std::uint16_t* cells =
-      cell_ == 0 ? nullptr
-                 : cell_counts_.data() + static_cast<std::size_t>(first.y / cell_) * cells_across_;
-  int x = first.x, column = 0, column_end = 0;
+  TilesAlongRow cells(cells_.row(first.y), cells_.side);
+  std::array<TilesAlongRow, 32> levels;  // by level_of()
+  for (std::size_t l = 0; l < levels_.size(); ++l)
+    levels[l] = TilesAlongRow(levels_[l].row(first.y), levels_[l].side);
+  int x = first.x;
   for (std::size_t i = 0; i < static_cast<std::size_t>(count); ++i, x += stride) {
-    if (cells != nullptr && x >= column_end) {
-      column = x / cell_;
-      column_end = (column + 1) * cell_;
-    }
-    const std::uint32_t passes = counts[i * step] + (cells != nullptr ? cells[column] : 0u);
+    const std::uint32_t passes = counts[i * step] + cells.at(x) +
+                                 (levels_.empty() ? 0u : levels[level_of(x, first.y)].at(x));
     // A float divided by a float count, rounded once, equals mean()'s double quotient rounded
     // to float: a double holds more than twice a float's digits plus two, so rounding first to
     // double and then to float cannot differ from rounding once (Figueroa, "When is double
     // rounding innocuous?", 1995). Float division is the cheaper one.
-    const auto divisor = static_cast<float>(passes);  // at most 2 x 65535: exact
+    const auto divisor = static_cast<float>(passes);  // at most 3 x 65535: exact
     for (int c = 0; c < 3; ++c)
       out[3 * i + c] = passes == 0 ? 0.0f : sums[3 * i * step + c] / divisor;
   }

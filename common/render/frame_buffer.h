@@ -10,19 +10,25 @@
 // merge: a queued job holds none, and a running one takes what a finished one gave back
 // (mapping_pool.h).
 //
-// A pixel's passes are counted in two parts: by pixel, and by cell. A coordinator job's
-// whole-image passes come in units that are each one square tile of the image, every pixel of
-// it one pass (make_plan's pass_tile): such a unit is counted once for its tile, a cell, so its
-// merge reads and writes only the sums, 12 bytes a pixel instead of 14, with no per-pixel count
-// to check and add (docs/SCALING.md). Exact in any order: a pixel's passes are its own count
-// plus its cell's. The CLI counts by pixel only.
+// A pixel's passes are counted in three parts: by pixel, by cell and by level tile. A
+// coordinator job's whole-image passes come in units that are each one square tile of the
+// image, every pixel of it one pass (make_plan's pass_tile): such a unit is counted once for
+// its tile, a cell, so its merge reads and writes only the sums, 12 bytes a pixel instead of
+// 14, with no per-pixel count to check and add (docs/SCALING.md). Pass 0 over the progressive
+// levels likewise: a level's unit is one tile of that level (Stage::tile) and adds one pass to
+// each of its anchors, the pixels whose coordinates' lowest set bit is the level's step, so it
+// is counted once for its level and tile. Exact in any order: a pixel's passes are its own
+// count plus its cell's plus its level tile's. The CLI counts by pixel only.
 #pragma once
 
+#include <algorithm>
+#include <bit>
 #include <cstdint>
 #include <vector>
 
 #include "common/image/image.h"
 #include "common/math/pixel_rect.h"
+#include "common/progressive/plan.h"
 #include "common/progressive/unit_pixels.h"
 #include "common/render/zeroed_allocator.h"
 
@@ -40,10 +46,11 @@ class FrameBuffer {
   // Not thread-safe: one thread calls it before any pass is added (the CLI's threads each add
   // passes to a tile's buffer of their own, made with its memory).
   void take_memory();
-  // Counts add_unit's units that are exactly one square of side `side` (multiples of it from
-  // the corner, clipped only by the image's edges) once for the square. Before any pass is
-  // added; side 0 counts every pass by pixel.
-  void count_by_cells(int side);
+  // Counts add_unit's units that are exactly one of `plan`'s tiles (multiples of its side from
+  // the corner, clipped only by the image's edges) once for the tile: the whole-image passes'
+  // (Plan::pass_tile, cells) and each accumulated level's (Stage::tile). Before any pass is
+  // added; without it every pass is counted by pixel.
+  void count_by_units(const Plan& plan);
   // Forgets every pass, keeping the memory: a buffer reused for one tile after another
   // (render_image's threads) zeroes its 14 bytes a pixel instead of allocating them again.
   void clear();
@@ -68,12 +75,12 @@ class FrameBuffer {
   // one of them has kMaxPasses passes already. Both need the memory (has_memory()).
   void add_run(PixelCoord first, int count, int stride, const float* rgb);
   // One pass for each of a unit's pixels, 3 floats a pixel in for_each_run's order: counted by
-  // cell when the unit is one (count_by_cells), else by pixel (add_run). Throws
-  // std::length_error beyond kMaxPasses: a cell then adds nothing, a unit counted by pixel
+  // tile when the unit is one (count_by_units), else by pixel (add_run). Throws
+  // std::length_error beyond kMaxPasses: a tile then adds nothing, a unit counted by pixel
   // stops at the run with the full pixel (add_run).
   void add_unit(const UnitPixels& unit, const float* rgb);
   std::uint32_t passes_at(int x, int y) const {
-    return counts_.empty() ? 0 : counts_[idx(x, y)] + cell_passes(x, y);
+    return counts_.empty() ? 0 : counts_[idx(x, y)] + cells_.at(x, y) + level_passes(x, y);
   }
   // The mean of the passes added so far (black where none).
   Rgb mean(int x, int y) const {
@@ -89,21 +96,44 @@ class FrameBuffer {
   Image resolve() const;
 
  private:
+  // Passes counted once for a tile of side `side`, tile by tile, row by row (a few hundred).
+  struct TileCounts {
+    int side = 0, across = 0;  // side 0: no tiles, nothing counted by them
+    std::vector<std::uint16_t> counts;
+    void assign(int tile_side, int width, int height);
+    // Whether `rect` is exactly one tile, clipped only by the image's edges.
+    bool is_tile(const PixelRect& rect, int width, int height) const;
+    std::uint16_t& of(int x, int y) {
+      return counts[static_cast<std::size_t>(y / side) * across + x / side];
+    }
+    // Row y's counts; nullptr without tiles.
+    const std::uint16_t* row(int y) const {
+      return side == 0 ? nullptr : counts.data() + static_cast<std::size_t>(y / side) * across;
+    }
+    std::uint32_t at(int x, int y) const { return side == 0 ? 0 : row(y)[x / side]; }
+  };
   std::size_t idx(int x, int y) const { return static_cast<std::size_t>(y) * width_ + x; }
-  std::uint32_t cell_passes(int x, int y) const {
-    return cell_ == 0
-               ? 0
-               : cell_counts_[static_cast<std::size_t>(y / cell_) * cells_across_ + x / cell_];
+  // The level whose anchor (x, y) is, as log2 of its step: the lowest set bit of x | y, or the
+  // coarsest level's for its anchors.
+  int level_of(int x, int y) const {
+    return std::min(std::countr_zero(static_cast<unsigned>(x | y)), coarsest_level_);
   }
-  // Adds one pass to every pixel of `rect`, a cell, counting it once.
-  void add_cell(const PixelRect& rect, const float* rgb);
+  std::uint32_t level_passes(int x, int y) const {
+    return levels_.empty() ? 0 : levels_[level_of(x, y)].at(x, y);
+  }
+  // The tile counts that count `unit` once, or nullptr when its pixels are counted by pixel.
+  TileCounts* counted_by_tile(const UnitPixels& unit);
+  // Adds one pass to each of the unit's pixels, 3 floats a pixel, without counting it.
+  void add_sums(const UnitPixels& unit, const float* rgb);
+  void add_run_sums(PixelCoord first, int count, int stride, const float* rgb);
   [[noreturn]] static void throw_full();
   int width_, height_;
   // Empty until take_memory() when deferred.
   std::vector<float, ZeroedAllocator<float>> sums_;                    // 3 per pixel
   std::vector<std::uint16_t, ZeroedAllocator<std::uint16_t>> counts_;  // by pixel
-  int cell_ = 0, cells_across_ = 0;
-  std::vector<std::uint16_t> cell_counts_;  // by cell, row by row; a few hundred
+  TileCounts cells_;                                                   // whole-image passes
+  std::vector<TileCounts> levels_;  // pass 0 over the levels, by log2 of their step
+  int coarsest_level_ = 0;          // log2 of the coarsest accumulated level's step
 };
 
 }  // namespace tessera

@@ -37,7 +37,7 @@ Job::Job(std::int64_t id_, Bundle bundle_, JobSpec spec_, PlanOptions plan_optio
                                                    static_cast<double>(spec.settings.height)))),
       stage_timing_(plan.stages.size()),
       frame_buffer_(FrameBuffer::deferred(spec.settings.width, spec.settings.height)) {
-  frame_buffer_.count_by_cells(plan.pass_tile);
+  frame_buffer_.count_by_units(plan);
 }
 
 namespace {

@@ -106,9 +106,10 @@ TEST(FrameBuffer, ClearedIsLikeNew) {
 }
 
 // A job's units merged with their whole-image passes counted by cell (the plan's pass tiles)
-// leave the frame buffer as counting every pass by pixel does, bit for bit, while they merge and
-// at the end: whole images and regions (whose clipped tiles are not cells), both previews.
-TEST(FrameBuffer, PassesCountedByCellAverageAsByPixel) {
+// and pass 0 over the levels by level tile leave the frame buffer as counting every pass by
+// pixel does, bit for bit, while they merge and at the end: whole images and regions (whose
+// clipped tiles are not tiles), both previews.
+TEST(FrameBuffer, PassesCountedByTileAverageAsByPixel) {
   std::mt19937 rng(5);
   std::uniform_real_distribution<float> value(-0.25f, 4.0f);
   const PlanOptions plans[] = {
@@ -120,12 +121,12 @@ TEST(FrameBuffer, PassesCountedByCellAverageAsByPixel) {
        .passes = 3,
        .unit_pixels = 400,
        .region = PixelRect{17, 30, 250, 160}},
+      {.width = 300, .height = 170, .passes = 1, .unit_pixels = 64},
   };
   for (const PlanOptions& options : plans) {
     const Plan plan = make_plan(options);
-    ASSERT_GT(plan.pass_tile, 0);
     FrameBuffer by_cell(plan.width, plan.height), by_pixel(plan.width, plan.height);
-    by_cell.count_by_cells(plan.pass_tile);
+    by_cell.count_by_units(plan);
     for (const WorkUnit& unit : plan.units) {
       if (plan.stages[unit.stage].preview_only) continue;
       std::vector<float> rgb(3 * static_cast<std::size_t>(unit.cost));
@@ -145,6 +146,28 @@ TEST(FrameBuffer, PassesCountedByCellAverageAsByPixel) {
       for (int x = 0; x < plan.width; ++x)
         ASSERT_EQ(by_cell.passes_at(x, y), by_pixel.passes_at(x, y)) << x << "," << y;
     EXPECT_EQ(by_cell.resolve(), by_pixel.resolve());
+  }
+}
+
+// Every unit of a progressive plan but the region's clipped ones is counted once for its tile
+// (a cell or a level's), touching no pixel's count: a pixel with the most passes it can count
+// by pixel still takes its unit's pass.
+TEST(FrameBuffer, UnitsCountedByTileLeaveThePixelsCounts) {
+  const Plan plan = make_plan({.width = 300, .height = 170, .passes = 2, .unit_pixels = 500});
+  FrameBuffer frame(plan.width, plan.height);
+  frame.count_by_units(plan);
+  const float one[3] = {1.0f, 1.0f, 1.0f};
+  std::vector<bool> full(static_cast<std::size_t>(plan.width) * plan.height);
+  for (const WorkUnit& unit : plan.units) {
+    const PixelCoord p = expand(unit.pixels).back();
+    if (!full[static_cast<std::size_t>(p.y) * plan.width + p.x]) {
+      for (std::uint32_t n = 0; n < FrameBuffer::kMaxPasses; ++n) frame.add_pass(p.x, p.y, one);
+      full[static_cast<std::size_t>(p.y) * plan.width + p.x] = true;
+    }
+    const std::uint32_t before = frame.passes_at(p.x, p.y);
+    const std::vector<float> rgb(3 * static_cast<std::size_t>(unit.cost), 1.0f);
+    ASSERT_NO_THROW(frame.add_unit(unit.pixels, rgb.data())) << unit.stage;
+    ASSERT_EQ(frame.passes_at(p.x, p.y), before + 1) << unit.stage;
   }
 }
 
