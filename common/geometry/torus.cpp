@@ -255,16 +255,17 @@ bool visit_torus_hits(const Torus& torus, const Ray& ray, double t_max, HitSearc
   if (!is_finite(o) || !is_finite(d) || !(dd > 0) || !std::isfinite(dd) || !(t_max > 0))
     return true;
 
+  const double len = std::sqrt(dd);
+  // Most shadow rays that form the quartic leave the torus's own surface, outwards, only for the
+  // miss proof to show it root-free; shown here before the box, which they all pass.
+  if (search == HitSearch::kAnyHit && leaves_for_good(torus, o, d, len)) return true;
+
   // The span through the box, padded so that it certainly holds the rounded surface.
   double t_enter = 0, t_exit = 0;
   const double pad = 1 + 1e-9;
   if (!box_span(o, d, (big_r + r) * pad, r * pad, t_enter, t_exit)) return true;
   const double t_lo = std::max(t_enter, 0.0), t_hi = std::min(t_exit, t_max);
   if (!(t_lo < t_hi)) return true;
-  const double len = std::sqrt(dd);
-  // Most shadow rays that get here leave the torus's own surface, outwards, and would form the
-  // quartic only for the miss proof to show it root-free.
-  if (search == HitSearch::kAnyHit && leaves_for_good(torus, o, d, len)) return true;
 
   // The frame: origin at the line's point nearest the centre, unit direction; s = (t - t0) |d|.
   const Vec3 u = d / len;
