@@ -1,0 +1,17 @@
+// Parts of the ray / torus intersection (torus.cpp) that its tests reach directly.
+#pragma once
+
+#include "common/math/ray.h"
+#include "common/scene/shape.h"
+
+namespace tessera {
+
+// True only when no query of torus.cpp reports a hit of the torus on the ray (object space),
+// so that a shadow ray need not form its quartic: its origin
+// lies on or outside the tube's outer half (rho >= R), and the ray moves away from the plane there
+// that bounds the whole torus, steeply enough that the quartic's rounding cannot put a root beyond
+// the distance at which a hit counts as the surface the ray leaves. Most shadow rays leaving a
+// torus's own surface. False says nothing.
+bool leaves_the_torus_for_good(const Torus& torus, const Ray& ray);
+
+}  // namespace tessera
