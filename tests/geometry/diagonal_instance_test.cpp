@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "common/geometry/instance.h"
+#include "common/geometry/motion.h"
 
 namespace tessera {
 namespace {
@@ -130,6 +131,33 @@ TEST(DiagonalInstance, IntersectionsAreTheFullOnes) {
         ASSERT_TRUE(same_bits(a, b)) << i;
       }
       EXPECT_GT(hits, 100);
+    }
+  }
+}
+
+// A diagonal instance that turns during the shutter is no longer diagonal when posed: its hits
+// are those of the instance made at that pose.
+TEST(DiagonalInstance, TurningInstancesAreClassifiedWhenPosed) {
+  const Affine start = Affine::translation({0, 0, -5}) * Affine::scaling({2, 0.5, 1});
+  ObjectMotion motion;
+  motion.angle_degrees = 40;
+  motion.axis = {0, 1, 0};
+  const std::optional<Instance> moving = make_moving_instance(Cube{}, start, motion, 1, nullptr);
+  ASSERT_TRUE(moving.has_value());
+  ASSERT_TRUE(moving->diagonal.has_value());
+  const double time = 0.5;
+  const std::optional<Instance> posed =
+      make_instance(Cube{}, transform_at(start, motion, time), nullptr);
+  ASSERT_TRUE(posed.has_value());
+  EXPECT_FALSE(posed->diagonal.has_value());
+  for (int i = 0; i < 50; ++i) {
+    const Ray ray{{-1.2 + 0.05 * i, 0.1, 0}, {0, 0, -1}, time};
+    IntersectionCounters counters;
+    WorldHit a, b;
+    const bool hit_a = intersect_instance(*moving, ray, kInfinity, a, counters);
+    ASSERT_EQ(hit_a, intersect_instance(*posed, ray, kInfinity, b, counters)) << i;
+    if (hit_a) {
+      EXPECT_TRUE(same_bits(a, b)) << i;
     }
   }
 }
