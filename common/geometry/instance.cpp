@@ -61,6 +61,15 @@ inline bool same_bits(const Vec3& a, const Vec3& b) {
          gamma_bound(11);
 }
 
+// The same for a diagonal instance (diagonal_affine.h).
+[[gnu::always_inline]] inline Vec3 diagonal_round_trip_error(const Instance::Diagonal& diagonal,
+                                                             const Vec3& magnitude) {
+  const Vec3 object_terms =
+      diagonal.to_object.abs_linear(magnitude) + abs(diagonal.to_object.offset);
+  return (diagonal.to_world.abs_linear(object_terms) + abs(diagonal.to_world.offset)) *
+         gamma_bound(11);
+}
+
 // What a shape's routines are asked: the world ray, taken into the instance's object space,
 // and the limit on t.
 struct ShapeQuery {
@@ -112,26 +121,66 @@ struct LocalOcclusion : ShapeQuery {
   }
 };
 
-// The bodies of object_ray and to_world_hit, forced inline so that the nearest-hit path below
-// (every shape test of every render) keeps them in its own body, as before CSG shared them:
-// called out of line they cost a scene without boolean objects some 0.5 % more instructions
-// (docs/PERFORMANCE.md, "Scenes that use none of the new effects").
-[[gnu::always_inline]] inline Ray object_ray_inline(const Instance& instance,
-                                                    const Ray& world_ray) {
-  // The direction is not renormalized, so t means the same in both spaces.
-  return {instance.to_object.apply_point(world_ray.origin),
-          instance.to_object.apply_vector(world_ray.direction), world_ray.time};
-}
+// The full products of an instance's transforms, which every instance may take.
+struct FullTransforms {
+  const Instance& instance;
 
-[[gnu::always_inline]] inline void to_world_hit_inline(const Instance& instance,
-                                                       const LocalHit& local, WorldHit& hit) {
+  [[gnu::always_inline]] Ray object_ray(const Ray& world_ray) const {
+    // The direction is not renormalized, so t means the same in both spaces.
+    return {instance.to_object.apply_point(world_ray.origin),
+            instance.to_object.apply_vector(world_ray.direction), world_ray.time};
+  }
+  // The hit's world point and its error bound.
+  [[gnu::always_inline]] void world_point(const LocalHit& local, WorldHit& hit) const {
+    hit.point = instance.to_world.apply_point(local.point);
+    hit.point_error = instance.to_world.point_error(local.point, local.point_error);
+    hit.point_error += round_trip_error(instance, abs(hit.point) + hit.point_error);
+  }
+  // A local normal in world space, not yet normalized: through the inverse transpose.
+  [[gnu::always_inline]] Vec3 world_normal(const Vec3& normal) const {
+    return instance.to_object.apply_transpose(normal);
+  }
+};
+
+// The diagonal products (diagonal_affine.h) of a diagonal instance, which give the full ones
+// unless a component comes out zero or non-finite: then the full products are taken.
+struct DiagonalTransforms {
+  const Instance& instance;
+  const Instance::Diagonal& diagonal;
+
+  [[gnu::always_inline]] Ray object_ray(const Ray& world_ray) const {
+    const Ray ray{diagonal.to_object.apply_point(world_ray.origin),
+                  diagonal.to_object.apply_vector(world_ray.direction), world_ray.time};
+    if (same_as_full(ray.origin, ray.direction)) [[likely]]
+      return ray;
+    return FullTransforms{instance}.object_ray(world_ray);
+  }
+  [[gnu::always_inline]] void world_point(const LocalHit& local, WorldHit& hit) const {
+    hit.point = diagonal.to_world.apply_point(local.point);
+    hit.point_error = diagonal.to_world.point_error(local.point, local.point_error);
+    hit.point_error += diagonal_round_trip_error(diagonal, abs(hit.point) + hit.point_error);
+    if (!same_as_full(hit.point, hit.point_error)) [[unlikely]]
+      FullTransforms{instance}.world_point(local, hit);
+  }
+  [[gnu::always_inline]] Vec3 world_normal(const Vec3& normal) const {
+    const Vec3 n = diagonal.to_object.apply_vector(normal);
+    if (same_as_full(n)) return n;
+    return FullTransforms{instance}.world_normal(normal);
+  }
+};
+
+// The bodies of object_ray, to_world_hit and the intersection tests, for either kind of
+// transforms, forced inline so that each test keeps them in its own body (as before CSG shared
+// them: called out of line they cost a scene without boolean objects some 0.5 % more
+// instructions, docs/PERFORMANCE.md, "Scenes that use none of the new effects"); the kind is
+// chosen once a call.
+template <typename Transforms>
+[[gnu::always_inline]] inline void to_world_hit_with(const Transforms& transforms,
+                                                     const LocalHit& local, WorldHit& hit) {
   hit.t = local.t;
-  hit.point = instance.to_world.apply_point(local.point);
-  hit.point_error = instance.to_world.point_error(local.point, local.point_error);
-  hit.point_error += round_trip_error(instance, abs(hit.point) + hit.point_error);
-  // Normals go through the inverse transpose; a degenerate normal falls back to a finite
-  // unit vector rather than NaN.
-  hit.normal = normalize_or(instance.to_object.apply_transpose(local.normal), Vec3{});
+  transforms.world_point(local, hit);
+  // A degenerate normal falls back to a finite unit vector rather than NaN.
+  hit.normal = normalize_or(transforms.world_normal(local.normal), Vec3{});
   if (hit.normal == Vec3{}) hit.normal = Vec3{0, 0, 1};
   // Only smooth meshes interpolate a shading normal; every other shape reports its geometric
   // normal again, which would come out of the same transform and normalization bit for bit
@@ -139,13 +188,43 @@ struct LocalOcclusion : ShapeQuery {
   hit.shading_normal =
       same_bits(local.shading_normal, local.normal)
           ? hit.normal
-          : normalize_or(instance.to_object.apply_transpose(local.shading_normal), hit.normal);
+          : normalize_or(transforms.world_normal(local.shading_normal), hit.normal);
   hit.object_point = local.point;
   hit.part = local.part;
-  hit.object = instance.object;
+  hit.object = transforms.instance.object;
+}
+
+template <typename Transforms>
+[[gnu::always_inline]] inline bool intersect_with(const Transforms& transforms,
+                                                  const Ray& world_ray, double t_max, WorldHit& hit,
+                                                  IntersectionCounters& counters) {
+  ++counters.shape_tests;
+  const Ray ray = transforms.object_ray(world_ray);
+  LocalHit local;
+  if (!std::visit(LocalIntersect{{transforms.instance, world_ray, ray, t_max, counters}, local},
+                  transforms.instance.geometry))
+    return false;
+  to_world_hit_with(transforms, local, hit);
+  return true;
+}
+
+[[gnu::always_inline]] inline Ray object_ray_inline(const Instance& instance,
+                                                    const Ray& world_ray) {
+  if (instance.diagonal)
+    return DiagonalTransforms{instance, *instance.diagonal}.object_ray(world_ray);
+  return FullTransforms{instance}.object_ray(world_ray);
 }
 
 }  // namespace
+
+void place_instance(Instance& instance, const Affine& to_world, const Affine& to_object) {
+  instance.to_world = to_world;
+  instance.to_object = to_object;
+  const std::optional<DiagonalAffine> world = DiagonalAffine::of(to_world);
+  const std::optional<DiagonalAffine> object = DiagonalAffine::of(to_object);
+  instance.diagonal.reset();
+  if (world && object) instance.diagonal = Instance::Diagonal{*world, *object};
+}
 
 std::optional<Instance> make_instance(const ShapeGeometry& geometry, const Affine& to_world,
                                       const MeshAccel* mesh) {
@@ -154,8 +233,7 @@ std::optional<Instance> make_instance(const ShapeGeometry& geometry, const Affin
   if (!to_object) return std::nullopt;
   Instance instance;
   instance.geometry = geometry;
-  instance.to_world = to_world;
-  instance.to_object = *to_object;
+  place_instance(instance, to_world, *to_object);
   instance.mesh = mesh;
   if (const auto* algebraic = std::get_if<AlgebraicSurface>(&geometry)) {
     instance.world_bounds = algebraic_extent(*algebraic, to_world);
@@ -181,7 +259,10 @@ Ray object_ray(const Instance& instance, const Ray& world_ray) {
 }
 
 void to_world_hit(const Instance& instance, const LocalHit& local, WorldHit& hit) {
-  to_world_hit_inline(instance, local, hit);
+  if (instance.diagonal)
+    to_world_hit_with(DiagonalTransforms{instance, *instance.diagonal}, local, hit);
+  else
+    to_world_hit_with(FullTransforms{instance}, local, hit);
 }
 
 bool intersect_instance(const Instance& instance, const Ray& world_ray, double t_max, WorldHit& hit,
@@ -192,14 +273,10 @@ bool intersect_instance(const Instance& instance, const Ray& world_ray, double t
     const std::optional<Instance> posed = instance_at(instance, world_ray.time);
     return posed && intersect_instance(*posed, world_ray, t_max, hit, counters);
   }
-  ++counters.shape_tests;
-  const Ray ray = object_ray_inline(instance, world_ray);
-  LocalHit local;
-  if (!std::visit(LocalIntersect{{instance, world_ray, ray, t_max, counters}, local},
-                  instance.geometry))
-    return false;
-  to_world_hit_inline(instance, local, hit);
-  return true;
+  if (instance.diagonal)
+    return intersect_with(DiagonalTransforms{instance, *instance.diagonal}, world_ray, t_max, hit,
+                          counters);
+  return intersect_with(FullTransforms{instance}, world_ray, t_max, hit, counters);
 }
 
 bool occluded_instance(const Instance& instance, const Ray& world_ray, double t_max,
@@ -217,6 +294,8 @@ bool occluded_instance(const Instance& instance, const Ray& world_ray, double t_
   }
   ++counters.shape_tests;
   object = instance.object;
+  // Only the object ray depends on the kind: one visit of the shape for both (two cost the
+  // instances that are not diagonal some 20 instructions a call).
   const Ray ray = object_ray_inline(instance, world_ray);
   return std::visit(LocalOcclusion{{instance, world_ray, ray, t_max, counters}}, instance.geometry);
 }

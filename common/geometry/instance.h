@@ -7,6 +7,7 @@
 #include "common/accel/mesh_accel.h"
 #include "common/geometry/local_hit.h"
 #include "common/math/affine.h"
+#include "common/math/diagonal_affine.h"
 #include "common/math/ray.h"
 #include "common/scene/motion.h"
 #include "common/scene/shape.h"
@@ -17,7 +18,13 @@ namespace tessera {
 struct Instance {
   ShapeGeometry geometry;
   Affine to_world;
-  Affine to_object;                 // inverse of to_world
+  Affine to_object;  // inverse of to_world
+  // Both transforms again, when their linear parts are diagonal, to be applied as such
+  // (math/diagonal_affine.h). Set with them by place_instance.
+  struct Diagonal {
+    DiagonalAffine to_world, to_object;
+  };
+  std::optional<Diagonal> diagonal;
   const MeshAccel* mesh = nullptr;  // for MeshShape geometry
   // For CsgShape geometry, the children's instances (make_csg_instance, csg.h).
   const Instance* left = nullptr;
@@ -32,6 +39,9 @@ struct Instance {
 // Builds an instance; nullopt when `to_world` is singular or not finite.
 std::optional<Instance> make_instance(const ShapeGeometry& geometry, const Affine& to_world,
                                       const MeshAccel* mesh);
+
+// Sets the instance's transforms, `to_object` being the inverse of `to_world`.
+void place_instance(Instance& instance, const Affine& to_world, const Affine& to_object);
 
 struct WorldHit {
   double t = 0;

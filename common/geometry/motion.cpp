@@ -65,8 +65,7 @@ std::optional<Instance> instance_at(const Instance& instance, double time) {
   const std::optional<Affine> to_object = to_world.inverse();
   if (!to_object) return std::nullopt;
   Instance posed = instance;
-  posed.to_world = to_world;
-  posed.to_object = *to_object;
+  place_instance(posed, to_world, *to_object);
   posed.motion.reset();
   return posed;
 }
