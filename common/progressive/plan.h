@@ -76,7 +76,7 @@ Plan make_plan(const PlanOptions& options);
 inline constexpr double kUnitTargetSeconds = 0.020;
 
 // The most traced pixels a unit is cut to: pixels cheaper than kUnitTargetSeconds / 65,536
-// (0.3 µs a pixel pass) get shorter units. Its result, 768 kB of floats, stays under the
+// (0.3 µs a pixel pass) get shorter units. Its result, 786 kB of floats, stays under the
 // coordinator's mmap threshold (1 MB, coordinator/main.cpp), so it comes from the reused heap.
 inline constexpr long long kMostUnitPixels = 65536;
 

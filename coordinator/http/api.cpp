@@ -9,7 +9,6 @@
 #include <boost/asio/steady_timer.hpp>
 
 #include "common/image/image.h"
-#include "common/progressive/plan.h"
 #include "coordinator/http/gzip.h"
 #include "coordinator/http/job_json.h"
 #include "coordinator/http/refusal_status.h"
@@ -275,8 +274,7 @@ void Api::submit_job(const std::string& client, HttpRespond& respond,
             return [this, parsed, client, over_cap, too_many] {
               if (over_cap())
                 throw too_many;  // other submissions of this client finished meanwhile
-              parsed->plan.unit_pixels = unit_pixels_for_threads(
-                  parsed->plan, scheduler_.worker_totals().threads, parsed->seconds_per_pixel_pass);
+              fit_units_to_threads(*parsed, scheduler_.worker_totals().threads);
               std::function<std::int64_t(const JobRequest&)> store;
               if (config_.persistence)
                 store = [p = config_.persistence](const JobRequest& r) {
