@@ -12,7 +12,8 @@ tessera-worker processes of one thread. In phases, it measures
 - throughput: one job (a sphere or --scene, --size square, --aa, --passes; the coordinator
   sizes units to 20 ms of predicted work, so a costlier job has smaller units): units and
   pixel passes merged per second of wall time and per coordinator CPU-second (CPU per unit,
-  per pixel pass);
+  per pixel pass); with --ns-per-pixel the synthetic workers' threads take that long a pixel,
+  so the job's wall time shows how well its units keep the threads busy (pass barriers);
 - loss: during a second job one worker crashes (its connection closes with units in flight)
   and another hangs (it stops answering, its connection stays open): the time until the
   first's units are re-queued, and until the second is dropped (--silence-ms after its last
@@ -24,7 +25,8 @@ memory the kernel makes as it is first written, later ones may reuse a finished 
 
 usage: coordinator_capacity.py --build BUILD_DIR [--workers 32] [--threads 4] [--size 2048]
        [--passes 4] [--jobs 1] [--scene SDL] [--aa 1] [--settings JSON] [--real N]
-       [--heartbeat-ms 2000] [--silence-ms 10000] [--idle-seconds 6] [--smoke]
+       [--ns-per-pixel 0] [--heartbeat-ms 2000] [--silence-ms 10000] [--idle-seconds 6]
+       [--smoke]
 --smoke: seconds, tiny sizes, short heartbeats; exits 1 when a phase fails (the test command
 runs it, so a protocol change that breaks this script fails CI).
 
@@ -76,7 +78,7 @@ def pixel_count(p):
     grid in the rectangle, less the anchors of the coarser level (`exclude` in both coordinates)
     unless the pattern is "centres". Counted by rows and columns, not pixel by pixel: this one
     Python process answers every unit of every synthetic worker, and a loop over a unit's
-    16,132 pixels made it, not the coordinator, what set the pace."""
+    pixels (16,132 then) made it, not the coordinator, what set the pace."""
     x0, y0, x1, y1 = p["rect"]
     step, exclude = p["step"], p["exclude"]
     first = lambda v: (v + step - 1) // step * step
@@ -110,12 +112,16 @@ class FaultPlan:
 
 class Synthetic:
     """One synthetic worker. A fault dealt by `plan` ("crash" or "hang") strikes at once;
-    `fault_at` is then the time of its last message."""
+    `fault_at` is then the time of its last message. With `ns_per_pixel` each of its `threads`
+    takes that long a pixel over a unit (a sleep) before answering, so that the scheduler's
+    pass barriers and pipelines, not the coordinator's CPU, set the pace."""
 
-    def __init__(self, index, threads, plan):
+    def __init__(self, index, threads, plan, ns_per_pixel=0):
         self.name = "synthetic-%d" % index
         self.threads = threads
         self.plan = plan
+        self.ns_per_pixel = ns_per_pixel
+        self.idle_threads = None  # a semaphore of `threads`, made in the event loop
         self.received = self.sent = 0
         self.fault = self.fault_at = self.last_sent = self.writer = None
         self.error = None
@@ -168,15 +174,30 @@ class Synthetic:
                     writer.close()
                     return
                 await asyncio.Event().wait()  # hang: read nothing, answer nothing
-            if kind == UNIT:
-                count = pixel_count(header["pixels"])
-                # The coordinator checks the statistics against the unit (result_check.h).
-                stats = {"seconds": 0, "pixels": count, "samples": count, "camera_rays": count}
-                self.send(writer, frame(RESULT, {"job": header["job"], "unit": header["unit"],
-                                                 "count": count, "stats": stats},
-                                        bytes(12 * count)))
+            if kind == UNIT and self.ns_per_pixel:
+                asyncio.get_running_loop().create_task(self.render(writer, header))
+            elif kind == UNIT:
+                self.answer(writer, header, 0)
             elif kind == HEARTBEAT:
                 self.send(writer, frame(HEARTBEAT, {}))
+
+    def answer(self, writer, header, seconds):
+        count = pixel_count(header["pixels"])
+        # The coordinator checks the statistics against the unit (result_check.h).
+        stats = {"seconds": seconds, "pixels": count, "samples": count, "camera_rays": count}
+        self.send(writer, frame(RESULT, {"job": header["job"], "unit": header["unit"],
+                                         "count": count, "stats": stats}, bytes(12 * count)))
+
+    async def render(self, writer, header):
+        """--ns-per-pixel: the unit waits for one of the worker's threads, as a real worker's
+        queue does, and holds it for its pixels' time."""
+        if self.idle_threads is None:
+            self.idle_threads = asyncio.Semaphore(self.threads)
+        async with self.idle_threads:
+            seconds = pixel_count(header["pixels"]) * self.ns_per_pixel * 1e-9
+            await asyncio.sleep(seconds)
+            if not self.fault and not writer.is_closing():
+                self.answer(writer, header, seconds)
 
 
 def stat_fields(stat_path):
@@ -369,7 +390,8 @@ async def measure(args, coordinator, report):
     else:
         handshakes = asyncio.Semaphore(HANDSHAKES_AT_ONCE)
         plan = FaultPlan()
-        synthetic = [Synthetic(i, args.threads, plan) for i in range(args.workers)]
+        synthetic = [Synthetic(i, args.threads, plan, args.ns_per_pixel)
+                     for i in range(args.workers)]
         tasks = [asyncio.create_task(w.run(coordinator.worker_port, handshakes))
                  for w in synthetic]
         heartbeat = min(2.0, args.heartbeat_ms / 1e3)
@@ -493,6 +515,9 @@ def main():
                         help="more settings of the throughput job, a JSON object, e.g. "
                         "'{\"shadows\": \"soft\", \"cone_samples\": 64}' for costlier pixels, "
                         "so that the coordinator cuts smaller units")
+    parser.add_argument("--ns-per-pixel", type=float, default=0,
+                        help="synthetic workers' threads take this long a pixel over a unit "
+                        "(the job's wall time then shows how well units keep them busy)")
     parser.add_argument("--real", type=int, default=0)
     parser.add_argument("--heartbeat-ms", type=int, default=2000)
     parser.add_argument("--silence-ms", type=int, default=10000)

@@ -68,9 +68,10 @@ void BM_Progressive(benchmark::State& state) {
 }
 
 // The floor of the coordinator's merge (issue 22 §3: 200 M pixel passes a second on one core):
-// a 2048x2048 job's plan at 4 passes, in the capacity benchmark's units of 16,132 pixels, added
-// into a new frame buffer as Job::apply_result does, with nothing else (no socket, no
-// store, no checks). Items are pixel passes.
+// a 2048x2048 job's plan at 4 passes, in the capacity benchmark's units of 16,132 pixels (its
+// units before `units64k`, kept so that the figures compare), added into a new frame buffer
+// as Job::apply_result does, with nothing else (no socket, no store, no checks). Items are
+// pixel passes.
 struct MergedJob {
   Plan plan;
   long long pixel_passes = 0;

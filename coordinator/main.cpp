@@ -57,7 +57,7 @@ void write_port_file(const std::filesystem::path& path, unsigned short http_port
   std::filesystem::rename(partial, path);
 }
 
-// Every merged unit's values (up to 196 kB) are allocated on the io thread and freed by the
+// Every merged unit's values (up to 786 kB) are allocated on the io thread and freed by the
 // store's thread once written, a few hundred at a time. With glibc's defaults the freed heap
 // went back to the system whenever more than twice the largest such buffer lay free at its top,
 // and the next results faulted it in again, zeroed: 6,000-16,000 page faults a 2048x2048 job on

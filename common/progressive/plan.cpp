@@ -72,10 +72,23 @@ int level_count(int width, int height) {
 int block_side(int levels, int level) { return 1 << (levels - level); }
 
 long long unit_pixels_for_cost(double seconds_per_pixel_pass) {
-  constexpr long long kFewest = 256, kMost = 16384, kUnknown = 1024;
+  constexpr long long kFewest = 256, kUnknown = 1024;
   if (!(seconds_per_pixel_pass > 0)) return kUnknown;
   const double pixels = kUnitTargetSeconds / seconds_per_pixel_pass;
-  return pixels >= static_cast<double>(kMost) ? kMost : std::max(kFewest, std::llround(pixels));
+  return pixels >= static_cast<double>(kMostUnitPixels) ? kMostUnitPixels
+                                                        : std::max(kFewest, std::llround(pixels));
+}
+
+long long unit_pixels_for_threads(const PlanOptions& plan, int threads,
+                                  double seconds_per_pixel_pass) {
+  constexpr long long kKept = 16384;
+  if (plan.unit_pixels <= kKept || threads <= 0) return plan.unit_pixels;
+  const double fed =
+      std::min<double>(threads, seconds_per_pixel_pass / kCoordinatorSecondsPerPixelPass);
+  const long long units = std::max(1LL, std::llround(2 * fed));
+  const PixelRect area = plan.region.value_or(PixelRect{0, 0, plan.width, plan.height});
+  const long long pass_pixels = static_cast<long long>(area.width()) * area.height();
+  return std::clamp(pass_pixels / units, kKept, plan.unit_pixels);
 }
 
 Plan make_plan(const PlanOptions& o) {

@@ -75,9 +75,30 @@ Plan make_plan(const PlanOptions& options);
 // the preview smoothly.
 inline constexpr double kUnitTargetSeconds = 0.020;
 
+// The most traced pixels a unit is cut to: pixels cheaper than kUnitTargetSeconds / 65,536
+// (0.3 µs a pixel pass) get shorter units. Its result, 786 kB of floats, stays under the
+// coordinator's mmap threshold (1 MB, coordinator/main.cpp), so it comes from the reused heap.
+inline constexpr long long kMostUnitPixels = 65536;
+
 // Traced pixels a unit should hold so that it renders in kUnitTargetSeconds on one thread, given a
-// probe's seconds per pixel and pass. Between 256 and 16384; 1024 when the cost is unknown (0).
+// probe's seconds per pixel and pass. Between 256 and kMostUnitPixels; 1024 when the cost is
+// unknown (0).
 long long unit_pixels_for_cost(double seconds_per_pixel_pass);
+
+// The io thread's cost a pixel pass, merge and reads included, for later jobs of the capacity
+// benchmark (docs/SCALING.md): one coordinator core carries about seconds_per_pixel_pass / this
+// worker threads, however many connect.
+inline constexpr double kCoordinatorSecondsPerPixelPass = 6e-9;
+
+// `plan.unit_pixels` (unit_pixels_for_cost's), made smaller where a whole pass of the plan
+// would otherwise have fewer than two units for each thread the coordinator can keep busy
+// (`threads` connected, at most seconds_per_pixel_pass / kCoordinatorSecondsPerPixelPass):
+// the passes after the first wait for the one before, and a worker takes its threads' units
+// and a prefetch at once, so a pass of a few units left most threads idle (a 512x512 job's
+// wall time doubled, docs/SCALING.md). Never below 16,384 pixels, the most before
+// kMostUnitPixels; unchanged when `threads` is 0.
+long long unit_pixels_for_threads(const PlanOptions& plan, int threads,
+                                  double seconds_per_pixel_pass);
 
 UnitOrder parse_unit_order(const std::string& name);      // "centre"/"center"/"scanline"; throws
 PreviewMode parse_preview_mode(const std::string& name);  // "anchor"/"area"; throws

@@ -68,7 +68,7 @@ Frame decode_body(std::string_view body, const FrameLimits& limits);
 
 // A connection reads a frame in two steps: its first kFrameHead bytes (the length prefix, the
 // type and the header's length), then the header and the payload straight into their own
-// buffers (Payload::to_read), so that a result's pixels (up to 196 kB, one for every unit the
+// buffers (Payload::to_read), so that a result's pixels (up to 786 kB, one for every unit the
 // coordinator merges) are neither moved nor copied after the read.
 constexpr std::size_t kFrameHead = kFramePrefix + 5;
 struct FrameHead {

@@ -274,6 +274,7 @@ void Api::submit_job(const std::string& client, HttpRespond& respond,
             return [this, parsed, client, over_cap, too_many] {
               if (over_cap())
                 throw too_many;  // other submissions of this client finished meanwhile
+              fit_units_to_threads(*parsed, scheduler_.worker_totals().threads);
               std::function<std::int64_t(const JobRequest&)> store;
               if (config_.persistence)
                 store = [p = config_.persistence](const JobRequest& r) {

@@ -147,6 +147,11 @@ void check_scene(const Submission& sub, const std::optional<std::filesystem::pat
 
 }  // namespace
 
+void fit_units_to_threads(JobRequest& request, int threads) {
+  request.plan.unit_pixels =
+      unit_pixels_for_threads(request.plan, threads, request.seconds_per_pixel_pass);
+}
+
 void parse_settings(const json& s, const ServiceLimits& limits, JobRequest& out) {
   JobSettings settings;
   for (const auto& [key, value] : s.items()) {

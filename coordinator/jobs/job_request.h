@@ -50,6 +50,10 @@ JobRequest admit_job(const Submission& submission, const ServiceLimits& limits,
                      const std::optional<std::filesystem::path>& scenes_dir,
                      const IntakeBudget& budget = {});
 
+// At admission, on the io thread where the connected `threads` are known: the request's units
+// cut smaller so that a pass keeps the threads busy (unit_pixels_for_threads, plan.h).
+void fit_units_to_threads(JobRequest& request, int threads);
+
 // The settings object of a request ({"width", "height", "aa", ...}); throws ApiError.
 void parse_settings(const nlohmann::json& settings, const ServiceLimits& limits, JobRequest& out);
 

@@ -63,7 +63,7 @@ class JobObserver {
  public:
   virtual ~JobObserver() = default;
   // A unit's result was merged into the job's frame buffer (Job::apply_result): its values are
-  // handed over, not copied (a result is up to 16,384 pixels' floats).
+  // handed over, not copied (a result is up to 65,536 pixels' floats, kMostUnitPixels).
   virtual void merged(const Job& job, int unit, FloatValues values, const RenderStats& stats,
                       const std::string& worker) = 0;
   // The job started running or finished (its buffers are already released).

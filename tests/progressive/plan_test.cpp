@@ -215,10 +215,35 @@ TEST(PlanNames, ParseAndPrint) {
 }
 
 TEST(UnitPixelsForCost, AUnitRendersInAbout20Milliseconds) {
-  EXPECT_EQ(unit_pixels_for_cost(10e-6), 2000);  // 10 µs a pixel: 2000 pixels
-  EXPECT_EQ(unit_pixels_for_cost(1e-3), 256);    // expensive pixels: no fewer than 256
-  EXPECT_EQ(unit_pixels_for_cost(1e-9), 16384);  // cheap pixels: no more than 16384
-  EXPECT_EQ(unit_pixels_for_cost(0), 1024);      // unknown cost
+  EXPECT_EQ(unit_pixels_for_cost(10e-6), 2000);            // 10 µs a pixel: 2000 pixels
+  EXPECT_EQ(unit_pixels_for_cost(1e-3), 256);              // expensive pixels: no fewer than 256
+  EXPECT_EQ(unit_pixels_for_cost(0.5e-6), 40000);          // cheap pixels still get about 20 ms...
+  EXPECT_EQ(unit_pixels_for_cost(1e-9), kMostUnitPixels);  // ...up to 65,536 pixels
+  EXPECT_EQ(unit_pixels_for_cost(0), 1024);                // unknown cost
+}
+
+TEST(UnitPixelsForThreads, APassKeepsTwoUnitsForEachThreadTheCoordinatorFeeds) {
+  const double cheap = 0.3e-6;  // 0.3 µs a pixel pass: kMostUnitPixels a unit, 50 threads fed
+  const PlanOptions small{.width = 512, .height = 512, .unit_pixels = unit_pixels_for_cost(cheap)};
+  EXPECT_EQ(small.unit_pixels, kMostUnitPixels);
+  EXPECT_EQ(unit_pixels_for_threads(small, 8, cheap), 512 * 512 / 16);
+  EXPECT_EQ(unit_pixels_for_threads(small, 1, cheap), kMostUnitPixels);  // 4 units a pass
+  EXPECT_EQ(unit_pixels_for_threads(small, 0, cheap), kMostUnitPixels);  // no thread known
+  // Never smaller than the former cap, whatever the threads.
+  EXPECT_EQ(unit_pixels_for_threads(small, 1000, cheap), 16384);
+  // Threads beyond those the coordinator carries add no units: 2 x 50 a pass, not 2 x 128.
+  const PlanOptions large{.width = 2048, .height = 2048, .unit_pixels = kMostUnitPixels};
+  EXPECT_EQ(unit_pixels_for_threads(large, 128, cheap), 2048 * 2048 / 100);
+  EXPECT_EQ(unit_pixels_for_threads(large, 16, cheap), kMostUnitPixels);
+  // A region's pass is the region's pixels.
+  const PlanOptions region{.width = 4096,
+                           .height = 4096,
+                           .unit_pixels = kMostUnitPixels,
+                           .region = PixelRect{1024, 1024, 1536, 1536}};
+  EXPECT_EQ(unit_pixels_for_threads(region, 8, cheap), 512 * 512 / 16);
+  // Units sized by their cost below the former cap are left alone.
+  const PlanOptions costly{.width = 512, .height = 512, .unit_pixels = 2000};
+  EXPECT_EQ(unit_pixels_for_threads(costly, 64, 10e-6), 2000);
 }
 
 }  // namespace
