@@ -15,11 +15,12 @@ RenderSettings hard_shadows() {
   return s;
 }
 
-Material matte() {
+// A white matte material: diffuse 0.5, nothing else.
+const Material kMatte = [] {
   Material m = black_material();
   m.diffuse = {0.5, 0.5, 0.5};
   return m;
-}
+}();
 
 // A torus in the XY plane (R = 1, r = 0.4) lit from (-5, 0, 0): seen from its centre along +x,
 // the inner side of the tube at (0.6, 0, 0) faces the light, but the far side of the tube
@@ -28,7 +29,7 @@ Material matte() {
 TEST(LightBufferShadows, TheInnerSideOfATorusIsShadowedByItself) {
   Scene scene;
   scene.camera = camera_on_z();
-  scene.objects.push_back(object(Torus{0.4, 1}, Affine::identity(), matte()));
+  scene.objects.push_back(object(Torus{0.4, 1}, Affine::identity(), kMatte));
   scene.lights.push_back(point_light({-5, 0, 0}, {1, 1, 1}));
   const PreparedScene prepared(scene, BvhMode::Sah);
   ASSERT_NE(prepared.light_buffer(0), nullptr);
@@ -52,7 +53,7 @@ TEST(LightBufferShadows, TransparentBlockersMultiply) {
     scene.camera = camera_on_z();
     scene.globals.shadow_feeler_epsilon = 0.01;
     scene.objects.push_back(
-        object(Cube{}, Affine::translation({0, -1, 0}) * Affine::scaling({5, 1, 5}), matte()));
+        object(Cube{}, Affine::translation({0, -1, 0}) * Affine::scaling({5, 1, 5}), kMatte));
     double expected = 0.5;
     for (int k = 0; k < slabs; ++k) {
       Material glass = black_material();
