@@ -219,6 +219,41 @@ Bvh build_scene_bvh(const std::vector<Bounds3>& bounds, const std::vector<bool>&
   return bvh;
 }
 
+bool convex_solid(const ShapeGeometry& geometry) {
+  if (std::holds_alternative<Sphere>(geometry) || std::holds_alternative<Cube>(geometry))
+    return true;
+  const auto* cylinder = std::get_if<TaperedCylinder>(&geometry);
+  return cylinder && cylinder->wall && cylinder->base_cap && cylinder->top_cap;
+}
+
+std::vector<bool> find_convex(const std::vector<Instance>& instances) {
+  std::vector<bool> out;
+  out.reserve(instances.size());
+  for (const Instance& instance : instances) out.push_back(convex_solid(instance.geometry));
+  return out;
+}
+
+// At most this many lights get a light buffer (1.5 MB and about a millisecond each).
+constexpr int kMaxLightBuffers = 16;
+
+// A light buffer for each point light and spotlight that casts shadows, over the objects the
+// scene BVH holds (children of boolean objects are reached through their parents).
+std::vector<std::optional<LightBuffer>> build_light_buffers(const Scene& scene, const Bvh& bvh,
+                                                            const std::vector<Bounds3>& bounds) {
+  std::vector<Bounds3> top_bounds;
+  top_bounds.reserve(bvh.primitive_order.size());
+  for (const std::uint32_t index : bvh.primitive_order) top_bounds.push_back(bounds[index]);
+  std::vector<std::optional<LightBuffer>> out(scene.lights.size());
+  int built = 0;
+  for (std::size_t l = 0; l < scene.lights.size() && built < kMaxLightBuffers; ++l) {
+    const Light& light = scene.lights[l];
+    if (light.is_directional || !light.casts_shadows) continue;
+    out[l].emplace(light.position, top_bounds, bvh.primitive_order);
+    ++built;
+  }
+  return out;
+}
+
 }  // namespace
 
 PreparedScene::PreparedScene(const Scene& scene, BvhMode mode, int build_threads)
@@ -275,6 +310,9 @@ PreparedScene::PreparedScene(const Scene& scene, BvhMode mode, int build_threads
   }
   bvh_ = build_scene_bvh(bounds, csg_children, mode);
   transparent_neighbours_ = find_transparent_neighbours(*scene_, effects_, bounds, csg_children);
+  convex_ = find_convex(instances_);
+  if (mode != BvhMode::None) light_buffers_ = build_light_buffers(*scene_, bvh_, bounds);
+  light_buffers_.resize(scene_->lights.size());
 }
 
 }  // namespace tessera

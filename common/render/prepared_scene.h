@@ -5,6 +5,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -13,6 +14,7 @@
 #include "common/geometry/instance.h"
 #include "common/image/image.h"
 #include "common/render/effects.h"
+#include "common/render/light_buffer.h"
 #include "common/scene/scene.h"
 #include "common/texture/surface_texture.h"
 
@@ -72,6 +74,16 @@ class PreparedScene {
   const std::vector<std::uint32_t>& transparent_neighbours(std::uint32_t instance) const {
     return transparent_neighbours_[instance];
   }
+  // The light buffer of Scene::lights[light] for hard shadow feelers, or null: directional
+  // lights, lights that cast no shadows, renders without a BVH and scenes too large for one
+  // (LightBuffer::kMaxEntries) have none.
+  const LightBuffer* light_buffer(std::size_t light) const {
+    return light_buffers_[light] && !light_buffers_[light]->empty() ? &*light_buffers_[light]
+                                                                    : nullptr;
+  }
+  // Whether the instance is a closed convex solid under an affine map (sphere, cube, closed
+  // tapered cylinder): a ray leaving its surface outward cannot meet it again.
+  bool convex(std::uint32_t instance) const { return convex_[instance]; }
   // What the scene asks for that this renderer does not simulate, or that changes nothing
   // here, one line each.
   const std::vector<std::string>& unsupported() const { return unsupported_; }
@@ -87,6 +99,8 @@ class PreparedScene {
   std::vector<ObjectTexture> textures_;  // per instance; empty when no shape has a texture
   Bvh bvh_;
   std::vector<std::vector<std::uint32_t>> transparent_neighbours_;
+  std::vector<std::optional<LightBuffer>> light_buffers_;  // per Scene::lights
+  std::vector<bool> convex_;                               // per instance
   std::vector<std::string> unsupported_;
 };
 

@@ -190,6 +190,44 @@ double Tracer::shadow_factor(const Feeler& feeler) {
   return factor;
 }
 
+double Tracer::point_shadow(const Feeler& feeler, const Hit& hit, std::size_t light) {
+  const LightBuffer* buffer = scene_.light_buffer(light);
+  if (!buffer) return shadow_factor(feeler);
+  const LightBuffer::Candidates candidates = buffer->candidates(feeler.ray.origin);
+  if (candidates.walk) return shadow_factor(feeler);
+  ++stats_.shadow_rays;
+  poll_interrupt();
+  // No other object can block the feeler: each candidate's own test is all the walk would
+  // have found, and with at most two factors their product does not depend on their order.
+  double factor = 1;
+  for (int k = 0; k < candidates.count && factor > 0; ++k) {
+    const std::uint32_t index = candidates.ids[k];
+    if (index == hit.instance && leaves_own_hull(hit, feeler.ray.direction)) continue;
+    std::uint32_t object = 0;
+    if (occluded_instance(scene_.instances()[index], feeler.ray, feeler.t_max, object,
+                          stats_.intersections))
+      factor *= scene_.scene().objects[object].material.transparency;
+  }
+  return factor;
+}
+
+bool Tracer::leaves_own_hull(const Hit& hit, const Vec3& d) const {
+  // A convex solid cannot block a feeler that leaves it outward: the feeler starts on the outer
+  // side of the plane that touches the solid there (the offset put it beyond the hit's
+  // rounding) and moves away from it; the margin on the angle covers the normal's rounding.
+  // A torus's outer half (rho >= R) lies on the boundary of its convex hull, with the same
+  // normal: a feeler leaving it outward leaves the hull.
+  constexpr double kLeastCosine = 1e-6;
+  const double along = dot(hit.world.normal, d);
+  if (!(along > 0 && along * along > kLeastCosine * kLeastCosine * dot(d, d))) return false;
+  if (scene_.convex(hit.instance)) return true;
+  const auto* torus = std::get_if<Torus>(&scene_.instances()[hit.instance].geometry);
+  if (!torus) return false;
+  const Vec3& p = hit.world.object_point;
+  const double big = torus->torus_radius;
+  return p.x * p.x + p.y * p.y > big * big * (1 + kLeastCosine);
+}
+
 Vec3 Tracer::spawn_offset(const Hit& hit, double epsilon) const {
   const SceneGlobals& g = scene_.scene().globals;
   if (std::holds_alternative<MeshShape>(scene_.instances()[hit.world.object].geometry))
@@ -341,7 +379,9 @@ Rgb Tracer::local_illumination(const Hit& hit, const Material& m, const SurfaceC
     double shadow = 1;  // eq. 4.24-4.26: the share of the light that reaches the hit
     if constexpr (kShadows == ShadowMode::Hard) {
       if (light.casts_shadows)
-        shadow = shadow_factor(feeler(hit, feeler_offset, directional, l, light.position));
+        shadow = directional ? shadow_factor(feeler(hit, feeler_offset, true, l, light.position))
+                             : point_shadow(feeler(hit, feeler_offset, false, l, light.position),
+                                            hit, index);
     } else if constexpr (kShadows == ShadowMode::Soft) {
       if (light.casts_shadows)
         shadow = soft_visibility(hit, feeler_offset, light, l, distance, rng);

@@ -1,0 +1,174 @@
+#include "common/render/light_buffer.h"
+
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <limits>
+
+namespace tessera {
+
+namespace {
+
+constexpr int kN = LightBuffer::kCells;
+constexpr double kHalf = kN / 2.0;
+// The largest tangent of a direction a face may be asked about, widened by a cell.
+constexpr double kWidened = 1 + 2.0 / kN;
+
+// Bounds are shrunk by this share of themselves, and by this share of the coordinates' magnitude,
+// before they are stored: far more than the rounding of the bounds, of the feeler's origin and of
+// its squared distance (a few units in the last place each).
+constexpr double kRelativeMargin = 1e-9;
+
+// The least u^2 over cell i widened by a cell on each side: the least squared tangent of any
+// direction whose rounding could have put it in cell i.
+std::array<double, kN> least_squared_tangents() {
+  std::array<double, kN> out{};
+  for (int i = 0; i < kN; ++i) {
+    const double lo = -1 + (i - 1) / kHalf, hi = -1 + (i + 2) / kHalf;
+    const double least = lo <= 0 && hi >= 0 ? 0 : std::min(std::fabs(lo), std::fabs(hi));
+    out[i] = least * least;
+  }
+  return out;
+}
+
+// The cells [first, last] a coordinate range [lo, hi] reaches, widened by a cell each side so
+// that a feeler whose direction rounding moved into a neighbouring cell (or onto the next face)
+// still finds the object; false when it reaches none.
+bool cell_range(double lo, double hi, int& first, int& last) {
+  // Clamped before the conversion: a box near the light's plane projects to huge tangents.
+  const double a = std::clamp((lo + 1) * kHalf, -4.0, kN + 4.0);
+  const double b = std::clamp((hi + 1) * kHalf, -4.0, kN + 4.0);
+  first = std::max(static_cast<int>(std::floor(a)) - 1, 0);
+  last = std::min(static_cast<int>(std::floor(b)) + 1, kN - 1);
+  return first <= last;
+}
+
+bool finite(const Bounds3& b) {
+  return std::isfinite(b.lo.x) && std::isfinite(b.lo.y) && std::isfinite(b.lo.z) &&
+         std::isfinite(b.hi.x) && std::isfinite(b.hi.y) && std::isfinite(b.hi.z);
+}
+
+}  // namespace
+
+LightBuffer::LightBuffer(const Vec3& light, std::span<const Bounds3> bounds,
+                         std::span<const std::uint32_t> ids)
+    : light_(light), cells_(6 * kN * kN) {
+  static const std::array<double, kN> tangents = least_squared_tangents();
+  const double light_size = max_component(abs(light));
+  if (std::any_of(ids.begin(), ids.end(), [](std::uint32_t id) { return id > kMaxId; })) {
+    cells_.clear();
+    return;
+  }
+  std::size_t entries = 0;
+  for (std::size_t o = 0; o < bounds.size(); ++o) {
+    const Bounds3& box = bounds[o];
+    if (box.empty()) continue;
+    // The box relative to the light, and the distance from the light to it.
+    const Vec3 lo = box.lo - light, hi = box.hi - light;
+    const bool bounded = finite(box);
+    double euclid = 0;
+    for (int k = 0; k < 3; ++k) {
+      const double gap = std::max({lo[k], -hi[k], 0.0});
+      euclid += gap * gap;
+    }
+    if (!bounded) euclid = 0;
+    const double margin =
+        kRelativeMargin *
+        (light_size +
+         (bounded ? std::max(max_component(abs(box.lo)), max_component(abs(box.hi))) : 0));
+    // A lower bound `reach` squared, stored shrunk by the margins.
+    const auto store = [&](std::size_t cell, double reach_squared) {
+      const double shrunk = std::sqrt(reach_squared) * (1 - kRelativeMargin) - margin;
+      insert(cell, shrunk > 0 ? shrunk * shrunk : 0, ids[o]);
+      ++entries;
+    };
+    for (int face = 0; face < 6; ++face) {
+      const int k = face / 2, ka = (k + 1) % 3, kb = (k + 2) % 3;
+      // The face's axis points away from the light: along +k, or -k for odd faces.
+      // A point in the face's pyramid is at least as far along the axis as across it (up to
+      // the widening by a cell, and rounding): the part of the box nearer along the axis than
+      // it is across lies in other faces' pyramids.
+      const double across = std::max({lo[ka], -hi[ka], lo[kb], -hi[kb], 0.0}) / kWidened;
+      const double major_lo = std::max(face % 2 ? -hi[k] : lo[k], across);
+      const double major_hi = face % 2 ? -lo[k] : hi[k];
+      const std::size_t base = static_cast<std::size_t>(face) * kN * kN;
+      if (!(major_hi >= major_lo - margin) && bounded) continue;  // wholly in other faces
+      if (!(major_lo > margin) || !bounded) {
+        // The box reaches the light's side of the face's plane: its projection is unbounded.
+        for (std::size_t c = 0; c < kN * kN; ++c) store(base + c, euclid);
+      } else {
+        const double u_lo = std::min(lo[ka] / major_lo, lo[ka] / major_hi);
+        const double u_hi = std::max(hi[ka] / major_lo, hi[ka] / major_hi);
+        const double v_lo = std::min(lo[kb] / major_lo, lo[kb] / major_hi);
+        const double v_hi = std::max(hi[kb] / major_lo, hi[kb] / major_hi);
+        int i0, i1, j0, j1;
+        if (!cell_range(u_lo, u_hi, i0, i1) || !cell_range(v_lo, v_hi, j0, j1)) continue;
+        // A point of the box in cell (i, j) is at least major_lo along the axis and its
+        // tangents are at least those of the widened cell: its distance is no less.
+        for (int i = i0; i <= i1; ++i)
+          for (int j = j0; j <= j1; ++j)
+            store(base + static_cast<std::size_t>(i) * kN + j,
+                  std::max(euclid, major_lo * major_lo * (1 + tangents[i] + tangents[j])));
+      }
+      if (entries > kMaxEntries) {
+        cells_.clear();
+        return;
+      }
+    }
+  }
+}
+
+void LightBuffer::insert(std::size_t cell, double reach_squared_double, std::uint32_t id) {
+  float reach =
+      static_cast<float>(std::min(reach_squared_double, double{std::numeric_limits<float>::max()}));
+  if (reach > reach_squared_double) reach = std::nextafter(reach, 0.0f);
+  Cell& c = cells_[cell];
+  if (!(reach < c.reach[2])) return;
+  if (!(reach < c.reach[1])) {
+    c.reach[2] = reach;
+  } else if (!(reach < c.reach[0])) {
+    c.reach[2] = c.reach[1];
+    c.reach[1] = reach;
+    c.ids[1] = static_cast<std::uint16_t>(id);
+  } else {
+    c.reach[2] = c.reach[1];
+    c.reach[1] = c.reach[0];
+    c.ids[1] = c.ids[0];
+    c.reach[0] = reach;
+    c.ids[0] = static_cast<std::uint16_t>(id);
+  }
+}
+
+LightBuffer::Candidates LightBuffer::candidates(const Vec3& origin) const {
+  Candidates out;
+  if (cells_.empty()) return out;
+  const Vec3 v = origin - light_;
+  const double squared = dot(v, v);
+  if (!(squared > 0 && squared < kInfinity)) return out;  // NaN too
+  // The face of the largest coordinate (ties to the first) and the tangents across it, as
+  // cells. A cell here may differ from the build's by rounding: each object covers one more.
+  const double ax = std::fabs(v.x), ay = std::fabs(v.y), az = std::fabs(v.z);
+  double major, a, b;
+  int face;
+  if (ax >= ay && ax >= az) {
+    major = v.x, a = v.y, b = v.z, face = 0;
+  } else if (ay >= az) {
+    major = v.y, a = v.z, b = v.x, face = 2;
+  } else {
+    major = v.z, a = v.x, b = v.y, face = 4;
+  }
+  if (major < 0) ++face;
+  const double scale = kHalf / std::fabs(major);
+  // In [0, kN] (a tangent is at most 1), truncated towards zero.
+  const int i = std::min(static_cast<int>(a * scale + kHalf), kN - 1);
+  const int j = std::min(static_cast<int>(b * scale + kHalf), kN - 1);
+  const Cell& c = cells_[(static_cast<std::size_t>(face) * kN + i) * kN + j];
+  if (!(squared < c.reach[2])) return out;
+  out.walk = false;
+  out.count = squared < c.reach[0] ? 0 : squared < c.reach[1] ? 1 : 2;
+  out.ids[0] = c.ids[0];
+  out.ids[1] = c.ids[1];
+  return out;
+}
+
+}  // namespace tessera

@@ -1,0 +1,91 @@
+// Hard shadows through the light buffer (common/render/light_buffer.h): feelers that skip the
+// BVH walk still find every blocker, their own object's included where it can block them.
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "tests/render/scene_builder.h"
+
+namespace tessera::test {
+namespace {
+
+RenderSettings hard_shadows() {
+  RenderSettings s = settings(8, 8);
+  s.shadows = ShadowMode::Hard;
+  return s;
+}
+
+// A white matte material: diffuse 0.5, nothing else.
+const Material kMatte = [] {
+  Material m = black_material();
+  m.diffuse = {0.5, 0.5, 0.5};
+  return m;
+}();
+
+// A torus in the XY plane (R = 1, r = 0.4) lit from (-5, 0, 0): seen from its centre along +x,
+// the inner side of the tube at (0.6, 0, 0) faces the light, but the far side of the tube
+// stands between. The feeler leaves its own surface outward, yet where the surface is not the
+// convex hull's the torus itself blocks it.
+TEST(LightBufferShadows, TheInnerSideOfATorusIsShadowedByItself) {
+  Scene scene;
+  scene.camera = camera_on_z();
+  scene.objects.push_back(object(Torus{0.4, 1}, Affine::identity(), kMatte));
+  scene.lights.push_back(point_light({-5, 0, 0}, {1, 1, 1}));
+  const PreparedScene prepared(scene, BvhMode::Sah);
+  ASSERT_NE(prepared.light_buffer(0), nullptr);
+  const Ray inward{{0, 0, 0}, {1, 0, 0}, 0};
+  EXPECT_EQ(trace_ray(prepared, inward, hard_shadows()).g, 0.0);
+  RenderSettings unshadowed = hard_shadows();
+  unshadowed.shadows = ShadowMode::None;
+  EXPECT_NEAR(trace_ray(prepared, inward, unshadowed).g, 0.5, 1e-9);
+  // The outer side at (-1.4, 0, 0), seen from -x, faces the light with nothing between.
+  EXPECT_NEAR(trace_ray(prepared, {{-3, 0, 0}, {1, 0, 0}, 0}, hard_shadows()).g, 0.5, 1e-9);
+}
+
+// Transparent slabs between a floor and the light straight above it: one or two are each
+// tested alone (the buffer's candidates; the floor, 0.01 below the feeler's origin in its
+// direction, is not one), three make the feeler walk the BVH. The factor is their product
+// either way, and the walk's without a BVH.
+TEST(LightBufferShadows, TransparentBlockersMultiply) {
+  const double transparencies[] = {0.5, 0.25, 0.75};
+  for (int slabs = 0; slabs <= 3; ++slabs) {
+    Scene scene;
+    scene.camera = camera_on_z();
+    scene.globals.shadow_feeler_epsilon = 0.01;
+    scene.objects.push_back(
+        object(Cube{}, Affine::translation({0, -1, 0}) * Affine::scaling({5, 1, 5}), kMatte));
+    double expected = 0.5;
+    for (int k = 0; k < slabs; ++k) {
+      Material glass = black_material();
+      glass.transparency = transparencies[k];
+      scene.objects.push_back(object(
+          Cube{}, Affine::translation({0, 1.0 + k, 0}) * Affine::scaling({1, 0.1, 1}), glass));
+      expected *= transparencies[k];
+    }
+    scene.lights.push_back(point_light({0, 6, 0}, {1, 1, 1}));
+    const PreparedScene prepared(scene, BvhMode::Sah);
+    const PreparedScene walked(scene, BvhMode::None);  // no BVH, no buffer
+    ASSERT_NE(prepared.light_buffer(0), nullptr);
+    ASSERT_EQ(walked.light_buffer(0), nullptr);
+    const Ray down{{0, 0.5, 0}, {0, -1, 0}, 0};
+    // The BVH nodes the feeler visits: those of a render with it less those of one without.
+    const auto bvh_nodes = [&](ShadowMode mode, double& value) {
+      RenderSettings s = hard_shadows();
+      s.shadows = mode;
+      RenderStats stats;
+      Tracer tracer(prepared, s, stats);
+      SampleStream rng(s.seed, 0, 0, 0);
+      value = tracer.trace(down, RayKind::Camera, 0, 1, MediumStack{}, rng).g;
+      return stats.intersections.bvh_nodes;
+    };
+    double got = 0, unshadowed = 0;
+    const std::uint64_t feeler_nodes =
+        bvh_nodes(ShadowMode::Hard, got) - bvh_nodes(ShadowMode::None, unshadowed);
+    EXPECT_EQ(got, expected) << slabs << " slabs";
+    EXPECT_EQ(got, trace_ray(walked, down, hard_shadows()).g) << slabs << " slabs";
+    EXPECT_EQ(feeler_nodes == 0, slabs < 3) << slabs << " slabs: " << feeler_nodes;
+  }
+}
+
+}  // namespace
+}  // namespace tessera::test
