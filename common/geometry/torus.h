@@ -7,11 +7,12 @@
 namespace tessera {
 
 // True only when no query of torus.cpp reports a hit of the torus on the ray (object space),
-// so that a shadow ray need not form its quartic: its origin
-// lies on or outside the tube's outer half (rho >= R), and the ray moves away from the plane there
-// that bounds the whole torus, steeply enough that the quartic's rounding cannot put a root beyond
-// the distance at which a hit counts as the surface the ray leaves. Most shadow rays leaving a
-// torus's own surface. False says nothing.
+// so that a shadow ray need not form its quartic: its origin lies on or outside the tube's outer
+// half (rho >= R) and the ray moves away from the plane there that bounds the whole torus, or it
+// lies in the inner half (rho < R) and the ray rises away from the torus's plane, out of its slab
+// |z| <= r, faster than it can near the tube, in both cases steeply enough that the quartic's
+// rounding cannot put a root beyond the distance at which a hit counts as the surface the ray
+// leaves. Most shadow rays leaving a torus's own surface. False says nothing.
 bool leaves_the_torus_for_good(const Torus& torus, const Ray& ray);
 
 }  // namespace tessera
