@@ -2,7 +2,6 @@
 
 #include <algorithm>
 #include <array>
-#include <bit>
 #include <cmath>
 #include <limits>
 
@@ -47,15 +46,6 @@ bool cell_range(double lo, double hi, int& first, int& last) {
 bool finite(const Bounds3& b) {
   return std::isfinite(b.lo.x) && std::isfinite(b.lo.y) && std::isfinite(b.lo.z) &&
          std::isfinite(b.hi.x) && std::isfinite(b.hi.y) && std::isfinite(b.hi.z);
-}
-
-// A non-negative float cut to its kCodeBits bits after the sign: a lower bound on it, as a code
-// (in a std::uint64_t, to be packed three in a cell), and the float the code stands for.
-constexpr int kCut = 32 - 1 - LightBuffer::kCodeBits;
-constexpr std::uint64_t kCodeMask = (std::uint64_t{1} << LightBuffer::kCodeBits) - 1;
-std::uint64_t truncated(float f) { return std::bit_cast<std::uint32_t>(f) >> kCut; }
-float untruncated(std::uint64_t code) {
-  return std::bit_cast<float>(static_cast<std::uint32_t>(code << kCut));
 }
 
 }  // namespace
@@ -132,28 +122,21 @@ void LightBuffer::insert(std::size_t cell, double reach_squared_double, std::uin
   float reach =
       static_cast<float>(std::min(reach_squared_double, double{std::numeric_limits<float>::max()}));
   if (reach > reach_squared_double) reach = std::nextafter(reach, 0.0f);
-  const std::uint64_t code = truncated(reach);
   Cell& c = cells_[cell];
-  std::uint64_t packed = c.reach[0] | std::uint64_t{c.reach[1]} << 32;
-  std::uint64_t r[3] = {packed & kCodeMask, packed >> kCodeBits & kCodeMask,
-                        packed >> 2 * kCodeBits};
-  if (!(code < r[2])) return;
-  if (!(code < r[1])) {
-    r[2] = code;
-  } else if (!(code < r[0])) {
-    r[2] = r[1];
-    r[1] = code;
+  if (!(reach < c.reach[2])) return;
+  if (!(reach < c.reach[1])) {
+    c.reach[2] = reach;
+  } else if (!(reach < c.reach[0])) {
+    c.reach[2] = c.reach[1];
+    c.reach[1] = reach;
     c.ids[1] = static_cast<std::uint16_t>(id);
   } else {
-    r[2] = r[1];
-    r[1] = r[0];
+    c.reach[2] = c.reach[1];
+    c.reach[1] = c.reach[0];
     c.ids[1] = c.ids[0];
-    r[0] = code;
+    c.reach[0] = reach;
     c.ids[0] = static_cast<std::uint16_t>(id);
   }
-  packed = r[0] | r[1] << kCodeBits | r[2] << 2 * kCodeBits;
-  c.reach[0] = static_cast<std::uint32_t>(packed);
-  c.reach[1] = static_cast<std::uint32_t>(packed >> 32);
 }
 
 LightBuffer::Candidates LightBuffer::candidates(const Vec3& origin) const {
@@ -180,12 +163,9 @@ LightBuffer::Candidates LightBuffer::candidates(const Vec3& origin) const {
   const int i = std::min(static_cast<int>(a * scale + kHalf), kN - 1);
   const int j = std::min(static_cast<int>(b * scale + kHalf), kN - 1);
   const Cell& c = cells_[(static_cast<std::size_t>(face) * kN + i) * kN + j];
-  const std::uint64_t packed = c.reach[0] | std::uint64_t{c.reach[1]} << 32;
-  if (!(squared < untruncated(packed >> 2 * kCodeBits))) return out;
+  if (!(squared < c.reach[2])) return out;
   out.walk = false;
-  out.count = squared < untruncated(packed & kCodeMask)                ? 0
-              : squared < untruncated(packed >> kCodeBits & kCodeMask) ? 1
-                                                                       : 2;
+  out.count = squared < c.reach[0] ? 0 : squared < c.reach[1] ? 1 : 2;
   out.ids[0] = c.ids[0];
   out.ids[1] = c.ids[1];
   return out;

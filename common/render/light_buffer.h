@@ -10,6 +10,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <span>
 #include <vector>
 
@@ -20,15 +21,13 @@ namespace tessera {
 
 class LightBuffer {
  public:
-  // Cells along each side of a cube face (6 * kCells^2 cells a light, 1.1 MB). Finer cells
+  // Cells along each side of a cube face (6 * kCells^2 cells a light, 1.5 MB). Finer cells
   // let more feelers skip the walk; docs/PERFORMANCE.md has 32, 64 and 96 measured against it.
   static constexpr int kCells = 128;
   // Past this many cell entries (objects times the cells their bounds cover), or with an id
   // past kMaxId, a light gets no buffer: its build would cost more than its feelers save.
   static constexpr std::size_t kMaxEntries = std::size_t{1} << 22;
-  static constexpr std::uint32_t kMaxId = 0xFFFF;  // a cell is 12 bytes
-  // The bits of each of a cell's three bounds (below).
-  static constexpr int kCodeBits = 21;
+  static constexpr std::uint32_t kMaxId = 0xFFFF;  // a cell is 16 bytes
 
   // The objects that may block a feeler from some origin to the light: at most two, or
   // `walk` when there may be more (or the buffer cannot tell).
@@ -50,20 +49,14 @@ class LightBuffer {
   bool empty() const { return cells_.empty(); }
 
  private:
-  // The three least lower bounds (squared, shrunk by a margin, rounded down to floats and then
-  // cut to 21 bits: 8 of exponent, 13 of mantissa, codes that order as the bounds do) over the
-  // objects whose bounds reach the cell or one of its neighbours, and the ids of the two
-  // nearest: 12 bytes, where float bounds took 16 (1.5 MB a light). 16-bit codes (7 bits of
-  // mantissa) made the feeler's own surface a candidate too often: docs/PERFORMANCE.md.
-  struct Cell {
-    // Three codes, the nearest in the lowest bits.
-    std::uint32_t reach[2] = {static_cast<std::uint32_t>(kNoReaches),
-                              static_cast<std::uint32_t>(kNoReaches >> 32)};
+  // The three least lower bounds (squared, shrunk by a margin, rounded down to floats) over
+  // the objects whose bounds reach the cell or one of its neighbours, and the ids of the two
+  // nearest.
+  struct alignas(16) Cell {
+    float reach[3] = {kNoReach, kNoReach, kNoReach};
     std::uint16_t ids[2] = {};
   };
-  static constexpr std::uint64_t kNoReach = 0x7F800000 >> (32 - 1 - kCodeBits);  // infinity
-  static constexpr std::uint64_t kNoReaches =
-      kNoReach | kNoReach << kCodeBits | kNoReach << 2 * kCodeBits;
+  static constexpr float kNoReach = std::numeric_limits<float>::infinity();
   void insert(std::size_t cell, double reach_squared, std::uint32_t id);
 
   Vec3 light_;
