@@ -30,11 +30,6 @@ Vec3 perturb_normal(const Vec3& n, double roughness, SampleStream& rng) {
   return normalize_or(p, n);
 }
 
-// Eq. 4.13: the mirror direction of `ray` about `normal` (the ray's own when that vanishes).
-inline Vec3 mirror_direction(const Ray& ray, const Vec3& normal) {
-  return normalize_or(reflect(ray.direction, normal), ray.direction);
-}
-
 // The positive part of a cosine, or its absolute value when back faces are lit (§4.1.3).
 double facing(double cosine, bool light_back_faces) {
   return light_back_faces ? std::fabs(cosine) : std::max(cosine, 0.0);
@@ -137,72 +132,36 @@ bool Tracer::closest_hit(const Ray& ray, Hit& hit) {
   return found;
 }
 
-void Tracer::find_hits_together(const Ray* rays, int count, PacketLane* lanes) {
+void Tracer::find_packet_hits(const Ray* rays, int count) {
   const std::vector<Instance>& instances = scene_.instances();
   double t_max[kPacketLanes];
   for (int l = 0; l < count; ++l) {
-    lanes[l].ray = rays[l];
-    lanes[l].found = false;
-    lanes[l].hit.time = rays[l].time;
-    lanes[l].mirror = nullptr;
+    packet_rays_[l] = rays[l];
+    packet_found_[l] = false;
+    packet_hits_[l].time = rays[l].time;
     t_max[l] = kInfinity;
   }
   // The leaf visit of closest_hit's traverse_bvh, per ray.
   traverse_bvh_packet_leaves(scene_.bvh(), PacketRays(rays, count), t_max,
                              stats_.intersections.bvh_nodes,
                              [&](int lane, std::uint32_t first, std::uint32_t size, double limit) {
-                               PacketLane& p = lanes[lane];
+                               Hit& hit = packet_hits_[lane];
                                for (std::uint32_t i = first; i < first + size; ++i) {
                                  const std::uint32_t index = scene_.bvh().primitive_order[i];
-                                 if (!intersect_instance(instances[index], p.ray, limit,
-                                                         p.hit.world, stats_.intersections))
+                                 if (!intersect_instance(instances[index], packet_rays_[lane],
+                                                         limit, hit.world, stats_.intersections))
                                    continue;
-                                 p.hit.instance = index;
-                                 p.found = true;
-                                 limit = p.hit.world.t;
+                                 hit.instance = index;
+                                 packet_found_[lane] = true;
+                                 limit = hit.world.t;
                                }
                                return limit;
                              });
 }
 
-void Tracer::find_packet_hits(const Ray* rays, int count) {
-  find_hits_together(rays, count, packet_[0]);
-  if (!effects_.has(Effect::Reflection)) return;
-  double weights[kPacketLanes];
-  std::fill_n(weights, count, 1.0);  // the camera rays' paths
-  find_mirror_hits(0, count, weights);
-}
-
-void Tracer::find_mirror_hits(int level, int count, const double* weights) {
-  const std::vector<SceneObject>& objects = scene_.scene().objects;
-  PacketLane* from = packet_[level];
-  PacketLane* to = packet_[level + 1];
-  Ray rays[kPacketLanes];
-  double next_weights[kPacketLanes];
-  int reflected = 0;
-  for (int l = 0; l < count; ++l) {
-    if (!from[l].found) continue;
-    const Hit& hit = from[l].hit;
-    const Material& m = objects[hit.world.object].material;
-    // Only where trace_from_hit will shade this very hit, with its own normal, and
-    // reflection() trace the mirror direction: the ray it will trace is then this one.
-    if (crosses(m) || roughens(m) || !reflects(m, level, weights[l]) || may_gloss(m)) continue;
-    rays[reflected] = reflected_ray(hit, mirror_direction(from[l].ray, hit.world.shading_normal),
-                                    from[l].ray.time);
-    from[l].mirror = &to[reflected];
-    next_weights[reflected++] = weights[l] * m.reflectivity;
-  }
-  if (reflected < kMinMirrorLanes) {
-    for (int l = 0; l < count; ++l) from[l].mirror = nullptr;
-    return;
-  }
-  find_hits_together(rays, reflected, to);
-  if (level + 1 < kMirrorLevels) find_mirror_hits(level + 1, reflected, next_weights);
-}
-
 Rgb Tracer::trace_packet_ray(int lane, const MediumStack& media, SampleStream& rng) {
-  PacketLane& p = packet_[0][lane];
-  return trace_from_hit(p.ray, p.found, p.hit, RayKind::Camera, 0, 1.0, media, rng, p.mirror);
+  return trace_from_hit(packet_rays_[lane], packet_found_[lane], packet_hits_[lane],
+                        RayKind::Camera, 0, 1.0, media, rng);
 }
 
 std::optional<WorldHit> Tracer::first_hit(const Ray& ray) {
@@ -279,11 +238,6 @@ Vec3 Tracer::spawn_offset(const Hit& hit, double epsilon) const {
 Vec3 Tracer::spawn_origin(const Hit& hit, const Vec3& direction, double epsilon) const {
   return offset_ray_origin_by(hit.world.point, spawn_offset(hit, epsilon), hit.world.normal,
                               direction);
-}
-
-Ray Tracer::reflected_ray(const Hit& hit, const Vec3& direction, double time) const {
-  return {spawn_origin(hit, direction, scene_.scene().globals.reflectivity_epsilon), direction,
-          time};
 }
 
 Tracer::Crossing Tracer::cross_interface(const Ray& ray, Hit& hit, const MediumStack& media) {
@@ -448,27 +402,18 @@ Rgb Tracer::local_illumination(const Hit& hit, const Material& m, const SurfaceC
 
 Rgb Tracer::reflection(const Ray& ray, const Hit& hit, const Material& m, const Vec3& normal,
                        int depth, double weight, const MediumStack& media, SampleStream& rng) {
-  const Vec3 mirror = mirror_direction(ray, normal);  // eq. 4.13
-  const bool glossy = may_gloss(m) && cones_within_budget();
+  const Vec3 mirror = normalize_or(reflect(ray.direction, normal), ray.direction);  // eq. 4.13
+  const double epsilon = scene_.scene().globals.reflectivity_epsilon;
+  const bool glossy = effects_.has(Effect::Gloss) && m.gloss_strength > 0 && cones_within_budget();
   const double ray_weight = weight * m.reflectivity / (glossy ? cone_samples_ : 1);
   const auto trace_along = [&](const Vec3& direction) {
     ++stats_.reflection_rays;
-    return trace(reflected_ray(hit, direction, ray.time), RayKind::Reflected, depth + 1, ray_weight,
-                 media, rng);
+    const Ray reflected{spawn_origin(hit, direction, epsilon), direction, ray.time};
+    return trace(reflected, RayKind::Reflected, depth + 1, ray_weight, media, rng);
   };
   const Rgb incoming =
       glossy ? blurred(mirror, m.gloss_strength, cone_samples_, hit.world.normal, rng, trace_along)
              : trace_along(mirror);
-  return incoming * m.reflectivity;  // eq. 4.14
-}
-
-Rgb Tracer::found_reflection(const Material& m, int depth, double weight, const MediumStack& media,
-                             SampleStream& rng, PacketLane& mirror) {
-  // reflection() without a cone: the same ray, its weight (divided by 1 there) and count.
-  ++stats_.reflection_rays;
-  const Rgb incoming =
-      trace_from_hit(mirror.ray, mirror.found, mirror.hit, RayKind::Reflected, depth + 1,
-                     weight * m.reflectivity, media, rng, mirror.mirror);
   return incoming * m.reflectivity;  // eq. 4.14
 }
 
@@ -490,7 +435,7 @@ Rgb Tracer::transmission(const Ray& ray, const Hit& hit, const Material& m, cons
       direction = *refracted;
     } else {
       // Total internal reflection: the transmitted share reflects and stays in this medium.
-      direction = mirror_direction(ray, n);
+      direction = normalize_or(reflect(ray.direction, n), ray.direction);
       after = media;
     }
   }
@@ -542,8 +487,7 @@ Rgb Tracer::trace(const Ray& ray_in, RayKind kind, int depth, double weight,
 }
 
 Rgb Tracer::trace_from_hit(const Ray& ray_in, bool found, Hit& hit, RayKind kind, int depth,
-                           double weight, const MediumStack& media_in, SampleStream& rng,
-                           PacketLane* mirror) {
+                           double weight, const MediumStack& media_in, SampleStream& rng) {
   poll_interrupt();
   const Scene& scene = scene_.scene();
   const SceneGlobals& g = scene.globals;
@@ -566,7 +510,7 @@ Rgb Tracer::trace_from_hit(const Ray& ray_in, bool found, Hit& hit, RayKind kind
     }
     travelled += hit.world.t;
     m = &scene.objects[hit.world.object].material;
-    if (!crosses(*m)) break;
+    if (!effects.has(Effect::Refraction) || !(m->transparency > g.min_transparency)) break;
     crossing = cross_interface(*ray, hit, media);
     m = &scene.objects[hit.world.object].material;
     // A transparent surface whose crossing leaves the governing medium unchanged is a false
@@ -583,7 +527,8 @@ Rgb Tracer::trace_from_hit(const Ray& ray_in, bool found, Hit& hit, RayKind kind
   }
 
   Vec3 normal = hit.world.shading_normal;
-  if (roughens(*m)) normal = perturb_normal(normal, m->surface_roughness, rng);
+  if (effects.has(Effect::SurfaceRoughness) && m->surface_roughness > 0)
+    normal = perturb_normal(normal, m->surface_roughness, rng);
 
   SurfaceColours colours{m->ambient * g.global_ambient, m->diffuse};  // eq. 4.5
   if (scene_.textured()) {
@@ -592,12 +537,12 @@ Rgb Tracer::trace_from_hit(const Ray& ray_in, bool found, Hit& hit, RayKind kind
       colours = textured_colours(texture, scene_.instances()[hit.world.object], hit.world, colours);
   }
   Rgb color = (this->*illuminate_)(hit, *m, colours, normal, ray->direction, rng);
-  if (reflects(*m, depth, weight))
-    color += mirror ? found_reflection(*m, depth, weight, media, rng, *mirror)
-                    : reflection(*ray, hit, *m, normal, depth, weight, media, rng);
-  if (depth < g.max_recursion_depth && effects.has(Effect::Refraction) &&
-      weight * m->transparency > g.min_transparency)
-    color += transmission(*ray, hit, *m, normal, depth, weight, media, crossing, rng);
+  if (depth < g.max_recursion_depth) {
+    if (effects.has(Effect::Reflection) && weight * m->reflectivity > g.min_reflectivity)
+      color += reflection(*ray, hit, *m, normal, depth, weight, media, rng);
+    if (effects.has(Effect::Refraction) && weight * m->transparency > g.min_transparency)
+      color += transmission(*ray, hit, *m, normal, depth, weight, media, crossing, rng);
+  }
   if (effects.has(Effect::AtmosphericAttenuation) || effects.has(Effect::Fog))
     color = apply_atmosphere(color, travelled);
   return color;

@@ -44,18 +44,10 @@ class Tracer {
 
   // Camera rays of up to kPacketLanes neighbouring pixels: their nearest hits, found by one
   // walk of the scene BVH (common/accel/bvh_packet_traverse.h) and kept for trace_packet_ray.
-  // So are the hits of their mirror reflections, level by level, where at least
-  // kMinMirrorLanes of them reflect: those rays are about as coherent as the camera rays.
   void find_packet_hits(const Ray* rays, int count);
   // trace(ray, RayKind::Camera, 0, 1, media, rng) of ray `lane` of the last find_packet_hits,
-  // bit for bit, its nearest hit (and those of its reflections found with it) already found.
+  // bit for bit, its nearest hit already found.
   Rgb trace_packet_ray(int lane, const MediumStack& media, SampleStream& rng);
-  // The fewest reflecting lanes whose reflected rays walk together; a lone one walks alone,
-  // when its hit's shading reflects it.
-  static constexpr int kMinMirrorLanes = 2;
-  // The reflections after a camera ray whose hits a packet finds (reflections of reflections
-  // and so on); deeper ones are traced one ray at a time.
-  static constexpr int kMirrorLevels = 2;
 
   // The nearest surface along `ray`, for the debug views; nothing when it meets none.
   std::optional<WorldHit> first_hit(const Ray& ray);
@@ -75,47 +67,9 @@ class Tracer {
     bool known = true;
   };
   bool closest_hit(const Ray& ray, Hit& hit);
-  // A ray of a packet and its nearest hit; `mirror`, when not null, the reflected ray and hit
-  // that the shading of this hit will trace (its mirror reflection, found ahead of time).
-  struct PacketLane {
-    Ray ray;
-    Hit hit;
-    bool found;
-    PacketLane* mirror;
-  };
-  // Fills lanes[0, count) with rays[0, count) and their nearest hits, found by one walk of the
-  // scene BVH, each as closest_hit would; no lane's mirror yet.
-  void find_hits_together(const Ray* rays, int count, PacketLane* lanes);
-  // The mirror reflections of the `count` lanes of level `level` (depth `level`, with the
-  // path weights `weights`) whose shading will trace one, found by find_hits_together and
-  // linked as their `mirror`, if at least kMinMirrorLanes; then the next level's.
-  void find_mirror_hits(int level, int count, const double* weights);
-  // trace() once closest_hit has given `found` and `hit` for `ray_in`; `mirror` as for
-  // PacketLane, for the reflection of the surface shaded.
+  // trace() once closest_hit has given `found` and `hit` for `ray_in`.
   Rgb trace_from_hit(const Ray& ray_in, bool found, Hit& hit, RayKind kind, int depth,
-                     double weight, const MediumStack& media_in, SampleStream& rng,
-                     PacketLane* mirror = nullptr);
-  // What trace_from_hit does with a hit on material `m`: whether it crosses it as a
-  // transparent interface (else it shades that very hit), perturbs its normal (drawing random
-  // numbers), traces a reflection (at `depth`, on a path of weight `weight`), and may blur it
-  // into a cone of rays (a glossy surface).
-  bool crosses(const Material& m) const {
-    return effects_.has(Effect::Refraction) &&
-           m.transparency > scene_.scene().globals.min_transparency;
-  }
-  bool roughens(const Material& m) const {
-    return effects_.has(Effect::SurfaceRoughness) && m.surface_roughness > 0;
-  }
-  bool reflects(const Material& m, int depth, double weight) const {
-    const SceneGlobals& g = scene_.scene().globals;
-    return depth < g.max_recursion_depth && effects_.has(Effect::Reflection) &&
-           weight * m.reflectivity > g.min_reflectivity;
-  }
-  bool may_gloss(const Material& m) const {
-    return effects_.has(Effect::Gloss) && m.gloss_strength > 0;
-  }
-  // The reflected ray leaving `hit` along `direction`, at the time `time`.
-  Ray reflected_ray(const Hit& hit, const Vec3& direction, double time) const;
+                     double weight, const MediumStack& media_in, SampleStream& rng);
   // Crosses the transparent surface at `hit`, together with every other transparent surface
   // that crosses the ray within rounding of it: coincident boundaries (the same sphere twice,
   // flush faces) are one interface, whichever of them closest_hit returned. `hit` becomes the
@@ -161,12 +115,8 @@ class Tracer {
   using Illumination = Rgb (Tracer::*)(const Hit&, const Material&, const SurfaceColours&,
                                        const Vec3&, const Vec3&, SampleStream&);
   static Illumination lighting_for(const EffectSet& effects);
-  // Eq. 4.13-4.14 and 4.18.
   Rgb reflection(const Ray& ray, const Hit& hit, const Material& m, const Vec3& normal, int depth,
                  double weight, const MediumStack& media, SampleStream& rng);
-  // reflection() of a hit on `m` whose mirror reflection, its ray and hit, `mirror` holds.
-  Rgb found_reflection(const Material& m, int depth, double weight, const MediumStack& media,
-                       SampleStream& rng, PacketLane& mirror);
   Rgb transmission(const Ray& ray, const Hit& hit, const Material& m, const Vec3& normal, int depth,
                    double weight, const MediumStack& media, const Crossing& crossing,
                    SampleStream& rng);
@@ -205,9 +155,10 @@ class Tracer {
   std::uint64_t budget_sample_ = kNone;  // stats_.camera_rays of the sample being budgeted
   std::uint64_t budget_start_ = 0;       // secondary_rays() at that sample's first cone
   std::uint64_t budget_pixel_ = kNone;   // stats_.pixels of the last pixel counted as over it
-  // The rays of the last find_packet_hits and their nearest hits (level 0), then their
-  // reflections found together, level by level: the first entries of each level in use.
-  PacketLane packet_[kMirrorLevels + 1][kPacketLanes] = {};
+  // The rays of the last find_packet_hits and their nearest hits.
+  Ray packet_rays_[kPacketLanes];
+  Hit packet_hits_[kPacketLanes];
+  bool packet_found_[kPacketLanes] = {};
 };
 
 }  // namespace tessera
