@@ -1,6 +1,5 @@
 #include "common/protocol/connection.h"
 
-#include <algorithm>
 #include <array>
 
 #include <boost/asio/post.hpp>
@@ -21,15 +20,6 @@ auto whole_rest(std::size_t frame_bytes) {
     return ec ? std::size_t{0} : frame_bytes - transferred;
   };
 }
-
-// A frame's rest of this many bytes or more is read when it has all arrived (read_rest), in one
-// read: a result read piece by piece, as its pieces arrived between other connections' reads
-// and merges, had left the cache by the time the coordinator checked and merged it
-// (docs/SCALING.md, io7). Smaller frames are read at once: a wait costs two system calls.
-constexpr std::size_t kWholeRestBytes = 64 * 1024;
-// The most bytes a socket is asked to hold before it wakes us: a result of 65,536 pixels (786
-// kB) and its header. The kernel caps the mark at half the most it lets the socket buffer.
-constexpr std::size_t kMostLowWatermark = 1024 * 1024;
 
 }  // namespace
 
@@ -126,51 +116,30 @@ void FrameConnection::read_head() {
 void FrameConnection::read_rest(const FrameHead& head) {
   header_.resize(head.header_bytes);
   payload_ = Payload::to_read(head.payload_bytes);
-  const std::size_t rest = head.header_bytes + head.payload_bytes;
-  // Not under TLS: its stream reads ahead into a buffer of its own, which the mark does not see.
-  if (stream_.tls() || rest < kWholeRestBytes) return read_parts(head.type, rest);
-  asio::ip::tcp::socket& socket = stream_.socket();
-  boost::system::error_code ec;
-  const std::size_t mark = std::min(rest, kMostLowWatermark);
-  if (socket.available(ec) >= mark || ec) return read_parts(head.type, rest);
-  socket.set_option(asio::socket_base::receive_low_watermark(static_cast<int>(mark)), ec);
-  if (ec) return read_parts(head.type, rest);
-  // Completes when `mark` bytes are there, or at the peer's close or an error (the read then
-  // reports it): epoll reports the socket readable only then.
-  socket.async_wait(asio::ip::tcp::socket::wait_read, [self = shared_from_this(), type = head.type,
-                                                       rest](boost::system::error_code) {
-    if (!self->open_) return;
-    boost::system::error_code ignored;  // the read reports a broken socket
-    self->stream_.socket().set_option(asio::socket_base::receive_low_watermark(1), ignored);
-    self->read_parts(type, rest);
-  });
-}
-
-void FrameConnection::read_parts(MessageType type, std::size_t rest) {
   // One read into both: the payload lands in the buffer the frame keeps (a result's: the values
   // the coordinator merges and stores).
-  const std::array<asio::mutable_buffer, 2> parts{asio::buffer(header_),
-                                                  asio::buffer(payload_.data(), payload_.size())};
-  asio::async_read(stream_, parts, whole_rest(rest),
-                   [self = shared_from_this(), type](boost::system::error_code ec, std::size_t) {
-                     if (!self->open_) return;
-                     if (ec) return self->close(ec.message());
-                     self->last_received_ = std::chrono::steady_clock::now();
-                     Frame frame;
-                     const std::size_t bytes =
-                         kFrameHead + self->header_.size() + self->payload_.size();
-                     try {
-                       frame = decode_frame_parts(type, self->header_, std::move(self->payload_));
-                     } catch (const ProtocolError& e) {
-                       if (self->traffic_) self->traffic_(false, std::nullopt, bytes);
-                       return self->close(e.what());
-                     }
-                     if (self->traffic_) self->traffic_(false, frame.type, bytes);
-                     self->payload_ = Payload();
-                     if (frame.type != MessageType::Heartbeat && self->on_frame_)
-                       self->on_frame_(std::move(frame));
-                     if (self->open_) self->read_head();
-                   });
+  const std::array<asio::mutable_buffer, 2> parts{
+      asio::buffer(header_), asio::buffer(payload_.data(), head.payload_bytes)};
+  asio::async_read(
+      stream_, parts, whole_rest(head.header_bytes + head.payload_bytes),
+      [self = shared_from_this(), type = head.type](boost::system::error_code ec, std::size_t) {
+        if (!self->open_) return;
+        if (ec) return self->close(ec.message());
+        self->last_received_ = std::chrono::steady_clock::now();
+        Frame frame;
+        const std::size_t bytes = kFrameHead + self->header_.size() + self->payload_.size();
+        try {
+          frame = decode_frame_parts(type, self->header_, std::move(self->payload_));
+        } catch (const ProtocolError& e) {
+          if (self->traffic_) self->traffic_(false, std::nullopt, bytes);
+          return self->close(e.what());
+        }
+        if (self->traffic_) self->traffic_(false, frame.type, bytes);
+        self->payload_ = Payload();
+        if (frame.type != MessageType::Heartbeat && self->on_frame_)
+          self->on_frame_(std::move(frame));
+        if (self->open_) self->read_head();
+      });
 }
 
 void FrameConnection::write_next() {

@@ -59,10 +59,7 @@ class FrameConnection : public std::enable_shared_from_this<FrameConnection> {
 
  private:
   void read_head();
-  // A large frame's rest waits, on a plain socket, until the socket holds it all (its low-water
-  // mark, SO_RCVLOWAT), then is read in one read (read_parts).
   void read_rest(const FrameHead& head);
-  void read_parts(MessageType type, std::size_t rest);
   void write_next();
   void tick();
 
