@@ -242,23 +242,22 @@ std::optional<double> first_root_bracket(const Polynomial& quartic, double s_lo,
 // Whether a shadow ray is shown blocked without the search (quartic_crossing_proof.h): the
 // quartic clearly changes sign between two points a < b of its span whose stretch, widened by the
 // proof's slack, passes the tests of a hit (stretch_is_hit), so that the search would report a
-// hit there if it had not at an earlier root. For a ray from outside (the quartic clearly
-// positive at the span's start), the points tried for the inside of the tube are where the ray
-// crosses the torus' plane and its core cylinder (rho = R), usually deep in the tube, then the
+// hit there if it had not at an earlier root. For a ray from outside (from_outside: the quartic
+// clearly positive at the span's start), the points tried for the inside of the tube are where the
+// ray crosses the torus' plane and its core cylinder (rho = R), usually deep in the tube, then the
 // span's quarter points; for a ray leaving the surface (its start within rounding of zero), most
 // often into the tube and out of its far side, the quarter points in order.
 template <class StretchIsHit>
-bool proven_blocked(const Polynomial& quartic, double s_lo, double s_hi, const Vec3& f,
-                    const Vec3& u, double big_r, double P, double Q,
+bool proven_blocked(const QuarticSignProof& signs, bool from_outside, double s_lo, double s_hi,
+                    const Vec3& f, const Vec3& u, double big_r, double P, double Q,
                     const StretchIsHit& stretch_is_hit) {
-  const QuarticSignProof signs(quartic, s_lo, s_hi);
   // No root lies before s_lo: the slack is not needed there.
   const auto crossing_hits = [&](double a, double b) {
     return stretch_is_hit(std::max(a - signs.slack(), s_lo), b + signs.slack());
   };
   const double w = (s_hi - s_lo) / 4;
   const double quarter_points[3] = {s_lo + w, s_lo + 2 * w, s_lo + 3 * w};
-  if (signs.clearly_positive(s_lo)) {
+  if (from_outside) {
     const auto inside_at = [&](double s) {
       return s > s_lo && s < s_hi && signs.clearly_negative(s) && crossing_hits(s_lo, s);
     };
@@ -403,12 +402,6 @@ bool visit_torus_hits(const Torus& torus, const Ray& ray, double t_max, HitSearc
     return visit_real_roots(quartic, s_lo, s_hi, at_root);
   }
 
-  // Most shadow rays that form the quartic miss (two thirds on features/torus.sdl, most of them
-  // leaving the torus's own surface): shown here, when it is easy, for less than half the cost
-  // of the search that finds nothing, with its answer. Not for the nearest hit: most of those
-  // rays hit, and the proof's cost outweighed the searches it spared.
-  if (quartic_proven_root_free(quartic, s_lo, s_hi)) return true;
-
   // The root polished in [a, b] would have t in [t_at(a), t_at(b)], every rounded operation
   // being monotone, and an error bound no larger than the larger of surface_hit's: when both
   // ends pass at_root's tests, so does the root. Otherwise the root is polished and tested.
@@ -419,9 +412,19 @@ bool visit_torus_hits(const Torus& torus, const Ray& ray, double t_max, HitSearc
     return t_a > 0 && t_at(b) < t_max && leaves_the_origin(t_a, largest_point_error);
   };
 
-  // Most of the others are blocked, and the search would compute critical points up to the
-  // first sign change to say so.
-  if (proven_blocked(quartic, s_lo, s_hi, f, u, big_r, P, Q, is_hit_bracket)) return false;
+  // Shown here when it is easy, each for less than half the cost of the search: a miss (with its
+  // answer; not for the nearest hit: most of those rays hit, and the proof's cost outweighed the
+  // searches it spared), or a hit, where the search would compute critical points up to the
+  // first sign change to say so. Which is tried first depends on where the ray starts: most rays
+  // from outside the tube that form the quartic are blocked (on features/torus.sdl, the floor's
+  // rays in a torus's shadow: three in four are shown so), and for a ray starting on its surface,
+  // within rounding of it, the miss proof first costs less, its failures being the cheaper.
+  const QuarticSignProof signs(quartic, s_lo, s_hi);
+  const bool from_outside = signs.clearly_positive(s_lo);
+  if (!from_outside && quartic_proven_root_free(quartic, s_lo, s_hi)) return true;
+  if (proven_blocked(signs, from_outside, s_lo, s_hi, f, u, big_r, P, Q, is_hit_bracket))
+    return false;
+  if (from_outside && quartic_proven_root_free(quartic, s_lo, s_hi)) return true;
 
   if (!take_bracketed_first_root()) return false;
   return visit_real_roots(quartic, s_lo, s_hi, at_root, is_hit_bracket);
