@@ -143,8 +143,9 @@ LocalHit surface_hit(double big_r, double r, const Vec3& p, const Vec3& u) {
 // the outer half of tori with r / R from 0.001 to 3 (of 115 M leaving their surface), under random
 // transforms, offset as spawned rays are, not offset, from just behind and from up to 8 error
 // bounds either side of the surface, half of them grazing, intersect_torus found a hit at values
-// of that ratio up to 1.02 (r = 0.01 R) and 0.74 for the others. K = 8 leaves room for eight
-// times that, and for the rounding of the test's own terms (under a quarter of K);
+// of that ratio up to 1.02 (r = 0.01 R) and 0.74 for the others; on 1.75 G such exits, 1.25
+// (r = 0.005 R; 18 hits above 1 on half of them). K = 8 leaves room for over six times that, and
+// for the rounding of the test's own terms (under a quarter of K);
 // Torus.ExitProofNeverContradictsTheSearch fails with K = 0.5.
 [[gnu::always_inline]] inline bool leaves_outer_half_for_good(const Torus& torus, const Vec3& o,
                                                               const Vec3& d, double len,
@@ -180,15 +181,16 @@ LocalHit surface_hit(double big_r, double r, const Vec3& p, const Vec3& u) {
 //
 // Rounding as for the outer half: at x_min the gap must exceed K eps (R + r)^4 / (R rho w0), the
 // outer half's margin on the distance to the surface turned into a horizontal gap (times r / w0,
-// the tube's slope there). K is measured the same way, not derived: on the same 71 M rays leaving
-// twelve tori (r / R from 0.001 to 3), 5.2 M left the inner half with L rising and were not
-// settled by the outer half's test; intersect_torus found a hit at values of that ratio up to
-// 0.80 (r = 0.01 R; 0.55 for r >= 0.1 R). K = 8 leaves room for ten times that;
-// Torus.ExitProofNeverContradictsTheSearch fails with K = 0.5.
+// the tube's slope there). K is measured the same way, not derived: on 1.75 G rays leaving
+// seventeen tori (r / R from 0.001 to 3, the same generator with 60 seeds), 132 M left the inner
+// half with L rising; intersect_torus found a hit at values of that ratio up to 1.11 (r = 0.01 R;
+// 0.72 for r >= 0.1 R), and such hits thin out fast towards it: of half of those rays, 12,601
+// hits above 0.3, 615 above 0.6, 34 above 0.8, one above 1. K = 4 leaves room for 3.6 times the
+// largest; Torus.ExitProofNeverContradictsTheSearch fails with K = 0.5.
 [[gnu::always_inline]] inline bool leaves_inner_half_for_good(const Torus& torus, const Vec3& o,
                                                               const Vec3& d, double len,
                                                               double rho) {
-  constexpr double kRoundingMargin = 8;
+  constexpr double kRoundingMargin = 4;
   const double big_r = torus.torus_radius, r = torus.tube_radius;
   const double z = std::fabs(o.z), h = r - z;
   // A ray from the outer half that its own test leaves would need L to rise by a whole tube width
@@ -242,23 +244,22 @@ std::optional<double> first_root_bracket(const Polynomial& quartic, double s_lo,
 // Whether a shadow ray is shown blocked without the search (quartic_crossing_proof.h): the
 // quartic clearly changes sign between two points a < b of its span whose stretch, widened by the
 // proof's slack, passes the tests of a hit (stretch_is_hit), so that the search would report a
-// hit there if it had not at an earlier root. For a ray from outside (the quartic clearly
-// positive at the span's start), the points tried for the inside of the tube are where the ray
-// crosses the torus' plane and its core cylinder (rho = R), usually deep in the tube, then the
+// hit there if it had not at an earlier root. For a ray from outside (from_outside: the quartic
+// clearly positive at the span's start), the points tried for the inside of the tube are where the
+// ray crosses the torus' plane and its core cylinder (rho = R), usually deep in the tube, then the
 // span's quarter points; for a ray leaving the surface (its start within rounding of zero), most
 // often into the tube and out of its far side, the quarter points in order.
 template <class StretchIsHit>
-bool proven_blocked(const Polynomial& quartic, double s_lo, double s_hi, const Vec3& f,
-                    const Vec3& u, double big_r, double P, double Q,
+bool proven_blocked(const QuarticSignProof& signs, bool from_outside, double s_lo, double s_hi,
+                    const Vec3& f, const Vec3& u, double big_r, double P, double Q,
                     const StretchIsHit& stretch_is_hit) {
-  const QuarticSignProof signs(quartic, s_lo, s_hi);
   // No root lies before s_lo: the slack is not needed there.
   const auto crossing_hits = [&](double a, double b) {
     return stretch_is_hit(std::max(a - signs.slack(), s_lo), b + signs.slack());
   };
   const double w = (s_hi - s_lo) / 4;
   const double quarter_points[3] = {s_lo + w, s_lo + 2 * w, s_lo + 3 * w};
-  if (signs.clearly_positive(s_lo)) {
+  if (from_outside) {
     const auto inside_at = [&](double s) {
       return s > s_lo && s < s_hi && signs.clearly_negative(s) && crossing_hits(s_lo, s);
     };
@@ -403,12 +404,6 @@ bool visit_torus_hits(const Torus& torus, const Ray& ray, double t_max, HitSearc
     return visit_real_roots(quartic, s_lo, s_hi, at_root);
   }
 
-  // Most shadow rays that form the quartic miss (two thirds on features/torus.sdl, most of them
-  // leaving the torus's own surface): shown here, when it is easy, for less than half the cost
-  // of the search that finds nothing, with its answer. Not for the nearest hit: most of those
-  // rays hit, and the proof's cost outweighed the searches it spared.
-  if (quartic_proven_root_free(quartic, s_lo, s_hi)) return true;
-
   // The root polished in [a, b] would have t in [t_at(a), t_at(b)], every rounded operation
   // being monotone, and an error bound no larger than the larger of surface_hit's: when both
   // ends pass at_root's tests, so does the root. Otherwise the root is polished and tested.
@@ -419,9 +414,19 @@ bool visit_torus_hits(const Torus& torus, const Ray& ray, double t_max, HitSearc
     return t_a > 0 && t_at(b) < t_max && leaves_the_origin(t_a, largest_point_error);
   };
 
-  // Most of the others are blocked, and the search would compute critical points up to the
-  // first sign change to say so.
-  if (proven_blocked(quartic, s_lo, s_hi, f, u, big_r, P, Q, is_hit_bracket)) return false;
+  // Shown here when it is easy, each for less than half the cost of the search: a miss (with its
+  // answer; not for the nearest hit: most of those rays hit, and the proof's cost outweighed the
+  // searches it spared), or a hit, where the search would compute critical points up to the
+  // first sign change to say so. Which is tried first depends on where the ray starts: most rays
+  // from outside the tube that form the quartic are blocked (on features/torus.sdl, the floor's
+  // rays in a torus's shadow: three in four are shown so), and for a ray starting on its surface,
+  // within rounding of it, the miss proof first costs less, its failures being the cheaper.
+  const QuarticSignProof signs(quartic, s_lo, s_hi);
+  const bool from_outside = signs.clearly_positive(s_lo);
+  if (!from_outside && quartic_proven_root_free(quartic, s_lo, s_hi)) return true;
+  if (proven_blocked(signs, from_outside, s_lo, s_hi, f, u, big_r, P, Q, is_hit_bracket))
+    return false;
+  if (from_outside && quartic_proven_root_free(quartic, s_lo, s_hi)) return true;
 
   if (!take_bracketed_first_root()) return false;
   return visit_real_roots(quartic, s_lo, s_hi, at_root, is_hit_bracket);
