@@ -424,7 +424,8 @@ TEST(Torus, ExitProofNeverContradictsTheSearch) {
 TEST(Torus, EntryProofNeverContradictsTheSearch) {
   std::mt19937_64 rng(59);
   std::uniform_real_distribution<double> unit(0, 1);
-  for (const Torus& torus : {kRing, kHorn, kSpindle, Torus{0.01, 1}, Torus{0.4, 1.1}}) {
+  for (const Torus& torus :
+       {kRing, kHorn, kSpindle, Torus{0.01, 1}, Torus{0.001, 1}, Torus{0.4, 1.1}}) {
     const double big_r = torus.torus_radius, r = torus.tube_radius;
     int proven = 0, rays = 0;
     const auto expect_no_contradiction = [&](const Ray& ray, double t_max) {
@@ -455,8 +456,21 @@ TEST(Torus, EntryProofNeverContradictsTheSearch) {
       const Vec3 direction = (i / 2) % 2 == 0
                                  ? testing::random_unit(rng)
                                  : tangents[0] * std::cos(turn) + tangents[1] * std::sin(turn);
-      const Vec3 w = direction * (0.1 + 10 * unit(rng));
-      const Ray ray{inside - w * (distance * (1 + unit(rng)) / length(w)), w};
+      Vec3 w = direction * (0.1 + 10 * unit(rng));
+      Ray ray{inside - w * (distance * (1 + unit(rng)) / length(w)), w};
+      if (i % 5 == 4) {
+        // Into the box through its top or bottom face just off the top or bottom of the tube
+        // (down to 10^-12 r), where the box entry is closest to the surface, then down or up
+        // through the plane well inside the tube.
+        const double side = unit(rng) < 0.5 ? 1 : -1;
+        const double off = big_r + r * (2 * unit(rng) - 1) * std::pow(10.0, -12 * unit(rng));
+        const Vec3 entry{off * c, off * s, side * r * (1 + 1e-9)};
+        const double rho = big_r + r * (unit(rng) - 0.5);
+        const double turn_in_plane = angle + (unit(rng) - 0.5) * r / big_r;
+        w = (Vec3{rho * std::cos(turn_in_plane), rho * std::sin(turn_in_plane), 0} - entry) *
+            (0.1 + 10 * unit(rng));
+        ray = {entry - w * (distance * unit(rng) / length(w)), w};
+      }
       ++rays;
       expect_no_contradiction(ray, kInfinity);
       LocalHit hit;
