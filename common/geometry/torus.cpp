@@ -26,7 +26,8 @@
 //    and cheap proofs usually spare the search: of a miss (quartic_miss_proof.h), or of a sign
 //    change between a point outside the tube and one inside it (quartic_crossing_proof.h). Most
 //    shadow rays leaving the torus's own surface are shown clear before the quartic is even
-//    formed, from either half of the tube (leaves_the_torus_for_good, torus.h).
+//    formed, from either half of the tube (leaves_the_torus_for_good, torus.h), and most rays
+//    from outside that it blocks are shown blocked so (crosses_into_the_tube, torus.h).
 #include "common/geometry/torus.h"
 
 #include <algorithm>
