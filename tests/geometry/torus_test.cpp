@@ -415,6 +415,75 @@ TEST(Torus, ExitProofNeverContradictsTheSearch) {
   }
 }
 
+// crosses_into_the_tube settles a shadow ray as blocked without the quartic only where
+// intersect_torus finds a hit before t_max: on rays from near, far and very far outside the box,
+// of any length, through points of the torus's plane and of its core cylinder rho = R just inside
+// the tube (down to 10^-15 r from its surface, where the search's rounding decides) or deep in it,
+// on tori thin and fat, with t_max unbounded and around the nearest hit. A rounding margin of
+// 2^5 instead of 2^15 fails it.
+TEST(Torus, EntryProofNeverContradictsTheSearch) {
+  std::mt19937_64 rng(59);
+  std::uniform_real_distribution<double> unit(0, 1);
+  for (const Torus& torus :
+       {kRing, kHorn, kSpindle, Torus{0.01, 1}, Torus{0.001, 1}, Torus{0.4, 1.1}}) {
+    const double big_r = torus.torus_radius, r = torus.tube_radius;
+    int proven = 0, rays = 0;
+    const auto expect_no_contradiction = [&](const Ray& ray, double t_max) {
+      if (!crosses_into_the_tube(torus, ray, t_max)) return;
+      ++proven;
+      LocalHit hit;
+      ASSERT_TRUE(intersect_torus(torus, ray, t_max, hit))
+          << "torus " << r << " " << big_r << " origin " << ray.origin.x << " " << ray.origin.y
+          << " " << ray.origin.z << " direction " << ray.direction.x << " " << ray.direction.y
+          << " " << ray.direction.z << " t_max " << t_max;
+    };
+    for (int i = 0; i < 40000; ++i) {
+      // Inside the tube by delta, in the plane at its inner or outer edge, or on the core cylinder
+      // below its top or above its bottom.
+      const double delta = (i % 4 == 3 ? unit(rng) : std::pow(10.0, -15 * unit(rng))) * r;
+      const double angle = 2 * M_PI * unit(rng), c = std::cos(angle), s = std::sin(angle);
+      // Every other ray tangent to the surface there (within delta of touching it), in its
+      // tangent plane: vertical and along the tube in the plane, horizontal on the cylinder.
+      Vec3 inside{big_r * c, big_r * s, (r - delta) * (unit(rng) < 0.5 ? 1 : -1)};
+      Vec3 tangents[2] = {{c, s, 0}, {-s, c, 0}};
+      if (i % 2 == 0) {
+        const double rho = unit(rng) < 0.5 ? big_r + r - delta : std::fabs(big_r - r) + delta;
+        inside = {rho * c, rho * s, 0};
+        tangents[0] = {0, 0, 1};
+      }
+      const double distance = std::array{1.5, 5.0, 1e4}[i % 3] * (big_r + r);
+      const double turn = 2 * M_PI * unit(rng);
+      const Vec3 direction = (i / 2) % 2 == 0
+                                 ? testing::random_unit(rng)
+                                 : tangents[0] * std::cos(turn) + tangents[1] * std::sin(turn);
+      Vec3 w = direction * (0.1 + 10 * unit(rng));
+      Ray ray{inside - w * (distance * (1 + unit(rng)) / length(w)), w};
+      if (i % 5 == 4) {
+        // Into the box through its top or bottom face just off the top or bottom of the tube
+        // (down to 10^-12 r), where the box entry is closest to the surface, then down or up
+        // through the plane well inside the tube.
+        const double side = unit(rng) < 0.5 ? 1 : -1;
+        const double off = big_r + r * (2 * unit(rng) - 1) * std::pow(10.0, -12 * unit(rng));
+        const Vec3 entry{off * c, off * s, side * r * (1 + 1e-9)};
+        const double rho = big_r + r * (unit(rng) - 0.5);
+        const double turn_in_plane = angle + (unit(rng) - 0.5) * r / big_r;
+        w = (Vec3{rho * std::cos(turn_in_plane), rho * std::sin(turn_in_plane), 0} - entry) *
+            (0.1 + 10 * unit(rng));
+        ray = {entry - w * (distance * unit(rng) / length(w)), w};
+      }
+      ++rays;
+      expect_no_contradiction(ray, kInfinity);
+      LocalHit hit;
+      if (!intersect_torus(torus, ray, kInfinity, hit)) continue;
+      for (double t_max : {hit.t, std::nextafter(hit.t, 0.0), std::nextafter(hit.t, kInfinity),
+                           hit.t * (1 - 1e-9), hit.t * (1 + 1e-9), hit.t * 1.5})
+        expect_no_contradiction(ray, t_max);
+    }
+    // It settles most of these rays (those whose crossing point is not too close to the surface).
+    EXPECT_GT(proven, rays / 4) << r << " " << big_r;
+  }
+}
+
 // Hits against the exact hit (Newton's method on the torus function along the ray, in quadruple
 // precision), on rays from outside: the nearest hit is mostly polished in a bracket of its own
 // (quartic_first_root.h), no less accurately than the search polishes it (measured when only the
