@@ -22,8 +22,9 @@ FrameBuffer FrameBuffer::deferred(int width, int height) {
 void FrameBuffer::take_memory() {
   const std::size_t pixels = static_cast<std::size_t>(width_) * height_;
   sums_.resize(3 * pixels);
-  counts_.resize(pixels);
 }
+
+void FrameBuffer::take_counts() { counts_.resize(static_cast<std::size_t>(width_) * height_); }
 
 void FrameBuffer::TileCounts::assign(int tile_side, int width, int height) {
   side = tile_side;
@@ -140,6 +141,7 @@ void FrameBuffer::add_run_sums(PixelCoord first, int count, int stride, const fl
 void FrameBuffer::add_run(PixelCoord first, int count, int stride, const float* rgb) {
   const auto step = static_cast<std::size_t>(stride);
   const auto n = static_cast<std::size_t>(count);
+  if (counts_.empty()) take_counts();
   std::uint16_t* counts = counts_.data() + idx(first.x, first.y);
   if (first.y + 2 * stride < height_)  // as add_run_sums fetches the sums
     prefetch(counts + 2 * step * static_cast<std::size_t>(width_), 2 * ((n - 1) * step + 1),
@@ -175,13 +177,14 @@ class TilesAlongRow {
 }  // namespace
 
 void FrameBuffer::mean_run(PixelCoord first, int count, int stride, float* out) const {
-  if (counts_.empty()) {
+  if (sums_.empty()) {
     std::fill_n(out, 3 * static_cast<std::size_t>(count), 0.0f);
     return;
   }
   const std::size_t start = idx(first.x, first.y);
   const auto step = static_cast<std::size_t>(stride);
-  const std::uint16_t* counts = counts_.data() + start;
+  // nullptr while no pass has been counted by pixel (take_counts).
+  const std::uint16_t* counts = counts_.empty() ? nullptr : counts_.data() + start;
   const float* sums = sums_.data() + 3 * start;
   TilesAlongRow cells(cells_.row(first.y), cells_.side);
   std::array<TilesAlongRow, 32> levels;  // by level_of()
@@ -189,7 +192,7 @@ void FrameBuffer::mean_run(PixelCoord first, int count, int stride, float* out) 
     levels[l] = TilesAlongRow(levels_[l].row(first.y), levels_[l].side);
   int x = first.x;
   for (std::size_t i = 0; i < static_cast<std::size_t>(count); ++i, x += stride) {
-    const std::uint32_t passes = counts[i * step] + cells.at(x) +
+    const std::uint32_t passes = (counts == nullptr ? 0u : counts[i * step]) + cells.at(x) +
                                  (levels_.empty() ? 0u : levels[level_of(x, first.y)].at(x));
     // A float divided by a float count, rounded once, equals mean()'s double quotient rounded
     // to float: a double holds more than twice a float's digits plus two, so rounding first to

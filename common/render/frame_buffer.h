@@ -2,8 +2,9 @@
 // are accumulated, exactly as they travel over the wire, so that the CLI and the coordinator
 // compute bit-identical images from the same passes.
 //
-// 14 bytes a pixel: float32 sums and a 16-bit count. The coordinator holds one per running job
-// (docs/SERVICE.md, "Memory"), so the sums are float32 rather than double: over the at most
+// 14 bytes a pixel at most: float32 sums and a 16-bit count, the count only once a pass is
+// counted by pixel (below). The coordinator holds one per running job (docs/SERVICE.md,
+// "Memory"), so the sums are float32 rather than double: over the at most
 // 256 passes a job may have, a float sum of values near 1 is off by at most about 2^-24 x 256
 // relative, far below what a PNG or an EXR's half floats show.
 // A coordinator job's frame buffer is made without memory (deferred) and takes it at its first
@@ -18,7 +19,10 @@
 // levels likewise: a level's unit is one tile of that level (Stage::tile) and adds one pass to
 // each of its anchors, the pixels whose coordinates' lowest set bit is the level's step, so it
 // is counted once for its level and tile. Exact in any order: a pixel's passes are its own
-// count plus its cell's plus its level tile's. The CLI counts by pixel only.
+// count plus its cell's plus its level tile's. The CLI counts by pixel only. The per-pixel
+// counts (2 bytes a pixel, 8 MB at 2048x2048) take their memory, zeroed, only when the first
+// pass counted by pixel arrives: a whole-image job's are never allocated, nor zeroed by the
+// pool (docs/SCALING.md).
 #pragma once
 
 #include <algorithm>
@@ -42,9 +46,12 @@ class FrameBuffer {
   FrameBuffer(int width, int height);
   // One without memory until take_memory(); it reads as black until then.
   static FrameBuffer deferred(int width, int height);
-  bool has_memory() const { return !counts_.empty(); }
-  // Not thread-safe: one thread calls it before any pass is added (the CLI's threads each add
-  // passes to a tile's buffer of their own, made with its memory).
+  bool has_memory() const { return !sums_.empty(); }
+  // The bytes its pixels hold: 12 a pixel with memory, 14 once a pass was counted by pixel.
+  std::size_t bytes() const { return sizeof(float) * sums_.size() + 2 * counts_.size(); }
+  // The sums' memory; the per-pixel counts' comes with the first pass counted by pixel. Not
+  // thread-safe, nor is that first pass: one thread calls it before any pass is added (the
+  // CLI's threads each add passes to a tile's buffer of their own, made with its memory).
   void take_memory();
   // Counts add_unit's units that are exactly one of `plan`'s tiles (multiples of its side from
   // the corner, clipped only by the image's edges) once for the tile: the whole-image passes'
@@ -64,6 +71,7 @@ class FrameBuffer {
   // Inline, with mean(): the coordinator calls both for every pixel it merges.
   void add_pass(int x, int y, const float rgb[3]) {
     const std::size_t i = idx(x, y);
+    if (counts_.empty()) take_counts();
     if (counts_[i] == kMaxPasses) throw_full();
     sums_[3 * i] += rgb[0];
     sums_[3 * i + 1] += rgb[1];
@@ -80,7 +88,7 @@ class FrameBuffer {
   // stops at the run with the full pixel (add_run).
   void add_unit(const UnitPixels& unit, const float* rgb);
   std::uint32_t passes_at(int x, int y) const {
-    return counts_.empty() ? 0 : counts_[idx(x, y)] + cells_.at(x, y) + level_passes(x, y);
+    return (counts_.empty() ? 0u : counts_[idx(x, y)]) + cells_.at(x, y) + level_passes(x, y);
   }
   // The mean of the passes added so far (black where none).
   Rgb mean(int x, int y) const {
@@ -126,12 +134,15 @@ class FrameBuffer {
   // Adds one pass to each of the unit's pixels, 3 floats a pixel, without counting it.
   void add_sums(const UnitPixels& unit, const float* rgb);
   void add_run_sums(PixelCoord first, int count, int stride, const float* rgb);
+  // The per-pixel counts' memory, zeroed (ZeroedAllocator: from the pool at 2 MB and more).
+  void take_counts();
   [[noreturn]] static void throw_full();
   int width_, height_;
   // Empty until take_memory() when deferred.
-  std::vector<float, ZeroedAllocator<float>> sums_;                    // 3 per pixel
-  std::vector<std::uint16_t, ZeroedAllocator<std::uint16_t>> counts_;  // by pixel
-  TileCounts cells_;                                                   // whole-image passes
+  std::vector<float, ZeroedAllocator<float>> sums_;  // 3 per pixel
+  // By pixel; empty, every count 0, until the first pass counted by pixel (take_counts).
+  std::vector<std::uint16_t, ZeroedAllocator<std::uint16_t>> counts_;
+  TileCounts cells_;                // whole-image passes
   std::vector<TileCounts> levels_;  // pass 0 over the levels, by log2 of their step
   int coarsest_level_ = 0;          // log2 of the coarsest accumulated level's step
 };

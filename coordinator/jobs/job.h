@@ -174,7 +174,7 @@ class Job {
   // the final image once done (bit-identical to tessera-render), else what is known so far;
   // post-normalized when the settings ask for it. On the io thread this costs no pass over the
   // pixels: a done job's frame buffer is shared until its final image is encoded
-  // (keep_encodings), a running job's is copied (14 bytes a pixel).
+  // (keep_encodings), a running job's is copied (12-14 bytes a pixel).
   ImageSnapshot snapshot() const;
   double elapsed_seconds(Clock::time_point now) const;
   std::optional<double> eta_seconds(Clock::time_point now) const;
@@ -204,7 +204,8 @@ class Job {
   std::map<std::int64_t, WorkerShare> shares_;
   std::deque<TileRecord> tiles_;
   std::size_t tiles_first_ = 0, delta_first_ = 0, delta_bytes_ = 0;
-  // 14 bytes a pixel: the whole of a running job's memory per pixel. What the page shows is
+  // At most 14 bytes a pixel (12 while every pass merged was counted by tile, a whole-image
+  // job's): the whole of a running job's memory per pixel. What the page shows is
   // painted by the page itself from the tile records; snapshot() derives it when asked.
   FrameBuffer frame_buffer_;
   std::uint64_t version_ = 0;

@@ -108,25 +108,39 @@ TEST(FrameBuffer, ClearedIsLikeNew) {
 // A job's units merged with their whole-image passes counted by cell (the plan's pass tiles)
 // and pass 0 over the levels by level tile leave the frame buffer as counting every pass by
 // pixel does, bit for bit, while they merge and at the end: whole images and regions (whose
-// clipped tiles are not tiles), both previews.
+// clipped tiles are not tiles), both previews. A whole image's units are all counted by tile,
+// so its buffer never takes the per-pixel counts (12 bytes a pixel); a region's takes them at
+// its first clipped tile. A run counted by pixel after all of them takes them, zeroed, too.
 TEST(FrameBuffer, PassesCountedByTileAverageAsByPixel) {
   std::mt19937 rng(5);
   std::uniform_real_distribution<float> value(-0.25f, 4.0f);
-  const PlanOptions plans[] = {
-      {.width = 300, .height = 170, .passes = 4, .unit_pixels = 900},
-      {.width = 300, .height = 170, .passes = 3, .preview = PreviewMode::Area, .unit_pixels = 700},
-      {.width = 300, .height = 170, .passes = 3, .progressive = false, .unit_pixels = 1024},
-      {.width = 300,
-       .height = 170,
-       .passes = 3,
-       .unit_pixels = 400,
-       .region = PixelRect{17, 30, 250, 160}},
-      {.width = 300, .height = 170, .passes = 1, .unit_pixels = 64},
+  struct Case {
+    PlanOptions options;
+    bool by_pixel;  // some units counted by pixel: the per-pixel counts taken
   };
-  for (const PlanOptions& options : plans) {
+  const Case cases[] = {
+      {{.width = 300, .height = 170, .passes = 4, .unit_pixels = 900}, false},
+      {{.width = 300, .height = 170, .passes = 3, .preview = PreviewMode::Area, .unit_pixels = 700},
+       false},
+      {{.width = 300, .height = 170, .passes = 3, .progressive = false, .unit_pixels = 1024},
+       false},
+      {{.width = 300,
+        .height = 170,
+        .passes = 3,
+        .unit_pixels = 400,
+        .region = PixelRect{17, 30, 250, 160}},
+       true},
+      {{.width = 300, .height = 170, .passes = 1, .unit_pixels = 64}, false},
+  };
+  for (const auto& [options, takes_counts] : cases) {
     const Plan plan = make_plan(options);
-    FrameBuffer by_cell(plan.width, plan.height), by_pixel(plan.width, plan.height);
+    // As a coordinator job's: deferred, its memory taken at its first merge.
+    FrameBuffer by_cell = FrameBuffer::deferred(plan.width, plan.height);
+    FrameBuffer by_pixel(plan.width, plan.height);
     by_cell.count_by_units(plan);
+    by_cell.take_memory();
+    const std::size_t pixels = static_cast<std::size_t>(plan.width) * plan.height;
+    EXPECT_EQ(by_cell.bytes(), 12 * pixels);
     for (const WorkUnit& unit : plan.units) {
       if (plan.stages[unit.stage].preview_only) continue;
       std::vector<float> rgb(3 * static_cast<std::size_t>(unit.cost));
@@ -142,6 +156,17 @@ TEST(FrameBuffer, PassesCountedByTileAverageAsByPixel) {
       by_pixel.mean_run(corner, shown, 1, b.data());
       ASSERT_EQ(std::memcmp(a.data(), b.data(), a.size() * sizeof(float)), 0);
     }
+    for (int y = 0; y < plan.height; ++y)
+      for (int x = 0; x < plan.width; ++x)
+        ASSERT_EQ(by_cell.passes_at(x, y), by_pixel.passes_at(x, y)) << x << "," << y;
+    EXPECT_EQ(by_cell.resolve(), by_pixel.resolve());
+    EXPECT_EQ(by_cell.bytes(), (takes_counts ? 14 : 12) * pixels);
+    EXPECT_EQ(by_pixel.bytes(), 14 * pixels);
+    std::vector<float> row(3 * static_cast<std::size_t>(plan.width) / 2);
+    for (float& v : row) v = value(rng);
+    by_cell.add_run({1, 60}, plan.width / 2, 2, row.data());
+    by_pixel.add_run({1, 60}, plan.width / 2, 2, row.data());
+    EXPECT_EQ(by_cell.bytes(), 14 * pixels);
     for (int y = 0; y < plan.height; ++y)
       for (int x = 0; x < plan.width; ++x)
         ASSERT_EQ(by_cell.passes_at(x, y), by_pixel.passes_at(x, y)) << x << "," << y;
@@ -193,7 +218,7 @@ TEST(FrameBuffer, ANewFrameBufferTakesMemoryOnlyWhereItIsWritten) {
 #endif
   const long before = resident_bytes();
   ASSERT_GT(before, 0);
-  FrameBuffer frame(4096, 4096);  // 224 MiB of sums and counts
+  FrameBuffer frame(4096, 4096);  // 192 MiB of sums; 32 more of counts at the first add_run
   EXPECT_LT(resident_bytes() - before, 16l << 20);
   EXPECT_EQ(frame.passes_at(4095, 4095), 0u);
   EXPECT_EQ(frame.mean(17, 3000).r, 0.0);
