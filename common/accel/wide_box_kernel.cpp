@@ -47,7 +47,8 @@ bool wide_box_kernel_supported(WideBoxKernel kernel) {
 #endif
     case WideBoxKernel::Avx512:
 #if defined(__SSE2__)
-      return __builtin_cpu_supports("avx512f") != 0 && __builtin_cpu_supports("avx512dq") != 0;
+      return __builtin_cpu_supports("avx512f") != 0 && __builtin_cpu_supports("avx512dq") != 0 &&
+             __builtin_cpu_supports("avx512vl") != 0;
 #else
       return false;
 #endif

@@ -130,10 +130,10 @@ template <WideBvhOrder kOrder, typename VisitLeaf>
                                        intersect_float_child_boxes_avx2);
 }
 
-// The AVX2 box test in a loop compiled for AVX-512F and DQ (no FMA either), for the visitor's
-// eight-triangle test.
+// The AVX2 box test in a loop compiled for AVX-512F, DQ and VL (no FMA either), for the
+// visitor's eight-triangle test.
 template <WideBvhOrder kOrder, typename VisitLeaf>
-[[gnu::flatten, gnu::target("avx512f,avx512dq")]] void traverse_wide_bvh_avx512(
+[[gnu::flatten, gnu::target("avx512f,avx512dq,avx512vl")]] void traverse_wide_bvh_avx512(
     const Bvh& bvh, const Ray& ray, double t_max, std::uint64_t& nodes_visited,
     VisitLeaf& visit_leaf) {
   traverse_wide_bvh_below_root<kOrder>(bvh, ray, t_max, nodes_visited, visit_leaf,

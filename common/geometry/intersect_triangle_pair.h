@@ -171,69 +171,74 @@ struct Avx2DoubleLanes {
 };
 
 // Four adjacent pairs, lanes 2 p and 2 p + 1 from pairs[p]; comparisons into mask registers,
-// combined there. No FMA: the "avx512f" target does not enable it; "avx512dq" brings vandpd.
+// combined there. No FMA: the "avx512f" target does not enable it; "avx512dq" brings vandpd,
+// "avx512vl" the use of registers 16-31 by the 256-bit code around it without 512-bit moves.
 // The insert and max are written with an all-lanes zeroing mask (the same instruction): GCC 12's
 // unmasked forms start from _mm512_undefined_pd, which -Wmaybe-uninitialized rejects.
 struct Avx512DoubleLanes {
   using V = __m512d;
   using M = __mmask8;
   static constexpr unsigned kAllLanes = 255;
-  [[gnu::target("avx512f,avx512dq")]] static void set1(V& r, double x) { r = _mm512_set1_pd(x); }
-  [[gnu::target("avx512f,avx512dq")]] static void load_corner(V& r, const TrianglePair* pairs,
-                                                              int c, int axis) {
+  [[gnu::target("avx512f,avx512dq,avx512vl")]] static void set1(V& r, double x) {
+    r = _mm512_set1_pd(x);
+  }
+  [[gnu::target("avx512f,avx512dq,avx512vl")]] static void load_corner(V& r,
+                                                                       const TrianglePair* pairs,
+                                                                       int c, int axis) {
     const __m256d low = _mm256_loadu2_m128d(pairs[1].corner[c][axis], pairs[0].corner[c][axis]);
     const __m256d high = _mm256_loadu2_m128d(pairs[3].corner[c][axis], pairs[2].corner[c][axis]);
     r = _mm512_maskz_insertf64x4(kAllLanes, _mm512_castpd256_pd512(low), high, 1);
   }
-  [[gnu::target("avx512f,avx512dq")]] static void store(double* p, const V& a) {
+  [[gnu::target("avx512f,avx512dq,avx512vl")]] static void store(double* p, const V& a) {
     _mm512_store_pd(p, a);
   }
-  [[gnu::target("avx512f,avx512dq")]] static void add(V& r, const V& a, const V& b) {
+  [[gnu::target("avx512f,avx512dq,avx512vl")]] static void add(V& r, const V& a, const V& b) {
     r = _mm512_add_pd(a, b);
   }
-  [[gnu::target("avx512f,avx512dq")]] static void sub(V& r, const V& a, const V& b) {
+  [[gnu::target("avx512f,avx512dq,avx512vl")]] static void sub(V& r, const V& a, const V& b) {
     r = _mm512_sub_pd(a, b);
   }
-  [[gnu::target("avx512f,avx512dq")]] static void mul(V& r, const V& a, const V& b) {
+  [[gnu::target("avx512f,avx512dq,avx512vl")]] static void mul(V& r, const V& a, const V& b) {
     r = _mm512_mul_pd(a, b);
   }
-  [[gnu::target("avx512f,avx512dq")]] static void div(V& r, const V& a, const V& b) {
+  [[gnu::target("avx512f,avx512dq,avx512vl")]] static void div(V& r, const V& a, const V& b) {
     r = _mm512_div_pd(a, b);
   }
-  [[gnu::target("avx512f,avx512dq")]] static void max(V& r, const V& a, const V& b) {
+  [[gnu::target("avx512f,avx512dq,avx512vl")]] static void max(V& r, const V& a, const V& b) {
     r = _mm512_maskz_max_pd(kAllLanes, a, b);
   }
-  [[gnu::target("avx512f,avx512dq")]] static void bit_and(V& r, const V& a, const V& b) {
+  [[gnu::target("avx512f,avx512dq,avx512vl")]] static void bit_and(V& r, const V& a, const V& b) {
     r = _mm512_and_pd(a, b);
   }
-  [[gnu::target("avx512f,avx512dq")]] static void mask_and(M& r, const M& a, const M& b) {
+  [[gnu::target("avx512f,avx512dq,avx512vl")]] static void mask_and(M& r, const M& a, const M& b) {
     r = static_cast<M>(a & b);
   }
-  [[gnu::target("avx512f,avx512dq")]] static void mask_or(M& r, const M& a, const M& b) {
+  [[gnu::target("avx512f,avx512dq,avx512vl")]] static void mask_or(M& r, const M& a, const M& b) {
     r = static_cast<M>(a | b);
   }
-  [[gnu::target("avx512f,avx512dq")]] static void mask_and_not(M& r, const M& a, const M& b) {
+  [[gnu::target("avx512f,avx512dq,avx512vl")]] static void mask_and_not(M& r, const M& a,
+                                                                        const M& b) {
     r = static_cast<M>(~a & b);
   }
-  [[gnu::target("avx512f,avx512dq")]] static void lt(M& r, const V& a, const V& b) {
+  [[gnu::target("avx512f,avx512dq,avx512vl")]] static void lt(M& r, const V& a, const V& b) {
     r = _mm512_cmp_pd_mask(a, b, _CMP_LT_OS);
   }
-  [[gnu::target("avx512f,avx512dq")]] static void le(M& r, const V& a, const V& b) {
+  [[gnu::target("avx512f,avx512dq,avx512vl")]] static void le(M& r, const V& a, const V& b) {
     r = _mm512_cmp_pd_mask(a, b, _CMP_LE_OS);
   }
-  [[gnu::target("avx512f,avx512dq")]] static void gt(M& r, const V& a, const V& b) {
+  [[gnu::target("avx512f,avx512dq,avx512vl")]] static void gt(M& r, const V& a, const V& b) {
     r = _mm512_cmp_pd_mask(a, b, _CMP_GT_OS);
   }
-  [[gnu::target("avx512f,avx512dq")]] static void ge(M& r, const V& a, const V& b) {
+  [[gnu::target("avx512f,avx512dq,avx512vl")]] static void ge(M& r, const V& a, const V& b) {
     r = _mm512_cmp_pd_mask(a, b, _CMP_GE_OS);
   }
-  [[gnu::target("avx512f,avx512dq")]] static void eq(M& r, const V& a, const V& b) {
+  [[gnu::target("avx512f,avx512dq,avx512vl")]] static void eq(M& r, const V& a, const V& b) {
     r = _mm512_cmp_pd_mask(a, b, _CMP_EQ_OQ);
   }
-  [[gnu::target("avx512f,avx512dq")]] static void not_lt(M& r, const V& a, const V& b) {
+  [[gnu::target("avx512f,avx512dq,avx512vl")]] static void not_lt(M& r, const V& a, const V& b) {
     r = _mm512_cmp_pd_mask(a, b, _CMP_NLT_US);
   }
-  [[gnu::target("avx512f,avx512dq")]] static unsigned mask(const M& a) { return a; }
+  [[gnu::target("avx512f,avx512dq,avx512vl")]] static unsigned mask(const M& a) { return a; }
 };
 
 // The scalar test's operations in every lane of `Lanes`. Always inline, as the scalar test: a
@@ -435,8 +440,8 @@ template <typename Lanes>
 }
 
 // The eight triangles of pairs[0] to pairs[3] at once, lanes as bits 0 to 7; only where the CPU
-// has AVX-512F and DQ (the mesh traversal's AVX-512 kernel, wide_box_kernel.h).
-[[gnu::target("avx512f,avx512dq"), gnu::flatten]] inline unsigned intersect_triangle_eight(
+// has AVX-512F, DQ and VL (the mesh traversal's AVX-512 kernel, wide_box_kernel.h).
+[[gnu::target("avx512f,avx512dq,avx512vl"), gnu::flatten]] inline unsigned intersect_triangle_eight(
     const TrianglePair* pairs, const TriangleLanesRay& lanes_ray, double t_max,
     TriangleLaneHits& hits) {
   return intersect_triangle_lanes<Avx512DoubleLanes>(pairs, lanes_ray, t_max, hits);

@@ -182,11 +182,11 @@ TEST(WideBoxKernels, EveryKernelTracesStacksOfTrianglesAlike) {
   }
 }
 
-// Where the CPU has AVX-512F and DQ, traversals use that kernel, and the comparisons above cover
-// it; say so where it does not.
+// Where the CPU has AVX-512F, DQ and VL, traversals use that kernel, and the comparisons above
+// cover it; say so where it does not.
 TEST(WideBoxKernels, ThisMachineRunsTheAvx512Kernel) {
   if (!wide_box_kernel_supported(WideBoxKernel::Avx512))
-    GTEST_SKIP() << "no AVX-512F and DQ on this CPU: the avx512 kernel is not compared";
+    GTEST_SKIP() << "no AVX-512F, DQ and VL on this CPU: the avx512 kernel is not compared";
   EXPECT_EQ(wide_box_kernel(), WideBoxKernel::Avx512);
 }
 

@@ -1,10 +1,9 @@
 // The lane tests of mesh leaves, two triangles at a time (SSE2, where the build has it), four
-// (AVX2, where the CPU has it) and eight (AVX-512F and DQ, where the CPU has them): each gives bit
-// for bit the hits of the scalar path, which is the one-triangle test of triangle.h per lane, so
-// that images do not depend on the CPU. Rays graze
-// edges and vertices, start on or near the triangles' planes (where the t error bound decides),
-// meet t_max at the hit's exact t, and lanes hold NaN corners (the padding of odd leaves) or huge
-// coordinates.
+// (AVX2, where the CPU has it) and eight (AVX-512F, DQ and VL, where the CPU has them): each gives
+// bit for bit the hits of the scalar path, which is the one-triangle test of triangle.h per lane,
+// so that images do not depend on the CPU. Rays graze edges and vertices, start on or near the
+// triangles' planes (where the t error bound decides), meet t_max at the hit's exact t, and lanes
+// hold NaN corners (the padding of odd leaves) or huge coordinates.
 #include "common/geometry/intersect_triangle_pair.h"
 
 #include <gtest/gtest.h>
@@ -58,7 +57,8 @@ void expect_lanes_match(const Corners* const corners[], int first, int lane_coun
 
 bool cpu_has_avx512() {
 #if defined(__SSE2__)
-  return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq");
+  return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq") &&
+         __builtin_cpu_supports("avx512vl");
 #else
   return false;
 #endif
@@ -113,7 +113,8 @@ Vec3 random_point(std::mt19937_64& rng, double scale) {
 
 // The eight-lane test is compared above only where the CPU runs it: say so where it does not.
 TEST(TrianglePair, ThisMachineChecksTheEightLaneTest) {
-  if (!cpu_has_avx512()) GTEST_SKIP() << "no AVX-512F and DQ on this CPU: eight lanes not checked";
+  if (!cpu_has_avx512())
+    GTEST_SKIP() << "no AVX-512F, DQ and VL on this CPU: eight lanes not checked";
   SUCCEED();
 }
 
