@@ -145,7 +145,7 @@ struct PacketRays {
 #endif
 
 // The walk of traverse_bvh_packet_leaves: run() tests boxes with intersect_child_boxes_packet,
-// run_avx2() with intersect_child_boxes_packet_avx2 (wide_box_kernel() chooses: AVX2 or AVX-512).
+// run_avx2() with intersect_child_boxes_packet_avx2 (wide_box_kernel() chooses).
 template <typename VisitLeaf>
 class BvhPacketWalk {
  public:
@@ -297,8 +297,7 @@ void traverse_bvh_packet_leaves(const Bvh& bvh, const PacketRays& rays, double* 
   typename Walk::Pending stack[kBvhMaxDepth];
   Walk walk(bvh, rays, t_max, nodes_visited, visit_leaf);
 #if defined(__SSE2__)
-  if (const WideBoxKernel kernel = wide_box_kernel();
-      kernel == WideBoxKernel::Avx2 || kernel == WideBoxKernel::Avx512)
+  if (wide_box_kernel() == WideBoxKernel::Avx2)
     return walk.run_avx2(rays.lanes, {0, 0, rays.lanes, {}}, stack, 0);
 #endif
   walk.run(rays.lanes, {0, 0, rays.lanes, {}}, stack, 0);

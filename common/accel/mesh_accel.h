@@ -28,13 +28,11 @@ struct MeshAccel {
   Bounds3 bounds;
   // The corners of the triangle at each position i of bvh.primitive_order, in lane i % 2 of
   // leaf_pairs[i / 2], so that a leaf's triangles lie together in memory and are tested two at a
-  // time, or four (two adjacent pairs) with AVX2, or eight (four) with AVX-512
-  // (intersect_triangle_pair.h). Every leaf starts at an even position: a leaf of odd size is
-  // followed by a gap in primitive_order (kNoTriangle), whose lane's corners are NaN, as are a
-  // degenerate triangle's: the triangle test rejects them (their determinant is not finite). The
-  // SAH tree leaves degenerate triangles out, but the flat "acceleration off" keeps every one.
-  // One pair of NaN follows the last leaf's, as an eight-lane test of its last five to seven
-  // triangles reads a pair past it.
+  // time, or four (two adjacent pairs) with AVX2 (intersect_triangle_pair.h). Every leaf starts at
+  // an even position: a leaf of odd size is followed by a gap in primitive_order (kNoTriangle),
+  // whose lane's corners are NaN, as are a degenerate triangle's: the triangle test rejects them
+  // (their determinant is not finite). The SAH tree leaves degenerate triangles out, but the flat
+  // "acceleration off" keeps every one.
   std::vector<TrianglePair> leaf_pairs;
 };
 

@@ -1,8 +1,8 @@
 // Which kernel the mesh BVH traversal tests a wide node's boxes with (float_child_boxes.h):
 // chosen once, at the first traversal, from what the CPU supports, so that one binary runs
 // everywhere. The kernels give bit-identical results; forcing one (the environment variable
-// TESSERA_BOX_KERNEL=sse2, scalar, avx2 or avx512, or force_wide_box_kernel) is for tests that
-// check exactly that, and for measuring one against another.
+// TESSERA_BOX_KERNEL=sse2, scalar or avx2, or force_wide_box_kernel) is for tests that check
+// exactly that, and for measuring one against another.
 #pragma once
 
 #include <optional>
@@ -11,13 +11,10 @@
 
 namespace tessera {
 
-// Avx512: the AVX2 box test in a traversal compiled for AVX-512F, DQ and VL, whose leaves test
-// eight triangles at once (the CPU must have all three; VL lets 256-bit code use registers 16-31
-// without 512-bit moves, which cost 4-8 % where GCC made them).
-enum class WideBoxKernel { Scalar, Sse2, Avx2, Avx512 };
+enum class WideBoxKernel { Scalar, Sse2, Avx2 };
 
 // The kernel a traversal was compiled for, as a type: its leaf visitor may use that instruction
-// set too (the mesh's four- and eight-triangle tests, intersect_triangle_pair.h).
+// set too (the mesh's four-triangle test, intersect_triangle_pair.h, under AVX2).
 template <WideBoxKernel kKernel>
 using WideBoxKernelTag = std::integral_constant<WideBoxKernel, kKernel>;
 
@@ -29,8 +26,7 @@ bool wide_box_kernel_supported(WideBoxKernel kernel);
 // Uses `kernel` from now on (it must be supported); std::nullopt returns to the automatic
 // choice. Not for use while other threads trace.
 void force_wide_box_kernel(std::optional<WideBoxKernel> kernel);
-// "scalar", "sse2", "avx2", "avx512"; parse_wide_box_kernel is its inverse (std::nullopt
-// otherwise).
+// "scalar", "sse2", "avx2"; parse_wide_box_kernel is its inverse (std::nullopt otherwise).
 std::string_view wide_box_kernel_name(WideBoxKernel kernel);
 std::optional<WideBoxKernel> parse_wide_box_kernel(std::string_view name);
 

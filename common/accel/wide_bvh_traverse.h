@@ -129,17 +129,6 @@ template <WideBvhOrder kOrder, typename VisitLeaf>
                                        WideBoxKernelTag<WideBoxKernel::Avx2>{},
                                        intersect_float_child_boxes_avx2);
 }
-
-// The AVX2 box test in a loop compiled for AVX-512F, DQ and VL (no FMA either), for the
-// visitor's eight-triangle test.
-template <WideBvhOrder kOrder, typename VisitLeaf>
-[[gnu::flatten, gnu::target("avx512f,avx512dq,avx512vl")]] void traverse_wide_bvh_avx512(
-    const Bvh& bvh, const Ray& ray, double t_max, std::uint64_t& nodes_visited,
-    VisitLeaf& visit_leaf) {
-  traverse_wide_bvh_below_root<kOrder>(bvh, ray, t_max, nodes_visited, visit_leaf,
-                                       WideBoxKernelTag<WideBoxKernel::Avx512>{},
-                                       intersect_float_child_boxes_avx2);
-}
 #endif
 
 // Visits the leaves whose boxes the ray [0, t_max] may enter, in the order `order` names:
@@ -169,8 +158,6 @@ void traverse_wide_bvh_leaves(const Bvh& bvh, const Ray& ray, double t_max,
   }
   switch (wide_box_kernel()) {
 #if defined(__SSE2__)
-    case WideBoxKernel::Avx512:
-      return traverse_wide_bvh_avx512<kOrder>(bvh, ray, t_max, nodes_visited, visit_leaf);
     case WideBoxKernel::Avx2:
       return traverse_wide_bvh_avx2<kOrder>(bvh, ray, t_max, nodes_visited, visit_leaf);
     case WideBoxKernel::Sse2:

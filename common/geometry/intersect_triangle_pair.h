@@ -1,12 +1,11 @@
 // Several triangles of a mesh leaf tested against one ray at once: the watertight test of
 // triangle.h in double lanes, one triangle per lane (the layout: triangle_pair.h). Two at a time
 // with SSE2, which is part of every x86-64 CPU; four at a time, two adjacent pairs, with AVX2,
-// and eight, four adjacent pairs, with AVX-512, which only the mesh traversals compiled for
-// those instruction sets use (wide_bvh_traverse.h chooses one at run time); other CPUs run the
-// scalar test once per lane. Each lane computes exactly the IEEE operations of the scalar test in
-// the same order (nothing is fused: the build forbids contraction and neither the "avx2" nor the
-// "avx512f" target enables FMA; maxpd(b, a) is std::max(a, b), NaN included), so every path gives
-// bit-identical hits (tests/geometry/triangle_pair_test.cpp).
+// which only the mesh traversal compiled for AVX2 uses (wide_bvh_traverse.h chooses it at run
+// time); other CPUs run the scalar test once per lane. Each lane computes exactly the IEEE
+// operations of the scalar test in the same order (nothing is fused: the build forbids
+// contraction and the "avx2" target does not enable FMA; maxpd(b, a) is std::max(a, b), NaN
+// included), so every path gives bit-identical hits (tests/geometry/triangle_pair_test.cpp).
 #pragma once
 
 #include <bit>
@@ -21,15 +20,15 @@
 
 namespace tessera {
 
-// The most triangles one test covers: four pairs.
-inline constexpr int kTriangleLanesMax = 8;
+// The most triangles one test covers: two pairs.
+inline constexpr int kTriangleLanesMax = 4;
 
 // The hits of the lanes tested (meaningful only for the lanes reported hit).
 struct TriangleLaneHits {
-  alignas(64) double t[kTriangleLanesMax];
-  alignas(64) double b0[kTriangleLanesMax];
-  alignas(64) double b1[kTriangleLanesMax];
-  alignas(64) double b2[kTriangleLanesMax];
+  alignas(32) double t[kTriangleLanesMax];
+  alignas(32) double b0[kTriangleLanesMax];
+  alignas(32) double b1[kTriangleLanesMax];
+  alignas(32) double b2[kTriangleLanesMax];
   TriangleHit lane(int i) const { return {t[i], b0[i], b1[i], b2[i]}; }
 };
 
@@ -75,15 +74,13 @@ inline TriangleLanesRay prepare_triangle_lanes_ray(const Ray& ray) {
 
 #if defined(__SSE2__)
 // The SIMD paths: one algorithm (intersect_triangle_lanes) over the double vectors of SSE2 (one
-// pair), AVX2 (two pairs) or AVX-512 (four pairs), as float_child_boxes.h does for boxes. The
-// operations take and give vectors by reference: an AVX vector passed by value through a function
-// compiled without AVX changes the ABI, and the algorithm is compiled for the baseline, to be
-// inlined whole (gnu::flatten) into functions compiled for AVX2 or AVX-512. Comparisons give lane
-// masks M: all-ones lanes of a vector with SSE2 and AVX2, a mask register with AVX-512; the AVX
+// pair) or AVX2 (two pairs), as float_child_boxes.h does for boxes. The operations take and give
+// vectors by reference: an AVX vector passed by value through a function compiled without AVX
+// changes the ABI, and the algorithm is compiled for the baseline, to be inlined whole
+// (gnu::flatten) into functions compiled for AVX2. Comparisons give lane masks; the AVX
 // predicates are those of the SSE2 instructions (cmpltpd is _CMP_LT_OS, cmpnltpd _CMP_NLT_US).
 struct Sse2DoubleLanes {
   using V = __m128d;
-  using M = __m128d;
   static constexpr unsigned kAllLanes = 3;
   [[gnu::always_inline]] static void set1(V& r, double x) { r = _mm_set1_pd(x); }
   // Coordinate `axis` of corner `c` of each lane's triangle.
@@ -97,24 +94,21 @@ struct Sse2DoubleLanes {
   [[gnu::always_inline]] static void div(V& r, const V& a, const V& b) { r = _mm_div_pd(a, b); }
   [[gnu::always_inline]] static void max(V& r, const V& a, const V& b) { r = _mm_max_pd(a, b); }
   [[gnu::always_inline]] static void bit_and(V& r, const V& a, const V& b) { r = _mm_and_pd(a, b); }
-  [[gnu::always_inline]] static void mask_and(M& r, const M& a, const M& b) {
-    r = _mm_and_pd(a, b);
-  }
-  [[gnu::always_inline]] static void mask_or(M& r, const M& a, const M& b) { r = _mm_or_pd(a, b); }
+  [[gnu::always_inline]] static void bit_or(V& r, const V& a, const V& b) { r = _mm_or_pd(a, b); }
   // ~a & b.
-  [[gnu::always_inline]] static void mask_and_not(M& r, const M& a, const M& b) {
+  [[gnu::always_inline]] static void and_not(V& r, const V& a, const V& b) {
     r = _mm_andnot_pd(a, b);
   }
-  [[gnu::always_inline]] static void lt(M& r, const V& a, const V& b) { r = _mm_cmplt_pd(a, b); }
-  [[gnu::always_inline]] static void le(M& r, const V& a, const V& b) { r = _mm_cmple_pd(a, b); }
-  [[gnu::always_inline]] static void gt(M& r, const V& a, const V& b) { r = _mm_cmpgt_pd(a, b); }
-  [[gnu::always_inline]] static void ge(M& r, const V& a, const V& b) { r = _mm_cmpge_pd(a, b); }
-  [[gnu::always_inline]] static void eq(M& r, const V& a, const V& b) { r = _mm_cmpeq_pd(a, b); }
+  [[gnu::always_inline]] static void lt(V& r, const V& a, const V& b) { r = _mm_cmplt_pd(a, b); }
+  [[gnu::always_inline]] static void le(V& r, const V& a, const V& b) { r = _mm_cmple_pd(a, b); }
+  [[gnu::always_inline]] static void gt(V& r, const V& a, const V& b) { r = _mm_cmpgt_pd(a, b); }
+  [[gnu::always_inline]] static void ge(V& r, const V& a, const V& b) { r = _mm_cmpge_pd(a, b); }
+  [[gnu::always_inline]] static void eq(V& r, const V& a, const V& b) { r = _mm_cmpeq_pd(a, b); }
   // !(a < b), true with a NaN.
-  [[gnu::always_inline]] static void not_lt(M& r, const V& a, const V& b) {
+  [[gnu::always_inline]] static void not_lt(V& r, const V& a, const V& b) {
     r = _mm_cmpnlt_pd(a, b);
   }
-  [[gnu::always_inline]] static unsigned mask(const M& a) {
+  [[gnu::always_inline]] static unsigned mask(const V& a) {
     return static_cast<unsigned>(_mm_movemask_pd(a));
   }
 };
@@ -122,7 +116,6 @@ struct Sse2DoubleLanes {
 // Two adjacent pairs, lanes 0 and 1 from the first; no FMA: the "avx2" target does not enable it.
 struct Avx2DoubleLanes {
   using V = __m256d;
-  using M = __m256d;
   static constexpr unsigned kAllLanes = 15;
   [[gnu::target("avx2")]] static void set1(V& r, double x) { r = _mm256_set1_pd(x); }
   [[gnu::target("avx2")]] static void load_corner(V& r, const TrianglePair* pairs, int c,
@@ -138,107 +131,33 @@ struct Avx2DoubleLanes {
   [[gnu::target("avx2")]] static void bit_and(V& r, const V& a, const V& b) {
     r = _mm256_and_pd(a, b);
   }
-  [[gnu::target("avx2")]] static void mask_and(M& r, const M& a, const M& b) {
-    r = _mm256_and_pd(a, b);
-  }
-  [[gnu::target("avx2")]] static void mask_or(M& r, const M& a, const M& b) {
+  [[gnu::target("avx2")]] static void bit_or(V& r, const V& a, const V& b) {
     r = _mm256_or_pd(a, b);
   }
-  [[gnu::target("avx2")]] static void mask_and_not(M& r, const M& a, const M& b) {
+  [[gnu::target("avx2")]] static void and_not(V& r, const V& a, const V& b) {
     r = _mm256_andnot_pd(a, b);
   }
-  [[gnu::target("avx2")]] static void lt(M& r, const V& a, const V& b) {
+  [[gnu::target("avx2")]] static void lt(V& r, const V& a, const V& b) {
     r = _mm256_cmp_pd(a, b, _CMP_LT_OS);
   }
-  [[gnu::target("avx2")]] static void le(M& r, const V& a, const V& b) {
+  [[gnu::target("avx2")]] static void le(V& r, const V& a, const V& b) {
     r = _mm256_cmp_pd(a, b, _CMP_LE_OS);
   }
-  [[gnu::target("avx2")]] static void gt(M& r, const V& a, const V& b) {
+  [[gnu::target("avx2")]] static void gt(V& r, const V& a, const V& b) {
     r = _mm256_cmp_pd(a, b, _CMP_GT_OS);
   }
-  [[gnu::target("avx2")]] static void ge(M& r, const V& a, const V& b) {
+  [[gnu::target("avx2")]] static void ge(V& r, const V& a, const V& b) {
     r = _mm256_cmp_pd(a, b, _CMP_GE_OS);
   }
-  [[gnu::target("avx2")]] static void eq(M& r, const V& a, const V& b) {
+  [[gnu::target("avx2")]] static void eq(V& r, const V& a, const V& b) {
     r = _mm256_cmp_pd(a, b, _CMP_EQ_OQ);
   }
-  [[gnu::target("avx2")]] static void not_lt(M& r, const V& a, const V& b) {
+  [[gnu::target("avx2")]] static void not_lt(V& r, const V& a, const V& b) {
     r = _mm256_cmp_pd(a, b, _CMP_NLT_US);
   }
-  [[gnu::target("avx2")]] static unsigned mask(const M& a) {
+  [[gnu::target("avx2")]] static unsigned mask(const V& a) {
     return static_cast<unsigned>(_mm256_movemask_pd(a));
   }
-};
-
-// Four adjacent pairs, lanes 2 p and 2 p + 1 from pairs[p]; comparisons into mask registers,
-// combined there. No FMA: the "avx512f" target does not enable it; "avx512dq" brings vandpd,
-// "avx512vl" the use of registers 16-31 by the 256-bit code around it without 512-bit moves.
-// The insert and max are written with an all-lanes zeroing mask (the same instruction): GCC 12's
-// unmasked forms start from _mm512_undefined_pd, which -Wmaybe-uninitialized rejects.
-struct Avx512DoubleLanes {
-  using V = __m512d;
-  using M = __mmask8;
-  static constexpr unsigned kAllLanes = 255;
-  [[gnu::target("avx512f,avx512dq,avx512vl")]] static void set1(V& r, double x) {
-    r = _mm512_set1_pd(x);
-  }
-  [[gnu::target("avx512f,avx512dq,avx512vl")]] static void load_corner(V& r,
-                                                                       const TrianglePair* pairs,
-                                                                       int c, int axis) {
-    const __m256d low = _mm256_loadu2_m128d(pairs[1].corner[c][axis], pairs[0].corner[c][axis]);
-    const __m256d high = _mm256_loadu2_m128d(pairs[3].corner[c][axis], pairs[2].corner[c][axis]);
-    r = _mm512_maskz_insertf64x4(kAllLanes, _mm512_castpd256_pd512(low), high, 1);
-  }
-  [[gnu::target("avx512f,avx512dq,avx512vl")]] static void store(double* p, const V& a) {
-    _mm512_store_pd(p, a);
-  }
-  [[gnu::target("avx512f,avx512dq,avx512vl")]] static void add(V& r, const V& a, const V& b) {
-    r = _mm512_add_pd(a, b);
-  }
-  [[gnu::target("avx512f,avx512dq,avx512vl")]] static void sub(V& r, const V& a, const V& b) {
-    r = _mm512_sub_pd(a, b);
-  }
-  [[gnu::target("avx512f,avx512dq,avx512vl")]] static void mul(V& r, const V& a, const V& b) {
-    r = _mm512_mul_pd(a, b);
-  }
-  [[gnu::target("avx512f,avx512dq,avx512vl")]] static void div(V& r, const V& a, const V& b) {
-    r = _mm512_div_pd(a, b);
-  }
-  [[gnu::target("avx512f,avx512dq,avx512vl")]] static void max(V& r, const V& a, const V& b) {
-    r = _mm512_maskz_max_pd(kAllLanes, a, b);
-  }
-  [[gnu::target("avx512f,avx512dq,avx512vl")]] static void bit_and(V& r, const V& a, const V& b) {
-    r = _mm512_and_pd(a, b);
-  }
-  [[gnu::target("avx512f,avx512dq,avx512vl")]] static void mask_and(M& r, const M& a, const M& b) {
-    r = static_cast<M>(a & b);
-  }
-  [[gnu::target("avx512f,avx512dq,avx512vl")]] static void mask_or(M& r, const M& a, const M& b) {
-    r = static_cast<M>(a | b);
-  }
-  [[gnu::target("avx512f,avx512dq,avx512vl")]] static void mask_and_not(M& r, const M& a,
-                                                                        const M& b) {
-    r = static_cast<M>(~a & b);
-  }
-  [[gnu::target("avx512f,avx512dq,avx512vl")]] static void lt(M& r, const V& a, const V& b) {
-    r = _mm512_cmp_pd_mask(a, b, _CMP_LT_OS);
-  }
-  [[gnu::target("avx512f,avx512dq,avx512vl")]] static void le(M& r, const V& a, const V& b) {
-    r = _mm512_cmp_pd_mask(a, b, _CMP_LE_OS);
-  }
-  [[gnu::target("avx512f,avx512dq,avx512vl")]] static void gt(M& r, const V& a, const V& b) {
-    r = _mm512_cmp_pd_mask(a, b, _CMP_GT_OS);
-  }
-  [[gnu::target("avx512f,avx512dq,avx512vl")]] static void ge(M& r, const V& a, const V& b) {
-    r = _mm512_cmp_pd_mask(a, b, _CMP_GE_OS);
-  }
-  [[gnu::target("avx512f,avx512dq,avx512vl")]] static void eq(M& r, const V& a, const V& b) {
-    r = _mm512_cmp_pd_mask(a, b, _CMP_EQ_OQ);
-  }
-  [[gnu::target("avx512f,avx512dq,avx512vl")]] static void not_lt(M& r, const V& a, const V& b) {
-    r = _mm512_cmp_pd_mask(a, b, _CMP_NLT_US);
-  }
-  [[gnu::target("avx512f,avx512dq,avx512vl")]] static unsigned mask(const M& a) { return a; }
 };
 
 // The scalar test's operations in every lane of `Lanes`. Always inline, as the scalar test: a
@@ -290,20 +209,18 @@ template <typename Lanes>
   edge(e0, q1, q2);
   edge(e1, q2, q0);
   edge(e2, q0, q1);
-  using M = typename Lanes::M;
-  V zero;
-  M some_negative, some_positive, compared;
+  V zero, some_negative, some_positive, compared;
   Lanes::set1(zero, 0.0);
   Lanes::lt(some_negative, e0, zero);
   Lanes::lt(compared, e1, zero);
-  Lanes::mask_or(some_negative, some_negative, compared);
+  Lanes::bit_or(some_negative, some_negative, compared);
   Lanes::lt(compared, e2, zero);
-  Lanes::mask_or(some_negative, some_negative, compared);
+  Lanes::bit_or(some_negative, some_negative, compared);
   Lanes::gt(some_positive, e0, zero);
   Lanes::gt(compared, e1, zero);
-  Lanes::mask_or(some_positive, some_positive, compared);
+  Lanes::bit_or(some_positive, some_positive, compared);
   Lanes::gt(compared, e2, zero);
-  Lanes::mask_or(some_positive, some_positive, compared);
+  Lanes::bit_or(some_positive, some_positive, compared);
   V det;
   Lanes::add(det, e0, e1);
   Lanes::add(det, det, e2);
@@ -311,15 +228,14 @@ template <typename Lanes>
   Lanes::set1(abs_bits, std::bit_cast<double>(0x7fffffffffffffffull));
   const auto abs = [&](V& r, const V& a) { Lanes::bit_and(r, a, abs_bits); };
   // Missed: mixed signs, a zero determinant or one that is not finite (NaN or infinite).
-  M missed;
-  V infinity, abs_det;
-  Lanes::mask_and(missed, some_negative, some_positive);
+  V missed, infinity, abs_det;
+  Lanes::bit_and(missed, some_negative, some_positive);
   Lanes::eq(compared, det, zero);
-  Lanes::mask_or(missed, missed, compared);
+  Lanes::bit_or(missed, missed, compared);
   Lanes::set1(infinity, std::numeric_limits<double>::infinity());
   abs(abs_det, det);
   Lanes::not_lt(compared, abs_det, infinity);
-  Lanes::mask_or(missed, missed, compared);
+  Lanes::bit_or(missed, missed, compared);
   if (Lanes::mask(missed) == Lanes::kAllLanes) return 0;
 
   Lanes::mul(q0.z, q0.z, shear_z);
@@ -333,21 +249,21 @@ template <typename Lanes>
   Lanes::add(t_scaled, t_scaled, product);
   Lanes::set1(t_max_det, t_max);
   Lanes::mul(t_max_det, t_max_det, det);
-  M out, side, beyond;
+  V out, side, beyond;
   // det < 0 && (t_scaled >= 0 || t_scaled < t_max * det)
   Lanes::lt(side, det, zero);
   Lanes::ge(compared, t_scaled, zero);
   Lanes::lt(beyond, t_scaled, t_max_det);
-  Lanes::mask_or(compared, compared, beyond);
-  Lanes::mask_and(out, side, compared);
-  Lanes::mask_or(missed, missed, out);
+  Lanes::bit_or(compared, compared, beyond);
+  Lanes::bit_and(out, side, compared);
+  Lanes::bit_or(missed, missed, out);
   // det > 0 && (t_scaled <= 0 || t_scaled > t_max * det)
   Lanes::gt(side, det, zero);
   Lanes::le(compared, t_scaled, zero);
   Lanes::gt(beyond, t_scaled, t_max_det);
-  Lanes::mask_or(compared, compared, beyond);
-  Lanes::mask_and(out, side, compared);
-  Lanes::mask_or(missed, missed, out);
+  Lanes::bit_or(compared, compared, beyond);
+  Lanes::bit_and(out, side, compared);
+  Lanes::bit_or(missed, missed, out);
   if (Lanes::mask(missed) == Lanes::kAllLanes) return 0;
 
   V one, inv_det, t;
@@ -398,13 +314,12 @@ template <typename Lanes>
   times(delta_t, 3, term);
   abs(term, inv_det);
   Lanes::mul(delta_t, delta_t, term);
-  M hit;
-  V t_max_lanes;
+  V hit, t_max_lanes;
   Lanes::gt(hit, t, delta_t);
   Lanes::set1(t_max_lanes, t_max);
   Lanes::lt(compared, t, t_max_lanes);
-  Lanes::mask_and(hit, hit, compared);
-  Lanes::mask_and_not(hit, missed, hit);
+  Lanes::bit_and(hit, hit, compared);
+  Lanes::and_not(hit, missed, hit);
   const unsigned lanes = Lanes::mask(hit);
   if (lanes == 0) return 0;
   Lanes::store(hits.t, t);
@@ -432,19 +347,11 @@ template <typename Lanes>
 
 #if defined(__SSE2__)
 // The four triangles of pairs[0] and pairs[1] at once, lanes as bits 0 to 3; only where the CPU
-// has AVX2 (the mesh traversal's AVX2 and AVX-512 kernels, wide_box_kernel.h).
+// has AVX2 (the mesh traversal's AVX2 kernel, wide_box_kernel.h).
 [[gnu::target("avx2"), gnu::flatten]] inline unsigned intersect_triangle_quad(
     const TrianglePair* pairs, const TriangleLanesRay& lanes_ray, double t_max,
     TriangleLaneHits& hits) {
   return intersect_triangle_lanes<Avx2DoubleLanes>(pairs, lanes_ray, t_max, hits);
-}
-
-// The eight triangles of pairs[0] to pairs[3] at once, lanes as bits 0 to 7; only where the CPU
-// has AVX-512F, DQ and VL (the mesh traversal's AVX-512 kernel, wide_box_kernel.h).
-[[gnu::target("avx512f,avx512dq,avx512vl"), gnu::flatten]] inline unsigned intersect_triangle_eight(
-    const TrianglePair* pairs, const TriangleLanesRay& lanes_ray, double t_max,
-    TriangleLaneHits& hits) {
-  return intersect_triangle_lanes<Avx512DoubleLanes>(pairs, lanes_ray, t_max, hits);
 }
 #endif
 

@@ -12,26 +12,16 @@
 namespace tessera {
 namespace {
 
-// Tests the triangles of a leaf ending at `end` from its position i (even) on: eight (four
-// pairs) in the traversal compiled for AVX-512 while more than four remain, four (two pairs) in
-// those compiled for AVX2 or AVX-512 while more than two remain, else one pair; `next` receives
-// the position after them. Returns the lanes hit as bits, lane l for the triangle at i + l. With
-// five to seven left, the eight lanes reach into the next leaf (or the padding pair after the
-// last, MeshAccel::leaf_pairs), whose lanes are masked off.
+// Tests the triangles of a leaf ending at `end` from its position i (even) on: four (two pairs)
+// in the traversal compiled for AVX2 while more than two remain, else one pair; `next` receives
+// the position after them. Returns the lanes hit as bits, lane l for the triangle at i + l.
 template <typename Kernel>
 [[gnu::always_inline]] inline unsigned intersect_leaf_triangles(
     Kernel, const MeshAccel& accel, std::uint32_t i, std::uint32_t end,
     const TriangleLanesRay& lanes_ray, double t_max, TriangleLaneHits& hits, std::uint32_t& next) {
   const TrianglePair* pairs = &accel.leaf_pairs[i / 2];
 #if defined(__SSE2__)
-  if constexpr (Kernel::value == WideBoxKernel::Avx512) {
-    if (end - i > 4) {
-      next = i + 8;
-      const unsigned in_leaf = end - i >= 8 ? 255u : (1u << (end - i)) - 1;
-      return intersect_triangle_eight(pairs, lanes_ray, t_max, hits) & in_leaf;
-    }
-  }
-  if constexpr (Kernel::value == WideBoxKernel::Avx2 || Kernel::value == WideBoxKernel::Avx512) {
+  if constexpr (Kernel::value == WideBoxKernel::Avx2) {
     if (end - i > 2) {
       next = i + 4;
       return intersect_triangle_quad(pairs, lanes_ray, t_max, hits);
