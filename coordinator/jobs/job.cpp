@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <chrono>
 #include <iterator>
+#include <utility>
 
 namespace tessera {
 
@@ -100,11 +101,11 @@ void Job::finish(JobState state, std::string error, Clock::time_point now) {
   release_buffers();
 }
 
-void Job::keep_encodings(Encodings encoded) {
+std::shared_ptr<const FrameBuffer> Job::keep_encodings(Encodings encoded) {
   final_encoded_ = std::move(encoded);
-  final_pixels_.reset();
   // The records' values were read from those pixels: pages still behind load the final image.
   trim_delta_log(0);
+  return std::exchange(final_pixels_, nullptr);
 }
 
 void Job::fail_unstored(std::string error) {
