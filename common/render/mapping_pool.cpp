@@ -46,7 +46,9 @@ void* MappingPool::take(std::size_t bytes, Clock::time_point now) {
       const std::size_t used = whole_pages(bytes);
       if (whole_pages(kept.bytes) > used)
         munmap(static_cast<char*>(kept.mapping) + used, whole_pages(kept.bytes) - used);
-      return kept.mapping;  // zeroed by give()
+      // Outside the lock would let another thread in sooner, but takes are rare (a job's start).
+      std::memset(kept.mapping, 0, bytes);
+      return kept.mapping;
     }
   }
   void* p = mmap(nullptr, bytes, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
@@ -57,10 +59,6 @@ void* MappingPool::take(std::size_t bytes, Clock::time_point now) {
 
 void MappingPool::give(void* mapping, std::size_t bytes, Clock::time_point now) {
   if (bytes > limits_.max_bytes) return unmap(mapping, bytes);
-  // Zeroed here, outside the lock, rather than in take(): the coordinator gives a finished
-  // job's buffer back off its io thread, and the next job's first merge on that thread finds
-  // it ready (docs/SCALING.md). One kept only to be evicted below is zeroed for nothing: rare.
-  std::memset(mapping, 0, bytes);
   std::lock_guard lock(mutex_);
   release_idle_locked(now);
   kept_.push_back({mapping, bytes, now});

@@ -1,10 +1,9 @@
 // Large zeroed mappings (ZeroedAllocator's, 2 MB and more: a coordinator job's frame buffer)
 // kept for a while after they are freed and handed to the next buffer that asks, zero-filled
-// again with memset when freed, on the freeing thread (the coordinator frees a finished job's
-// buffer off its io thread, which takes the next one). On the virtual machines measured here a new
-// mapping's first writes cost 86-154 ms for 56 MB (the kernel, and the host below it, making and
-// zeroing the pages: a quarter of the coordinator's io thread while it merged a 2048x2048 job), a
-// memset of the same pages still mapped 1-1.6 ms (docs/SCALING.md).
+// again with memset. On the virtual machines measured here a new mapping's first writes cost
+// 86-154 ms for 56 MB (the kernel, and the host below it, making and zeroing the pages: a
+// quarter of the coordinator's io thread while it merged a 2048x2048 job), a memset of the
+// same pages still mapped 1-1.6 ms (docs/SCALING.md).
 //
 // Bounded both ways, so that the memory still goes back to the system: at most max_bytes are
 // kept (the oldest go first), and a mapping kept longer than `idle` is unmapped at the next
@@ -39,11 +38,9 @@ class MappingPool {
   static MappingPool& shared();
 
   // `bytes` of zeros: the smallest kept mapping that holds them (its tail beyond them
-  // unmapped; no pass over its bytes, give() zeroed them), else a new one advised to use
-  // transparent huge pages. Throws std::bad_alloc.
+  // unmapped), else a new one advised to use transparent huge pages. Throws std::bad_alloc.
   void* take(std::size_t bytes, Clock::time_point now = Clock::now());
-  // A mapping from take(), of the same `bytes`, kept for the next take() or unmapped. One it
-  // keeps it zeroes first, on the calling thread, outside the pool's lock.
+  // A mapping from take(), of the same `bytes`, kept for the next take() or unmapped.
   void give(void* mapping, std::size_t bytes, Clock::time_point now = Clock::now());
   // Unmaps what was kept longer than the idle limit.
   void release_idle(Clock::time_point now = Clock::now());

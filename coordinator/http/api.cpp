@@ -558,14 +558,7 @@ void Api::on_released(Job& job) {
         return std::function<void()>([this, id, version, encodings, unstored] {
           Job* done = jobs_.find(id);  // gone if deleted meanwhile (its write failed or undone)
           if (done && !encodings.empty()) {
-            // Freed on the pool: the mapping pool zeroes the 48 MB of a 2048x2048 job's
-            // buffer as it takes it back, 5 % of the io thread's time a job (docs/SCALING.md).
-            pool_.submit(
-                [pixels = done->keep_encodings(encodings)]() mutable {
-                  pixels.reset();
-                  return std::function<void()>();
-                },
-                true);
+            done->keep_encodings(encodings);
             if (unstored) config_.persistence->fail_unstored(*done, *unstored);
           }
           // The job keeps them now (one that could not store them failed: no image), not

@@ -5,7 +5,6 @@
 #include <algorithm>
 #include <chrono>
 #include <iterator>
-#include <utility>
 
 namespace tessera {
 
@@ -101,11 +100,11 @@ void Job::finish(JobState state, std::string error, Clock::time_point now) {
   release_buffers();
 }
 
-std::shared_ptr<const FrameBuffer> Job::keep_encodings(Encodings encoded) {
+void Job::keep_encodings(Encodings encoded) {
   final_encoded_ = std::move(encoded);
+  final_pixels_.reset();
   // The records' values were read from those pixels: pages still behind load the final image.
   trim_delta_log(0);
-  return std::exchange(final_pixels_, nullptr);
 }
 
 void Job::fail_unstored(std::string error) {

@@ -125,9 +125,7 @@ class Job {
   // the page; then release_buffers.
   void finish(JobState state, std::string error, Clock::time_point now);
   // The coordinator encoded the final image (after release_buffers): only the encodings stay.
-  // Returns the frame buffer the image was made from, for the caller to free off the io
-  // thread (the mapping pool zeroes its 12-14 bytes a pixel as it takes it back).
-  [[nodiscard]] std::shared_ptr<const FrameBuffer> keep_encodings(Encodings encoded);
+  void keep_encodings(Encodings encoded);
   // A done job whose results cannot be stored fails after all, keeping no image
   // (JobPersistence::store_images).
   void fail_unstored(std::string error);

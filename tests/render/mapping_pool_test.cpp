@@ -33,19 +33,6 @@ TEST(MappingPool, HandsAFreedMappingToTheNextTakeZeroed) {
   pool.give(again, 6 * kMB, now + 1s);
 }
 
-// A mapping is zeroed as it is given back, on the giving thread, so that take() makes no pass
-// over it: the coordinator frees a finished job's buffer off the io thread that takes the next.
-TEST(MappingPool, ZeroesAMappingAsItIsGivenBack) {
-  MappingPool pool({.max_bytes = 64 * kMB, .idle = 10s});
-  const auto now = MappingPool::Clock::now();
-  void* mapping = pool.take(4 * kMB, now);
-  std::memset(mapping, 0x5a, 4 * kMB);
-  pool.give(mapping, 4 * kMB, now);
-  EXPECT_TRUE(all_zero(mapping, 4 * kMB));  // still mapped: the pool keeps it
-  EXPECT_EQ(pool.take(4 * kMB, now), mapping);
-  pool.give(mapping, 4 * kMB, now);
-}
-
 // The smallest mapping that holds the request is taken: the larger one stays for a larger job.
 TEST(MappingPool, TakesTheSmallestKeptMappingThatFits) {
   MappingPool pool({.max_bytes = 64 * kMB, .idle = 10s});
