@@ -24,7 +24,8 @@ thread's CPU a pixel pass for the first job, the second, and the third and later
 median): the steady state. The first job's frame buffer is memory the kernel makes as it is
 first written. The second starts as soon as the first is done, while the first's buffer is
 still shared with its final image's encoding: it takes new memory too, unless that encoding
-ended before its first merge (a race; thousands of page faults or none). From the third on
+ended before its first merge (a race: new memory costs it 0.1-0.2 s of the io thread, in
+thousands of page faults, or tens where the kernel gives huge pages). From the third on
 a job takes the buffer of the job two before it, back in the pool (mapping_pool.h).
 
 usage: coordinator_capacity.py --build BUILD_DIR [--workers 32] [--threads 4] [--size 2048]
@@ -226,6 +227,16 @@ def page_faults(pid):
     return int(stat_fields("/proc/%d/task/%d/stat" % (pid, pid))[7])
 
 
+def io_switches(pid):
+    """Times so far the io thread left the processor: to wait (epoll found nothing to read) and
+    preempted (another thread or process took its turn). Either lets others take its core and
+    its caches, which it finds cold when it comes back (docs/SCALING.md)."""
+    with open("/proc/%d/task/%d/status" % (pid, pid)) as f:
+        status = f.read()
+    return tuple(int(re.search(r"^%s:\s+(\d+)$" % key, status, re.M).group(1))
+                 for key in ("voluntary_ctxt_switches", "nonvoluntary_ctxt_switches"))
+
+
 def cpu_seconds(pid):
     """User plus system CPU time of a process so far (Linux /proc)."""
     return cpu_seconds_of("/proc/%d/stat" % pid)
@@ -372,10 +383,12 @@ async def throughput(args, coordinator, check_workers, report, label):
                                    args.settings)
     start = time.perf_counter()
     cpu, threads_before, faults = cpu_seconds(pid), thread_cpu_seconds(pid), page_faults(pid)
+    switches = io_switches(pid)
     status = await coordinator.wait_job(job, check_workers)
     elapsed = time.perf_counter() - start
     cpu = cpu_seconds(pid) - cpu
     faults = page_faults(pid) - faults
+    switches = [after - before for after, before in zip(io_switches(pid), switches)]
     by_thread = sorted(((seconds - threads_before.get(thread, 0), thread[1])
                         for thread, seconds in thread_cpu_seconds(pid).items()), reverse=True)
     if status["state"] != "done":
@@ -391,9 +404,9 @@ async def throughput(args, coordinator, check_workers, report, label):
     cpu = max(cpu, 1e-9)
     report("coordinator CPU", "%.2f s: %.0f units and %.1f M pixel passes per CPU-second; "
            "%.0f us a unit, %.1f ns a pixel pass; its busiest threads %s; %d page faults on "
-           "the io thread" %
+           "the io thread, which waited for data %d times and was preempted %d times" %
            (cpu, units / cpu, pixels / cpu / 1e6, cpu / units * 1e6, cpu / pixels * 1e9,
-            ", ".join("%s %.3f s" % (name, t) for t, name in by_thread[:3]), faults))
+            ", ".join("%s %.3f s" % (name, t) for t, name in by_thread[:3]), faults, *switches))
     io = sum(t for t, name in by_thread if name == "io")
     return job, io / pixels
 
