@@ -20,15 +20,25 @@ tessera-worker processes of one thread. In phases, it measures
   message) and its units re-queued.
 
 With --jobs N the throughput job runs N times, one after the other, each reported, then the io
-thread's CPU a pixel pass for the first job and the later ones: the first job's frame buffer is
-memory the kernel makes as it is first written, later ones may reuse a finished job's.
+thread's CPU a pixel pass for the first job, the second, and the third and later (their
+median): the steady state. The first job's frame buffer is memory the kernel makes as it is
+first written. The second starts as soon as the first is done, while the first's buffer is
+still shared with its final image's encoding: it takes new memory too, unless that encoding
+ended before its first merge (a race: new memory costs it 0.1-0.2 s of the io thread, in
+thousands of page faults, or tens where the kernel gives huge pages). From the third on
+a job takes the buffer of the job two before it, back in the pool (mapping_pool.h).
 
 usage: coordinator_capacity.py --build BUILD_DIR [--workers 32] [--threads 4] [--size 2048]
        [--passes 4] [--jobs 1] [--scene SDL] [--aa 1] [--settings JSON] [--real N]
        [--ns-per-pixel 0] [--heartbeat-ms 2000] [--silence-ms 10000] [--idle-seconds 6]
-       [--smoke]
+       [--coordinator-cpu N] [--smoke]
 --smoke: seconds, tiny sizes, short heartbeats; exits 1 when a phase fails (the test command
 runs it, so a protocol change that breaks this script fails CI).
+
+--coordinator-cpu N: the coordinator (all its threads) runs on CPU N only and this script (all
+the synthetic workers) on the other CPUs, as issue 22 §3 means "one coordinator core": on a
+machine of two cores the script, sharing the coordinator's core unpinned, otherwise takes
+turns with its io thread. Off by default.
 
 The wall-clock rates are lower bounds: this script shares the machine with the coordinator
 (and, with --real, with the workers). The coordinator's own CPU time is measured from /proc;
@@ -45,6 +55,7 @@ import re
 import resource
 import secrets
 import signal
+import statistics
 import struct
 import subprocess
 import sys
@@ -216,6 +227,16 @@ def page_faults(pid):
     return int(stat_fields("/proc/%d/task/%d/stat" % (pid, pid))[7])
 
 
+def io_switches(pid):
+    """Times so far the io thread left the processor: to wait (epoll found nothing to read) and
+    preempted (another thread or process took its turn). Either lets others take its core and
+    its caches, which it finds cold when it comes back (docs/SCALING.md)."""
+    with open("/proc/%d/task/%d/status" % (pid, pid)) as f:
+        status = f.read()
+    return tuple(int(re.search(r"^%s:\s+(\d+)$" % key, status, re.M).group(1))
+                 for key in ("voluntary_ctxt_switches", "nonvoluntary_ctxt_switches"))
+
+
 def cpu_seconds(pid):
     """User plus system CPU time of a process so far (Linux /proc)."""
     return cpu_seconds_of("/proc/%d/stat" % pid)
@@ -251,13 +272,21 @@ def rss_bytes(pid):
         return int(re.search(r"VmRSS:\s+(\d+) kB", f.read()).group(1)) * 1024
 
 
+def pinned_to(cpu):
+    """A command prefix that runs a program on `cpu` only: the process is pinned before it
+    execs, so every thread the program starts inherits the mask (the same pid)."""
+    return (sys.executable, "-c", "import os, sys; os.sched_setaffinity(0, {%d}); "
+            "os.execv(sys.argv[1], sys.argv[1:])" % cpu)
+
+
 class Coordinator:
-    def __init__(self, build, tmp, heartbeat_ms, silence_ms):
+    def __init__(self, build, tmp, heartbeat_ms, silence_ms, cpu=None):
         self.log_path = os.path.join(tmp, "coordinator.log")
         with open(self.log_path, "w") as log:
             self.proc, self.http_port, self.worker_port = service_test.start_coordinator(
                 build, ["--secret", SECRET, "--heartbeat-ms", str(heartbeat_ms), "--silence-ms",
-                        str(silence_ms)], log, os.path.join(tmp, "ports.json"))
+                        str(silence_ms)], log, os.path.join(tmp, "ports.json"),
+                prefix=() if cpu is None else pinned_to(cpu))
 
     def log(self):
         with open(self.log_path) as f:
@@ -354,10 +383,12 @@ async def throughput(args, coordinator, check_workers, report, label):
                                    args.settings)
     start = time.perf_counter()
     cpu, threads_before, faults = cpu_seconds(pid), thread_cpu_seconds(pid), page_faults(pid)
+    switches = io_switches(pid)
     status = await coordinator.wait_job(job, check_workers)
     elapsed = time.perf_counter() - start
     cpu = cpu_seconds(pid) - cpu
     faults = page_faults(pid) - faults
+    switches = [after - before for after, before in zip(io_switches(pid), switches)]
     by_thread = sorted(((seconds - threads_before.get(thread, 0), thread[1])
                         for thread, seconds in thread_cpu_seconds(pid).items()), reverse=True)
     if status["state"] != "done":
@@ -373,9 +404,9 @@ async def throughput(args, coordinator, check_workers, report, label):
     cpu = max(cpu, 1e-9)
     report("coordinator CPU", "%.2f s: %.0f units and %.1f M pixel passes per CPU-second; "
            "%.0f us a unit, %.1f ns a pixel pass; its busiest threads %s; %d page faults on "
-           "the io thread" %
+           "the io thread, which waited for data %d times and was preempted %d times" %
            (cpu, units / cpu, pixels / cpu / 1e6, cpu / units * 1e6, cpu / pixels * 1e9,
-            ", ".join("%s %.2f s" % (name, t) for t, name in by_thread[:3]), faults))
+            ", ".join("%s %.3f s" % (name, t) for t, name in by_thread[:3]), faults, *switches))
     io = sum(t for t, name in by_thread if name == "io")
     return job, io / pixels
 
@@ -444,10 +475,12 @@ async def measure(args, coordinator, report):
                                        "job %d" % (index + 1))
             io_per_pixel.append(io * 1e9)
         if args.jobs > 1:
-            later = sorted(io_per_pixel[1:])
-            report("io thread", "first job %.1f ns a pixel pass; later jobs %.1f-%.1f ns "
-                   "(median %.1f)" % (io_per_pixel[0], later[0], later[-1],
-                                      later[len(later) // 2]))
+            line = "first job %.1f ns a pixel pass; job 2 %.1f ns" % tuple(io_per_pixel[:2])
+            steady = io_per_pixel[2:]
+            if steady:
+                line += "; jobs 3-%d %.1f-%.1f ns (median %.2f)" % (
+                    args.jobs, min(steady), max(steady), statistics.median(steady))
+            report("io thread", line)
 
         # Loss: one worker crashes and one hangs while a job runs.
         requeued0 = await coordinator.metric("tessera_units_requeued_total")
@@ -522,6 +555,8 @@ def main():
     parser.add_argument("--heartbeat-ms", type=int, default=2000)
     parser.add_argument("--silence-ms", type=int, default=10000)
     parser.add_argument("--idle-seconds", type=float, default=6)
+    parser.add_argument("--coordinator-cpu", type=int,
+                        help="run the coordinator on this CPU only and this script on the others")
     parser.add_argument("--smoke", action="store_true")
     args = parser.parse_args()
     args.scene_text = open(args.scene).read() if args.scene else "sphere\n"
@@ -542,8 +577,19 @@ def main():
     if hard < 2 * (args.workers + args.real) + 100:
         parser.error("the descriptor limit %d is too low for %d workers" % (hard, args.workers))
     report = lambda what, line: print("%-16s %s" % (what + ":", line), flush=True)
+    if args.coordinator_cpu is not None:
+        cpus = os.sched_getaffinity(0)
+        if args.coordinator_cpu not in cpus or len(cpus) < 2:
+            parser.error("--coordinator-cpu %d: this script may run on CPUs %s; it needs that "
+                         "one and another" % (args.coordinator_cpu, sorted(cpus)))
+        # Before any thread starts (asyncio.to_thread's), so that all of them inherit it.
+        os.sched_setaffinity(0, cpus - {args.coordinator_cpu})
+        report("pinned", "the coordinator to CPU %d, this script (the synthetic workers) to "
+               "CPUs %s" % (args.coordinator_cpu,
+                            ",".join(map(str, sorted(cpus - {args.coordinator_cpu})))))
     with tempfile.TemporaryDirectory() as tmp:
-        coordinator = Coordinator(args.build, tmp, args.heartbeat_ms, args.silence_ms)
+        coordinator = Coordinator(args.build, tmp, args.heartbeat_ms, args.silence_ms,
+                                  args.coordinator_cpu)
         try:
             asyncio.run(measure(args, coordinator, report))
         except AssertionError as e:

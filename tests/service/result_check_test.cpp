@@ -1,5 +1,6 @@
-// A result's values are refused when any one is not finite, wherever it is (the check runs four
-// values at a time, then the rest one by one), and the error names the first such pixel.
+// A result's values are refused when any one is not finite, wherever it is (the check runs a
+// cache line at a time while it reads a page ahead, then four values at a time, then the rest
+// one by one), and the error names the first such pixel.
 #include "coordinator/scheduler/result_check.h"
 
 #include <gtest/gtest.h>
@@ -19,22 +20,24 @@ ResultMessage result_of(long long pixels) {
 }
 
 TEST(ResultCheck, ANonFiniteValueAnywhereIsRefusedAndNamed) {
-  constexpr long long kPixels = 7;  // 21 values: five groups of four and one left over
-  for (const float bad :
-       {std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity(),
-        -std::numeric_limits<float>::infinity()})
-    for (std::size_t at = 0; at < 3 * kPixels; ++at) {
-      ResultMessage result = result_of(kPixels);
-      result.values[at] = bad;
-      try {
-        check_result(result, kPixels, 1.0);
-        ADD_FAILURE() << bad << " at value " << at << " was let through";
-      } catch (const ProtocolError& e) {
-        EXPECT_NE(std::string(e.what()).find(" at " + std::to_string(at / 3) + " is not finite"),
-                  std::string::npos)
-            << e.what();
+  // 21 values: five groups of four and one left over; 1,203: ten cache lines read a page
+  // (1,024 values) ahead, 260 groups of four and three left over.
+  for (const long long pixels : {7, 401})
+    for (const float bad :
+         {std::numeric_limits<float>::quiet_NaN(), std::numeric_limits<float>::infinity(),
+          -std::numeric_limits<float>::infinity()})
+      for (std::size_t at = 0; at < 3 * static_cast<std::size_t>(pixels); ++at) {
+        ResultMessage result = result_of(pixels);
+        result.values[at] = bad;
+        try {
+          check_result(result, pixels, 1.0);
+          ADD_FAILURE() << bad << " at value " << at << " of " << 3 * pixels << " was let through";
+        } catch (const ProtocolError& e) {
+          EXPECT_NE(std::string(e.what()).find(" at " + std::to_string(at / 3) + " is not finite"),
+                    std::string::npos)
+              << e.what();
+        }
       }
-    }
 }
 
 TEST(ResultCheck, FiniteExtremesAndNegativesPass) {
