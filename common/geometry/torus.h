@@ -18,9 +18,10 @@ bool leaves_the_torus_for_good(const Torus& torus, const Ray& ray);
 // True only when every query of torus.cpp finds a hit of the torus on the ray (object space) with
 // t in (0, t_max), so that a shadow ray need not form its quartic: the ray enters the padded box
 // from outside, far enough from its origin for a hit to count, is clearly outside the tube there,
-// and crosses the torus's plane clearly inside the tube before t_max, "clearly" by a margin that
-// covers the rounding of the quartic the search would form and of the search itself. Most shadow
-// rays from outside a torus that it blocks. False says nothing.
+// and is clearly inside the tube at a later point before t_max (where it crosses the torus's plane
+// or, failing that, one nearer the core circle), "clearly" by a margin that covers the rounding of
+// the quartic the search would form and of the search itself. Most shadow rays from outside a
+// torus that it blocks. False says nothing.
 bool crosses_into_the_tube(const Torus& torus, const Ray& ray, double t_max);
 
 }  // namespace tessera
