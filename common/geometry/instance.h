@@ -4,6 +4,9 @@
 // error bound (pbrt-v3 §3.9.4), so that rays can leave it robustly (offset_ray_origin).
 #pragma once
 
+#include <bit>
+#include <cstdint>
+
 #include "common/accel/mesh_accel.h"
 #include "common/geometry/local_hit.h"
 #include "common/math/affine.h"
@@ -14,6 +17,12 @@
 #include "common/stats/intersection_counters.h"
 
 namespace tessera {
+
+// Whether two vectors are the same bit for bit (unlike ==, which equates 0 and -0).
+inline bool same_bits(const Vec3& a, const Vec3& b) {
+  const auto bits = [](double x) { return std::bit_cast<std::uint64_t>(x); };
+  return ((bits(a.x) ^ bits(b.x)) | (bits(a.y) ^ bits(b.y)) | (bits(a.z) ^ bits(b.z))) == 0;
+}
 
 struct Instance {
   ShapeGeometry geometry;
@@ -60,6 +69,16 @@ struct WorldHit {
 // keeps its best hit so far there). A moving instance is posed at the ray's time.
 bool intersect_instance(const Instance& instance, const Ray& world_ray, double t_max, WorldHit& hit,
                         IntersectionCounters& counters);
+
+// A world point taken into the instance's object space as the origin of intersect_instance's
+// object ray, bit for bit. Rays that share their origin (a pinhole camera's) need it once per
+// instance: Tracer::find_packet_hits takes it once for its packet.
+Vec3 object_origin(const Instance& instance, const Vec3& world_origin);
+
+// intersect_instance, bit for bit, for a ray whose origin `object_origin` has already taken into
+// the instance's object space.
+bool intersect_instance(const Instance& instance, const Ray& world_ray, const Vec3& object_origin,
+                        double t_max, WorldHit& hit, IntersectionCounters& counters);
 
 // Whether the ray meets the instance with t in (0, t_max): the answer of intersect_instance,
 // for shadow feelers, without the world-space hit (point, error bound, normals) and through a
