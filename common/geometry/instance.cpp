@@ -187,11 +187,10 @@ struct DiagonalTransforms {
 // them: called out of line they cost a scene without boolean objects some 0.5 % more
 // instructions, docs/PERFORMANCE.md, "Scenes that use none of the new effects"); the kind is
 // chosen once a call.
+// The hit's world normals, unit, from the local ones.
 template <typename Transforms>
-[[gnu::always_inline]] inline void to_world_hit_with(const Transforms& transforms,
-                                                     const LocalHit& local, WorldHit& hit) {
-  hit.t = local.t;
-  transforms.world_point(local, hit);
+[[gnu::always_inline]] inline void world_normals(const Transforms& transforms,
+                                                 const LocalHit& local, WorldHit& hit) {
   // A degenerate normal falls back to a finite unit vector rather than NaN.
   hit.normal = normalize_or(transforms.world_normal(local.normal), Vec3{});
   if (hit.normal == Vec3{}) hit.normal = Vec3{0, 0, 1};
@@ -202,6 +201,19 @@ template <typename Transforms>
       same_bits(local.shading_normal, local.normal)
           ? hit.normal
           : normalize_or(transforms.world_normal(local.shading_normal), hit.normal);
+}
+
+template <typename Transforms>
+[[gnu::always_inline]] inline void to_world_hit_with(const Transforms& transforms,
+                                                     const LocalHit& local, WorldHit& hit) {
+  hit.t = local.t;
+  transforms.world_point(local, hit);
+  if (transforms.instance.face_normals) {
+    hit.normal = (*transforms.instance.face_normals)[local.part];
+    hit.shading_normal = hit.normal;
+  } else {
+    world_normals(transforms, local, hit);
+  }
   hit.object_point = local.point;
   hit.part = local.part;
   hit.object = transforms.instance.object;
@@ -253,6 +265,22 @@ void place_instance(Instance& instance, const Affine& to_world, const Affine& to
   const std::optional<DiagonalAffine> object = DiagonalAffine::of(to_object);
   instance.diagonal.reset();
   if (world && object) instance.diagonal = Instance::Diagonal{*world, *object};
+  instance.face_normals.reset();
+  if (std::holds_alternative<Cube>(instance.geometry)) {
+    std::array<Vec3, 6> normals;
+    for (std::uint32_t face = 0; face < 6; ++face) {
+      LocalHit local;
+      local.normal = cube_face_normal(face);
+      local.shading_normal = local.normal;
+      WorldHit hit;
+      if (instance.diagonal)
+        world_normals(DiagonalTransforms{instance, *instance.diagonal}, local, hit);
+      else
+        world_normals(FullTransforms{instance}, local, hit);
+      normals[face] = hit.normal;
+    }
+    instance.face_normals = normals;
+  }
 }
 
 std::optional<Instance> make_instance(const ShapeGeometry& geometry, const Affine& to_world,

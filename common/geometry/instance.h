@@ -4,6 +4,7 @@
 // error bound (pbrt-v3 §3.9.4), so that rays can leave it robustly (offset_ray_origin).
 #pragma once
 
+#include <array>
 #include <bit>
 #include <cstdint>
 
@@ -34,6 +35,10 @@ struct Instance {
     DiagonalAffine to_world, to_object;
   };
   std::optional<Diagonal> diagonal;
+  // A cube's normals in world space, by face (LocalHit::part), unit: its hits' normals depend on
+  // their face alone, so they are taken through the transform once, as to_world_hit would take
+  // them, not at every hit. Set by place_instance.
+  std::optional<std::array<Vec3, 6>> face_normals;
   const MeshAccel* mesh = nullptr;  // for MeshShape geometry
   // For CsgShape geometry, the children's instances (make_csg_instance, csg.h).
   const Instance* left = nullptr;
