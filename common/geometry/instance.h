@@ -77,7 +77,7 @@ bool intersect_instance(const Instance& instance, const Ray& world_ray, double t
 
 // A world point taken into the instance's object space as the origin of intersect_instance's
 // object ray, bit for bit. Rays that share their origin (a pinhole camera's) need it once per
-// instance: Tracer::find_packet_hits takes it once for its packet.
+// instance: Tracer::find_packet_hits takes the eye so once, not at every shape test.
 Vec3 object_origin(const Instance& instance, const Vec3& world_origin);
 
 // intersect_instance, bit for bit, for a ray whose origin `object_origin` has already taken into
