@@ -22,6 +22,13 @@ std::uint32_t face_index(int axis, bool positive) {
   return static_cast<std::uint32_t>(2 * axis + (positive ? 1 : 0));
 }
 
+// The outward normal of the face of `axis` that faces +axis when `positive`: +-1 on its axis,
+// +0 on the others. A hit's normal is its face's alone (Instance::face_normals relies on it).
+[[gnu::always_inline]] inline Vec3 face_normal(int axis, bool positive) {
+  const double face = positive ? 1 : -1;
+  return {axis == 0 ? face : 0.0, axis == 1 ? face : 0.0, axis == 2 ? face : 0.0};
+}
+
 // Where the ray enters and leaves the cube's slabs, and through which faces' axes (-1 when no
 // slab bounds that end); false when it misses.
 struct SlabSpan {
@@ -67,7 +74,7 @@ struct SlabSpan {
   const auto error = [&](int a, double pa) {
     return a == axis ? 0.0 : gamma_bound(3) * std::fabs(pa);
   };
-  const Vec3 n{axis == 0 ? face : 0.0, axis == 1 ? face : 0.0, axis == 2 ? face : 0.0};
+  const Vec3 n = face_normal(axis, positive_face);
   hit.t = t;
   hit.point = p;
   hit.point_error = {error(0, p.x), error(1, p.y), error(2, p.z)};
@@ -94,6 +101,10 @@ struct SlabSpan {
 }
 
 }  // namespace
+
+Vec3 cube_face_normal(std::uint32_t part) {
+  return face_normal(static_cast<int>(part / 2), part % 2 == 1);
+}
 
 bool intersect_cube(const Ray& ray, double t_max, LocalHit& hit) {
   double t = 0;

@@ -16,7 +16,6 @@
 #include "common/geometry/instance.h"
 
 #include <cmath>
-#include <cstring>
 #include <variant>
 
 #include "common/geometry/csg.h"
@@ -41,11 +40,6 @@ namespace {
 
 Vec3 abs_translation(const Affine& a) {
   return {std::fabs(a.m[0][3]), std::fabs(a.m[1][3]), std::fabs(a.m[2][3])};
-}
-
-// Whether two vectors are the same bit for bit (unlike ==, which equates 0 and -0).
-inline bool same_bits(const Vec3& a, const Vec3& b) {
-  return std::memcmp(&a, &b, sizeof(Vec3)) == 0;
 }
 
 // Part 3 above, for a world point of magnitude `magnitude` (componentwise |p| plus its error).
@@ -127,8 +121,13 @@ struct FullTransforms {
 
   [[gnu::always_inline]] Ray object_ray(const Ray& world_ray) const {
     // The direction is not renormalized, so t means the same in both spaces.
-    return {instance.to_object.apply_point(world_ray.origin),
-            instance.to_object.apply_vector(world_ray.direction), world_ray.time};
+    return {object_point(world_ray.origin), object_vector(world_ray.direction), world_ray.time};
+  }
+  [[gnu::always_inline]] Vec3 object_point(const Vec3& p) const {
+    return instance.to_object.apply_point(p);
+  }
+  [[gnu::always_inline]] Vec3 object_vector(const Vec3& v) const {
+    return instance.to_object.apply_vector(v);
   }
   // The hit's world point and its error bound.
   [[gnu::always_inline]] void world_point(const LocalHit& local, WorldHit& hit) const {
@@ -155,6 +154,20 @@ struct DiagonalTransforms {
       return ray;
     return FullTransforms{instance}.object_ray(world_ray);
   }
+  // The parts of object_ray, each tested on its own: for a ray whose origin was taken once for
+  // several rays (object_origin).
+  [[gnu::always_inline]] Vec3 object_point(const Vec3& p) const {
+    const Vec3 q = diagonal.to_object.apply_point(p);
+    if (same_as_full(q)) [[likely]]
+      return q;
+    return FullTransforms{instance}.object_point(p);
+  }
+  [[gnu::always_inline]] Vec3 object_vector(const Vec3& v) const {
+    const Vec3 w = diagonal.to_object.apply_vector(v);
+    if (same_as_full(w)) [[likely]]
+      return w;
+    return FullTransforms{instance}.object_vector(v);
+  }
   [[gnu::always_inline]] void world_point(const LocalHit& local, WorldHit& hit) const {
     hit.point = diagonal.to_world.apply_point(local.point);
     hit.point_error = diagonal.to_world.point_error(local.point, local.point_error);
@@ -174,11 +187,10 @@ struct DiagonalTransforms {
 // them: called out of line they cost a scene without boolean objects some 0.5 % more
 // instructions, docs/PERFORMANCE.md, "Scenes that use none of the new effects"); the kind is
 // chosen once a call.
+// The hit's world normals, unit, from the local ones.
 template <typename Transforms>
-[[gnu::always_inline]] inline void to_world_hit_with(const Transforms& transforms,
-                                                     const LocalHit& local, WorldHit& hit) {
-  hit.t = local.t;
-  transforms.world_point(local, hit);
+[[gnu::always_inline]] inline void world_normals(const Transforms& transforms,
+                                                 const LocalHit& local, WorldHit& hit) {
   // A degenerate normal falls back to a finite unit vector rather than NaN.
   hit.normal = normalize_or(transforms.world_normal(local.normal), Vec3{});
   if (hit.normal == Vec3{}) hit.normal = Vec3{0, 0, 1};
@@ -189,23 +201,52 @@ template <typename Transforms>
       same_bits(local.shading_normal, local.normal)
           ? hit.normal
           : normalize_or(transforms.world_normal(local.shading_normal), hit.normal);
+}
+
+template <typename Transforms>
+[[gnu::always_inline]] inline void to_world_hit_with(const Transforms& transforms,
+                                                     const LocalHit& local, WorldHit& hit) {
+  hit.t = local.t;
+  transforms.world_point(local, hit);
+  if (transforms.instance.face_normals) {
+    hit.normal = (*transforms.instance.face_normals)[local.part];
+    hit.shading_normal = hit.normal;
+  } else {
+    world_normals(transforms, local, hit);
+  }
   hit.object_point = local.point;
   hit.part = local.part;
   hit.object = transforms.instance.object;
 }
 
+// `ray` is the world ray in the instance's object space, as transforms.object_ray gives it.
 template <typename Transforms>
 [[gnu::always_inline]] inline bool intersect_with(const Transforms& transforms,
-                                                  const Ray& world_ray, double t_max, WorldHit& hit,
+                                                  const Ray& world_ray, const Ray& ray,
+                                                  double t_max, WorldHit& hit,
                                                   IntersectionCounters& counters) {
   ++counters.shape_tests;
-  const Ray ray = transforms.object_ray(world_ray);
   LocalHit local;
   if (!std::visit(LocalIntersect{{transforms.instance, world_ray, ray, t_max, counters}, local},
                   transforms.instance.geometry))
     return false;
   to_world_hit_with(transforms, local, hit);
   return true;
+}
+
+// intersect_with for the instance's kind of transforms, with the object ray that
+// object_ray_of(transforms) makes.
+template <typename ObjectRayOf>
+[[gnu::always_inline]] inline bool intersect_placed(const Instance& instance, const Ray& world_ray,
+                                                    double t_max, WorldHit& hit,
+                                                    IntersectionCounters& counters,
+                                                    const ObjectRayOf& object_ray_of) {
+  if (instance.diagonal) {
+    const DiagonalTransforms transforms{instance, *instance.diagonal};
+    return intersect_with(transforms, world_ray, object_ray_of(transforms), t_max, hit, counters);
+  }
+  const FullTransforms transforms{instance};
+  return intersect_with(transforms, world_ray, object_ray_of(transforms), t_max, hit, counters);
 }
 
 [[gnu::always_inline]] inline Ray object_ray_inline(const Instance& instance,
@@ -224,6 +265,22 @@ void place_instance(Instance& instance, const Affine& to_world, const Affine& to
   const std::optional<DiagonalAffine> object = DiagonalAffine::of(to_object);
   instance.diagonal.reset();
   if (world && object) instance.diagonal = Instance::Diagonal{*world, *object};
+  instance.face_normals.reset();
+  if (std::holds_alternative<Cube>(instance.geometry)) {
+    std::array<Vec3, 6> normals;
+    for (std::uint32_t face = 0; face < 6; ++face) {
+      LocalHit local;
+      local.normal = cube_face_normal(face);
+      local.shading_normal = local.normal;
+      WorldHit hit;
+      if (instance.diagonal)
+        world_normals(DiagonalTransforms{instance, *instance.diagonal}, local, hit);
+      else
+        world_normals(FullTransforms{instance}, local, hit);
+      normals[face] = hit.normal;
+    }
+    instance.face_normals = normals;
+  }
 }
 
 std::optional<Instance> make_instance(const ShapeGeometry& geometry, const Affine& to_world,
@@ -273,10 +330,26 @@ bool intersect_instance(const Instance& instance, const Ray& world_ray, double t
     const std::optional<Instance> posed = instance_at(instance, world_ray.time);
     return posed && intersect_instance(*posed, world_ray, t_max, hit, counters);
   }
+  return intersect_placed(instance, world_ray, t_max, hit, counters,
+                          [&](const auto& transforms) { return transforms.object_ray(world_ray); });
+}
+
+Vec3 object_origin(const Instance& instance, const Vec3& world_origin) {
   if (instance.diagonal)
-    return intersect_with(DiagonalTransforms{instance, *instance.diagonal}, world_ray, t_max, hit,
-                          counters);
-  return intersect_with(FullTransforms{instance}, world_ray, t_max, hit, counters);
+    return DiagonalTransforms{instance, *instance.diagonal}.object_point(world_origin);
+  return FullTransforms{instance}.object_point(world_origin);
+}
+
+bool intersect_instance(const Instance& instance, const Ray& world_ray, const Vec3& object_origin,
+                        double t_max, WorldHit& hit, IntersectionCounters& counters) {
+  // A boolean object's children and a moving instance's pose have object spaces of their own.
+  if (std::holds_alternative<CsgShape>(instance.geometry) ||
+      (instance.motion && world_ray.time != 0))
+    return intersect_instance(instance, world_ray, t_max, hit, counters);
+  // object_ray's origin and direction, each equal to the full product's (diagonal_affine.h).
+  return intersect_placed(instance, world_ray, t_max, hit, counters, [&](const auto& transforms) {
+    return Ray{object_origin, transforms.object_vector(world_ray.direction), world_ray.time};
+  });
 }
 
 bool occluded_instance(const Instance& instance, const Ray& world_ray, double t_max,

@@ -4,6 +4,10 @@
 // error bound (pbrt-v3 §3.9.4), so that rays can leave it robustly (offset_ray_origin).
 #pragma once
 
+#include <array>
+#include <bit>
+#include <cstdint>
+
 #include "common/accel/mesh_accel.h"
 #include "common/geometry/local_hit.h"
 #include "common/math/affine.h"
@@ -15,6 +19,12 @@
 
 namespace tessera {
 
+// Whether two vectors are the same bit for bit (unlike ==, which equates 0 and -0).
+inline bool same_bits(const Vec3& a, const Vec3& b) {
+  const auto bits = [](double x) { return std::bit_cast<std::uint64_t>(x); };
+  return ((bits(a.x) ^ bits(b.x)) | (bits(a.y) ^ bits(b.y)) | (bits(a.z) ^ bits(b.z))) == 0;
+}
+
 struct Instance {
   ShapeGeometry geometry;
   Affine to_world;
@@ -25,6 +35,10 @@ struct Instance {
     DiagonalAffine to_world, to_object;
   };
   std::optional<Diagonal> diagonal;
+  // A cube's normals in world space, by face (LocalHit::part), unit: its hits' normals depend on
+  // their face alone, so they are taken through the transform once, as to_world_hit would take
+  // them, not at every hit. Set by place_instance.
+  std::optional<std::array<Vec3, 6>> face_normals;
   const MeshAccel* mesh = nullptr;  // for MeshShape geometry
   // For CsgShape geometry, the children's instances (make_csg_instance, csg.h).
   const Instance* left = nullptr;
@@ -60,6 +74,16 @@ struct WorldHit {
 // keeps its best hit so far there). A moving instance is posed at the ray's time.
 bool intersect_instance(const Instance& instance, const Ray& world_ray, double t_max, WorldHit& hit,
                         IntersectionCounters& counters);
+
+// A world point taken into the instance's object space as the origin of intersect_instance's
+// object ray, bit for bit. Rays that share their origin (a pinhole camera's) need it once per
+// instance: Tracer::find_packet_hits takes the eye so once, not at every shape test.
+Vec3 object_origin(const Instance& instance, const Vec3& world_origin);
+
+// intersect_instance, bit for bit, for a ray whose origin `object_origin` has already taken into
+// the instance's object space.
+bool intersect_instance(const Instance& instance, const Ray& world_ray, const Vec3& object_origin,
+                        double t_max, WorldHit& hit, IntersectionCounters& counters);
 
 // Whether the ray meets the instance with t in (0, t_max): the answer of intersect_instance,
 // for shadow feelers, without the world-space hit (point, error bound, normals) and through a

@@ -20,6 +20,9 @@ namespace tessera {
 
 bool intersect_sphere(const Ray& ray, double t_max, LocalHit& hit);
 bool intersect_cube(const Ray& ray, double t_max, LocalHit& hit);
+// The local normal of every hit on the cube's face `part` (LocalHit::part: -x, +x, -y, +y, -z,
+// +z).
+Vec3 cube_face_normal(std::uint32_t part);
 // Whether the ray hits the sphere (the cube) with t in (0, t_max): intersect_sphere's
 // (intersect_cube's) answer, without building the hit (shadow rays).
 bool occluded_sphere(const Ray& ray, double t_max);

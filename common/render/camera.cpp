@@ -20,10 +20,14 @@ ImageRays::ImageRays(const CameraFrame& frame, int width, int height)
 }
 
 Ray ImageRays::through(double px, double py) const {
+  return Ray{frame_.eye, direction_through(px, py), 0};
+}
+
+Vec3 ImageRays::direction_through(double px, double py) const {
   const double sx = (2 * px / width_ - 1) * aspect_ * tan_half_;
   const double sy = (1 - 2 * py / height_) * tan_half_;
   const Vec3 d = frame_.forward + frame_.right * sx + frame_.up * sy;
-  return Ray{frame_.eye, d / length(d), 0};
+  return d / length(d);
 }
 
 }  // namespace tessera

@@ -41,6 +41,9 @@ class ImageRays {
  public:
   ImageRays(const CameraFrame& frame, int width, int height);
   Ray through(double px, double py) const;
+  // The parts of through(px, py): its origin, the same for every ray, and its unit direction.
+  const Vec3& eye() const { return frame_.eye; }
+  Vec3 direction_through(double px, double py) const;
 
  private:
   CameraFrame frame_;

@@ -132,10 +132,11 @@ void trace_packets(const PassContext& c, std::span<const PixelCoord> pixels, std
   const SampleOffset offset = c.offsets[0];
   for (std::size_t i = 0; i < pixels.size(); i += kPacketLanes) {
     const int count = static_cast<int>(std::min<std::size_t>(kPacketLanes, pixels.size() - i));
-    Ray rays[kPacketLanes];
+    Vec3 directions[kPacketLanes];
     for (int l = 0; l < count; ++l)
-      rays[l] = c.camera.through(pixels[i + l].x + offset.dx, pixels[i + l].y + offset.dy);
-    c.tracer.find_packet_hits(rays, count);
+      directions[l] =
+          c.camera.direction_through(pixels[i + l].x + offset.dx, pixels[i + l].y + offset.dy);
+    c.tracer.find_packet_hits(c.camera.eye(), directions, count);
     for (int l = 0; l < count; ++l) {
       check_interrupt();
       const PixelCoord p = pixels[i + l];

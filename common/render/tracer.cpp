@@ -132,31 +132,39 @@ bool Tracer::closest_hit(const Ray& ray, Hit& hit) {
   return found;
 }
 
-void Tracer::find_packet_hits(const Ray* rays, int count) {
+void Tracer::find_packet_hits(const Vec3& eye, const Vec3* directions, int count) {
   const std::vector<Instance>& instances = scene_.instances();
   double t_max[kPacketLanes];
   for (int l = 0; l < count; ++l) {
-    packet_rays_[l] = rays[l];
+    packet_rays_[l] = Ray{eye, directions[l], 0};
     packet_found_[l] = false;
-    packet_hits_[l].time = rays[l].time;
+    packet_hits_[l].time = 0;
     t_max[l] = kInfinity;
   }
+  if (packet_object_origins_.empty() || !same_bits(eye, packet_eye_)) {
+    packet_eye_ = eye;
+    packet_object_origins_.resize(instances.size());
+    for (std::size_t i = 0; i < instances.size(); ++i)
+      packet_object_origins_[i] = object_origin(instances[i], eye);
+  }
   // The leaf visit of closest_hit's traverse_bvh, per ray.
-  traverse_bvh_packet_leaves(scene_.bvh(), PacketRays(rays, count), t_max,
-                             stats_.intersections.bvh_nodes,
-                             [&](int lane, std::uint32_t first, std::uint32_t size, double limit) {
-                               Hit& hit = packet_hits_[lane];
-                               for (std::uint32_t i = first; i < first + size; ++i) {
-                                 const std::uint32_t index = scene_.bvh().primitive_order[i];
-                                 if (!intersect_instance(instances[index], packet_rays_[lane],
-                                                         limit, hit.world, stats_.intersections))
-                                   continue;
-                                 hit.instance = index;
-                                 packet_found_[lane] = true;
-                                 limit = hit.world.t;
-                               }
-                               return limit;
-                             });
+  traverse_bvh_packet_leaves(
+      scene_.bvh(), PacketRays(packet_rays_, count), t_max, stats_.intersections.bvh_nodes,
+      [&](int lane, std::uint32_t first, std::uint32_t size, double limit) {
+        Hit& hit = packet_hits_[lane];
+        const Ray& ray = packet_rays_[lane];
+        for (std::uint32_t i = first; i < first + size; ++i) {
+          const std::uint32_t index = scene_.bvh().primitive_order[i];
+          const Instance& instance = instances[index];
+          if (!intersect_instance(instance, ray, packet_object_origins_[index], limit, hit.world,
+                                  stats_.intersections))
+            continue;
+          hit.instance = index;
+          packet_found_[lane] = true;
+          limit = hit.world.t;
+        }
+        return limit;
+      });
 }
 
 Rgb Tracer::trace_packet_ray(int lane, const MediumStack& media, SampleStream& rng) {

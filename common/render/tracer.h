@@ -42,9 +42,10 @@ class Tracer {
   Rgb trace(const Ray& ray, RayKind kind, int depth, double weight, const MediumStack& media,
             SampleStream& rng);
 
-  // Camera rays of up to kPacketLanes neighbouring pixels: their nearest hits, found by one
-  // walk of the scene BVH (common/accel/bvh_packet_traverse.h) and kept for trace_packet_ray.
-  void find_packet_hits(const Ray* rays, int count);
+  // Camera rays of up to kPacketLanes neighbouring pixels, from `eye` along unit `directions`
+  // at time 0 (ImageRays::through): their nearest hits, found by one walk of the scene BVH
+  // (common/accel/bvh_packet_traverse.h) and kept for trace_packet_ray.
+  void find_packet_hits(const Vec3& eye, const Vec3* directions, int count);
   // trace(ray, RayKind::Camera, 0, 1, media, rng) of ray `lane` of the last find_packet_hits,
   // bit for bit, its nearest hit already found.
   Rgb trace_packet_ray(int lane, const MediumStack& media, SampleStream& rng);
@@ -159,6 +160,11 @@ class Tracer {
   Ray packet_rays_[kPacketLanes];
   Hit packet_hits_[kPacketLanes];
   bool packet_found_[kPacketLanes] = {};
+  // The eye of the last packets and, for each instance, that point in its object space
+  // (object_origin): taken once, not at every shape test of a camera ray. `packet_eye_` is set
+  // when packet_object_origins_ is not empty.
+  Vec3 packet_eye_;
+  std::vector<Vec3> packet_object_origins_;
 };
 
 }  // namespace tessera

@@ -96,5 +96,29 @@ TEST(PacketRender, PixelsEqualTheirCameraRaysTracedAlone) {
   EXPECT_GT(alone_stats.reflection_rays, alone_stats.camera_rays);
 }
 
+// The tracer keeps the packet's eye in each instance's object space; packets from another eye
+// must not use the last eye's.
+TEST(PacketRender, PacketsFromAnotherEyeTakeTheirOwn) {
+  const Scene scene = mirrors_on_a_floor();
+  RenderSettings s = settings(16, 12);
+  const PreparedScene prepared(scene, s.bvh);
+  RenderStats stats;
+  Tracer packets(prepared, s, stats);
+  Tracer alone(prepared, s, stats);
+  const Vec3 eyes[] = {{0, 2.5, 7}, {0, 0.5, 4}, {0, 2.5, 7}, {1.5, 3, 6}};
+  const Vec3 directions[kPacketLanes] = {unit_or_zero({0, -0.3, -1}), unit_or_zero({0.2, -0.4, -1}),
+                                         unit_or_zero({-0.3, -0.2, -1}),
+                                         unit_or_zero({0.1, -0.6, -1})};
+  for (const Vec3& eye : eyes) {
+    packets.find_packet_hits(eye, directions, kPacketLanes);
+    for (int l = 0; l < kPacketLanes; ++l) {
+      SampleStream a(1, 0, 0, 0), b(1, 0, 0, 0);
+      EXPECT_EQ(packets.trace_packet_ray(l, MediumStack{}, a),
+                alone.trace({eye, directions[l], 0}, RayKind::Camera, 0, 1.0, MediumStack{}, b))
+          << eye.y << " " << l;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace tessera::test
