@@ -4,7 +4,7 @@
 // machine cancels out of the ratio Tessera / Embree (higher is better; 1 is Embree's pace).
 //
 //   tessera-embree-bench [--repeats N] [--width W] [--height H] [--cpu-time] [--smoke] [--counts]
-//                        [OBJ...]
+//                        [--rays camera|shadow|incoherent] [OBJ...]
 //
 // --cpu-time times each engine by its threads' CPU time (the busiest thread's) instead of the
 // wall clock: on a machine shared with other jobs a thread waits for a core much of the time,
@@ -13,7 +13,9 @@
 // image once and fails when the engines disagree on which rays hit, so that CTest keeps the
 // benchmark from rotting; its speeds mean nothing. --counts prints, instead of timing, Tessera's
 // tree (its SAH cost, wide_bvh_cost) and the nodes visited and triangles tested a ray of each
-// kind: they show what a change of the tree does, without the noise of times.
+// kind: they show what a change of the tree does, without the noise of times. --rays traces
+// only the rays of one kind (still made from the camera rays' hits), so that a profile
+// (perf record) shows that kind alone.
 #include <embree3/rtcore.h>
 
 #include <algorithm>
@@ -23,6 +25,7 @@
 #include <cstdlib>
 #include <fstream>
 #include <functional>
+#include <optional>
 #include <random>
 #include <sstream>
 #include <string>
@@ -51,6 +54,12 @@ const char* kind_name(RayKind kind) {
   return "";
 }
 
+RayKind parse_kind(const std::string& name) {
+  for (const RayKind kind : {RayKind::Camera, RayKind::Shadow, RayKind::Incoherent})
+    if (std::string(kind_name(kind)).starts_with(name + " ")) return kind;
+  throw std::runtime_error("unknown ray kind " + name + " (camera, shadow or incoherent)");
+}
+
 struct RaySet {
   RayKind kind;
   std::vector<Ray> rays;
@@ -64,6 +73,7 @@ struct Options {
   bool smoke = false;
   bool cpu_time = false;
   bool counts = false;
+  std::optional<RayKind> only;  // --rays
   std::vector<std::string> meshes;
 };
 
@@ -288,6 +298,7 @@ bool bench_mesh(const std::string& name, const Mesh& mesh, const Options& option
   bool agree = true;
   for (const RaySet& set : sets)
     for (const int threads : {1, 2}) {
+      if (options.only && set.kind != *options.only) continue;
       std::vector<double> embree_rate, tessera_rate, ratio;
       Timed e, t;
       for (int r = 0; r < options.repeats; ++r) {
@@ -352,7 +363,10 @@ int main_impl(int argc, char** argv) {
       options.cpu_time = true;
     else if (arg == "--counts")
       options.counts = true;
-    else if (arg == "--smoke")
+    else if (arg == "--rays") {
+      if (i + 1 >= argc) throw std::runtime_error(arg + " needs a value");
+      options.only = parse_kind(argv[++i]);
+    } else if (arg == "--smoke")
       options.smoke = true;
     else if (arg.starts_with("--"))
       throw std::runtime_error("unknown option " + arg);

@@ -137,25 +137,96 @@ struct FloatBoxRay {
   alignas(32) float inv_dir[3][kWideChildren];
   int near_side[3];  // 0 (lo) where the direction is forward (1 / d >= 0), else 1 (hi)
 
-  explicit FloatBoxRay(const Ray& ray) {
-    for (int a = 0; a < 3; ++a) {
-      const double inv = 1 / ray.direction[a];
-      const bool forward = inv >= 0;
-      const auto down = std::bit_cast<std::uint32_t>(round_down_to_float(ray.origin[a]));
-      const auto up = std::bit_cast<std::uint32_t>(round_up_to_float(ray.origin[a]));
-      near_side[a] = forward ? 0 : 1;
-      // Forward, the near plane is lo and (lo - origin) is smaller with the origin rounded up;
-      // backward, it is hi and (hi - origin) * inv is smaller with (hi - origin) larger.
-      const float near_origin = select_float_bits(forward, up, down);
-      const float far_origin = select_float_bits(forward, down, up);
-      for (int c = 0; c < kWideChildren; ++c) {
-        inv_dir[a][c] = static_cast<float>(inv);
-        origin_near[a][c] = near_origin;
-        origin_far[a][c] = far_origin;
-      }
+  FloatBoxRay() = default;  // filled by set_float_box_ray_sse2 or _avx2
+  // Axis by axis (set_float_box_ray_per_axis): the reference, and the scalar kernel's.
+  explicit FloatBoxRay(const Ray& ray);
+};
+
+// Fills `r` from `ray` one axis at a time: the reference (and the path of CPUs without SSE2).
+inline void set_float_box_ray_per_axis(FloatBoxRay& r, const Ray& ray) {
+  for (int a = 0; a < 3; ++a) {
+    const double inv = 1 / ray.direction[a];
+    const bool forward = inv >= 0;
+    const auto down = std::bit_cast<std::uint32_t>(round_down_to_float(ray.origin[a]));
+    const auto up = std::bit_cast<std::uint32_t>(round_up_to_float(ray.origin[a]));
+    r.near_side[a] = forward ? 0 : 1;
+    // Forward, the near plane is lo and (lo - origin) is smaller with the origin rounded up;
+    // backward, it is hi and (hi - origin) * inv is smaller with (hi - origin) larger.
+    const float near_origin = select_float_bits(forward, up, down);
+    const float far_origin = select_float_bits(forward, down, up);
+    for (int c = 0; c < kWideChildren; ++c) {
+      r.inv_dir[a][c] = static_cast<float>(inv);
+      r.origin_near[a][c] = near_origin;
+      r.origin_far[a][c] = far_origin;
     }
   }
+}
+
+#if defined(__SSE2__)
+// float_step_up_bits in each of four lanes: (bits << 1) == 0 clears -0 to +0, then the sign
+// (bits >> 31, arithmetic: 0 or -1) or'ed with 1 is the step, +1 or -1.
+[[gnu::always_inline]] inline __m128i float_step_up_bits_sse2(__m128i bits) {
+  const __m128i zero = _mm_cmpeq_epi32(_mm_slli_epi32(bits, 1), _mm_setzero_si128());
+  bits = _mm_andnot_si128(zero, bits);
+  return _mm_add_epi32(bits, _mm_or_si128(_mm_srai_epi32(bits, 31), _mm_set1_epi32(1)));
+}
+
+// `yes` where the lanes of `mask` are set, else `no`.
+[[gnu::always_inline]] inline __m128i select_bits_sse2(__m128i mask, __m128i yes, __m128i no) {
+  return _mm_or_si128(_mm_and_si128(mask, yes), _mm_andnot_si128(mask, no));
+}
+
+// The 32-bit lanes 0 and 1 of `r` from the 64-bit lanes of `a`, 2 and 3 from `b`'s: the double
+// compares' all-ones or all-zeros masks, narrowed.
+[[gnu::always_inline]] inline __m128i narrow_masks_sse2(__m128d a, __m128d b) {
+  return _mm_castps_si128(
+      _mm_shuffle_ps(_mm_castpd_ps(a), _mm_castpd_ps(b), _MM_SHUFFLE(2, 0, 2, 0)));
+}
+
+// The per-axis values of a FloatBoxRay, x, y and z in lanes 0 to 2 (see float_box_ray_axes).
+struct FloatBoxRayAxes {
+  alignas(16) float inv_dir[4];
+  alignas(16) float origin_near[4];
+  alignas(16) float origin_far[4];
+  int forward_bits;  // bit a set where the direction is forward along axis a
 };
+
+// set_float_box_ray_per_axis's operations for x, y and z in the lanes of SSE2 vectors (a fourth
+// lane repeats z; axis by axis, this was 9 % of an incoherent mesh ray's instructions, see
+// docs/PERFORMANCE.md "Where an incoherent ray's time goes on Intel"): the division and conversions
+// are the same IEEE operations (cvtpd2ps and cvtsd2ss round alike; (double)f > x is cmpltpd(x, f),
+// false with a NaN as the scalar compare), the steps and selections the same integer operations, so
+// the results are bit-identical.
+[[gnu::always_inline]] inline FloatBoxRayAxes float_box_ray_axes(const Ray& ray) {
+  const __m128d origin_xy = _mm_set_pd(ray.origin.y, ray.origin.x);
+  const __m128d origin_z = _mm_set1_pd(ray.origin.z);
+  const __m128d one = _mm_set1_pd(1.0);
+  const __m128d inv_xy = _mm_div_pd(one, _mm_set_pd(ray.direction.y, ray.direction.x));
+  const __m128d inv_z = _mm_div_pd(one, _mm_set1_pd(ray.direction.z));
+  const __m128 f = _mm_movelh_ps(_mm_cvtpd_ps(origin_xy), _mm_cvtpd_ps(origin_z));
+  const __m128d f_xy = _mm_cvtps_pd(f), f_z = _mm_cvtps_pd(_mm_movehl_ps(f, f));
+  const __m128i f_bits = _mm_castps_si128(f);
+  const __m128i sign = _mm_set1_epi32(static_cast<int>(0x80000000u));
+  // round_down_to_float: f stepped down (-(step up of -f)) where (double)f > x, else f.
+  const __m128i down = select_bits_sse2(
+      narrow_masks_sse2(_mm_cmplt_pd(origin_xy, f_xy), _mm_cmplt_pd(origin_z, f_z)),
+      _mm_xor_si128(float_step_up_bits_sse2(_mm_xor_si128(f_bits, sign)), sign), f_bits);
+  // round_up_to_float: f stepped up where (double)f < x, else f.
+  const __m128i up = select_bits_sse2(
+      narrow_masks_sse2(_mm_cmplt_pd(f_xy, origin_xy), _mm_cmplt_pd(f_z, origin_z)),
+      float_step_up_bits_sse2(f_bits), f_bits);
+  const __m128d zero = _mm_setzero_pd();
+  const __m128i forward = narrow_masks_sse2(_mm_cmpge_pd(inv_xy, zero), _mm_cmpge_pd(inv_z, zero));
+  FloatBoxRayAxes axes;
+  _mm_store_ps(axes.inv_dir, _mm_movelh_ps(_mm_cvtpd_ps(inv_xy), _mm_cvtpd_ps(inv_z)));
+  _mm_store_ps(axes.origin_near, _mm_castsi128_ps(select_bits_sse2(forward, up, down)));
+  _mm_store_ps(axes.origin_far, _mm_castsi128_ps(select_bits_sse2(forward, down, up)));
+  axes.forward_bits = _mm_movemask_ps(_mm_castsi128_ps(forward));
+  return axes;
+}
+#endif
+
+inline FloatBoxRay::FloatBoxRay(const Ray& ray) { set_float_box_ray_per_axis(*this, ray); }
 
 // Bit c of the result is set when the ray [0, t_max] may meet child c's box (every box the
 // double test accepts, and some more); entry[c] receives its float entry distance, which is at
@@ -222,6 +293,28 @@ struct Avx2Lanes {
   }
 };
 
+// Fills `r` from float_box_ray_axes, each value repeated with the stores of `Lanes`: the first
+// node step loads them with that width, and a load wider than the store before it cannot take
+// its value from the store buffer (it waits until the store is written).
+template <typename Lanes>
+[[gnu::always_inline]] inline void set_float_box_ray_lanes(FloatBoxRay& r, const Ray& ray) {
+  using V = typename Lanes::V;
+  const FloatBoxRayAxes axes = float_box_ray_axes(ray);
+  const auto fill = [](float* to, float value) {
+    V v;
+    Lanes::set1(v, value);
+    for (int c = 0; c < kWideChildren; c += static_cast<int>(sizeof(V) / sizeof(float)))
+      Lanes::store(to + c, v);
+  };
+#pragma GCC unroll 3
+  for (int a = 0; a < 3; ++a) {
+    fill(r.inv_dir[a], axes.inv_dir[a]);
+    fill(r.origin_near[a], axes.origin_near[a]);
+    fill(r.origin_far[a], axes.origin_far[a]);
+    r.near_side[a] = 1 - ((axes.forward_bits >> a) & 1);
+  }
+}
+
 // intersect_float_child_boxes_scalar's operations for the children from `first` on, as many as
 // a vector holds, in bits 0 up of the result and entry[0] up. maxps(a, b) and minps(a, b) are
 // a > b ? a : b and a < b ? a : b, NaN included, as the scalar comparisons.
@@ -266,6 +359,15 @@ inline unsigned intersect_float_child_boxes_lanes(const FloatChildBoxes& boxes,
                                                                   float entry[kWideChildren]) {
   return intersect_float_child_boxes_lanes<Sse2Lanes>(boxes, ray, far_limit, 0, entry) |
          intersect_float_child_boxes_lanes<Sse2Lanes>(boxes, ray, far_limit, 4, entry + 4) << 4;
+}
+
+// The ray's constants for the SSE2 kernel and the AVX2 one (with 256-bit stores).
+[[gnu::flatten]] inline void set_float_box_ray_sse2(FloatBoxRay& r, const Ray& ray) {
+  set_float_box_ray_lanes<Sse2Lanes>(r, ray);
+}
+[[gnu::target("avx2"), gnu::flatten]] inline void set_float_box_ray_avx2(FloatBoxRay& r,
+                                                                         const Ray& ray) {
+  set_float_box_ray_lanes<Avx2Lanes>(r, ray);
 }
 
 // Eight children in one go; only where the CPU has AVX2 (wide_box_kernel.h).

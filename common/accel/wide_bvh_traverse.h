@@ -36,15 +36,19 @@ struct WideBvhPending {
   float entry;
 };
 
-// The loop below the root, testing boxes with `test_boxes(node.boxes, box_ray, far_limit,
-// entry)` and passing `kernel` to the leaf visitor. Instantiated once per kernel, each inlined
+// The loop below the root, making the ray's constants with `set_box_ray(box_ray, ray)`, testing
+// boxes with `test_boxes(node.boxes, box_ray, far_limit, entry)` and passing `kernel` to the leaf
+// visitor. Instantiated once per kernel, each inlined
 // whole (gnu::flatten) into a function compiled for that kernel's instruction set, so that the
 // visitor and the box test run in one loop without calls.
-template <WideBvhOrder kOrder, typename Kernel, typename TestBoxes, typename VisitLeaf>
+template <WideBvhOrder kOrder, typename Kernel, typename SetBoxRay, typename TestBoxes,
+          typename VisitLeaf>
 inline void traverse_wide_bvh_below_root(const Bvh& bvh, const Ray& ray, double t_max,
                                          std::uint64_t& nodes_visited, VisitLeaf& visit_leaf,
-                                         Kernel kernel, TestBoxes test_boxes) {
-  const FloatBoxRay box_ray(ray);
+                                         Kernel kernel, SetBoxRay set_box_ray,
+                                         TestBoxes test_boxes) {
+  FloatBoxRay box_ray;
+  set_box_ray(box_ray, ray);
   float far_limit = float_far_limit(t_max);
   WideBvhPending stack[(kWideChildren - 1) * kBvhMaxDepth];  // a step pushes at most 7 a level
   int size = 0;
@@ -104,9 +108,9 @@ template <WideBvhOrder kOrder, typename VisitLeaf>
 [[gnu::flatten]] void traverse_wide_bvh_scalar(const Bvh& bvh, const Ray& ray, double t_max,
                                                std::uint64_t& nodes_visited,
                                                VisitLeaf& visit_leaf) {
-  traverse_wide_bvh_below_root<kOrder>(bvh, ray, t_max, nodes_visited, visit_leaf,
-                                       WideBoxKernelTag<WideBoxKernel::Scalar>{},
-                                       intersect_float_child_boxes_scalar);
+  traverse_wide_bvh_below_root<kOrder>(
+      bvh, ray, t_max, nodes_visited, visit_leaf, WideBoxKernelTag<WideBoxKernel::Scalar>{},
+      set_float_box_ray_per_axis, intersect_float_child_boxes_scalar);
 }
 
 #if defined(__SSE2__)
@@ -115,7 +119,7 @@ template <WideBvhOrder kOrder, typename VisitLeaf>
                                              std::uint64_t& nodes_visited, VisitLeaf& visit_leaf) {
   traverse_wide_bvh_below_root<kOrder>(bvh, ray, t_max, nodes_visited, visit_leaf,
                                        WideBoxKernelTag<WideBoxKernel::Sse2>{},
-                                       intersect_float_child_boxes_sse2);
+                                       set_float_box_ray_sse2, intersect_float_child_boxes_sse2);
 }
 
 // Compiled for AVX2 (no FMA): the visitor's double arithmetic, inlined here, keeps its IEEE
@@ -127,7 +131,7 @@ template <WideBvhOrder kOrder, typename VisitLeaf>
                                                                   VisitLeaf& visit_leaf) {
   traverse_wide_bvh_below_root<kOrder>(bvh, ray, t_max, nodes_visited, visit_leaf,
                                        WideBoxKernelTag<WideBoxKernel::Avx2>{},
-                                       intersect_float_child_boxes_avx2);
+                                       set_float_box_ray_avx2, intersect_float_child_boxes_avx2);
 }
 #endif
 

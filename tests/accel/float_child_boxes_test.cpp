@@ -251,5 +251,64 @@ TEST(FloatChildBoxes, RoundingToFloatIsOutward) {
   EXPECT_EQ(round_up_to_float(0.5), 0.5f);
 }
 
+// The ray's constants made three axes at once (the SSE2 and AVX2 kernels') are the reference's, bit
+// for bit: random rays near and far from the origin, origins exactly on floats, between them,
+// beyond float's range and subnormal in float, signed zeros, infinities and NaNs in both origin and
+// direction.
+TEST(FloatChildBoxes, RayConstantsMatchTheAxisByAxisReference) {
+  const double nan = std::numeric_limits<double>::quiet_NaN();
+  const std::vector<double> specials = {
+      0.0,  -0.0,  0.1,   -0.1,      0.5,        1e-45, -1e-45,     3e-39,      1e-300,  -1e-300,
+      1e39, -1e39, 1e300, kInfinity, -kInfinity, nan,   1e5 + 1e-3, -3e7 - 0.5, FLT_MAX, -FLT_MAX};
+  std::vector<Ray> rays = edge_case_rays();
+  std::mt19937_64 rng(7);
+  std::uniform_int_distribution<std::size_t> pick(0, specials.size() - 1);
+  std::uniform_real_distribution<double> u(-2, 2);
+  for (int i = 0; i < 20000; ++i) {
+    const double scale = std::pow(10.0, static_cast<double>(i % 9) * 5 - 20);
+    const auto value = [&](int kind) { return kind == 0 ? specials[pick(rng)] : u(rng) * scale; };
+    Vec3 origin, direction;
+    for (int a = 0; a < 3; ++a) {
+      origin[a] = value(i % 4 == 0 ? static_cast<int>(rng() % 2) : 1);
+      direction[a] = i % 5 == 0 ? value(static_cast<int>(rng() % 2)) : direction_component(rng, u);
+    }
+    rays.push_back({origin, direction});
+  }
+  const auto bits = [](const float(&v)[3][kWideChildren], int a, int c) {
+    return std::bit_cast<std::uint32_t>(v[a][c]);
+  };
+  const auto expect_same = [&](const char* kernel, const FloatBoxRay& made,
+                               const FloatBoxRay& reference, const Ray& ray) {
+    for (int a = 0; a < 3; ++a) {
+      ASSERT_EQ(made.near_side[a], reference.near_side[a])
+          << kernel << " " << describe(ray.origin) << " " << describe(ray.direction) << " axis "
+          << a;
+      for (int c = 0; c < kWideChildren; ++c) {
+        ASSERT_EQ(bits(made.inv_dir, a, c), bits(reference.inv_dir, a, c))
+            << kernel << " " << describe(ray.origin) << " " << describe(ray.direction) << " axis "
+            << a;
+        ASSERT_EQ(bits(made.origin_near, a, c), bits(reference.origin_near, a, c))
+            << kernel << " " << describe(ray.origin) << " " << describe(ray.direction) << " axis "
+            << a;
+        ASSERT_EQ(bits(made.origin_far, a, c), bits(reference.origin_far, a, c))
+            << kernel << " " << describe(ray.origin) << " " << describe(ray.direction) << " axis "
+            << a;
+      }
+    }
+  };
+  for (const Ray& ray : rays) {
+    const FloatBoxRay reference(ray);
+#if defined(__SSE2__)
+    FloatBoxRay made;
+    set_float_box_ray_sse2(made, ray);
+    expect_same("sse2", made, reference, ray);
+    if (wide_box_kernel_supported(WideBoxKernel::Avx2)) {
+      FloatBoxRay made_avx2;
+      set_float_box_ray_avx2(made_avx2, ray);
+      expect_same("avx2", made_avx2, reference, ray);
+    }
+#endif
+  }
+}
 }  // namespace
 }  // namespace tessera
