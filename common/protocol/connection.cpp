@@ -25,6 +25,7 @@ auto whole_rest(std::size_t frame_bytes) {
 
 std::chrono::steady_clock::time_point next_tick(std::chrono::steady_clock::time_point now,
                                                 std::chrono::steady_clock::duration period) {
+  if (period <= std::chrono::steady_clock::duration::zero()) return now;  // no grid to keep
   const auto since_epoch = now.time_since_epoch();
   return std::chrono::steady_clock::time_point(since_epoch - since_epoch % period + period);
 }
@@ -175,7 +176,7 @@ void FrameConnection::tick() {
   // idle coordinator, a wake-up (3 % of a core with 1,000 idle workers, docs/SCALING.md). A tick
   // still comes at most half a heartbeat after the last, so a heartbeat is sent, and a silent
   // peer closed, no later than before.
-  timer_.expires_at(next_tick(now, timing_.heartbeat / 2));
+  timer_.expires_at(next_tick(now, std::chrono::steady_clock::duration(timing_.heartbeat) / 2));
   timer_.async_wait([self = shared_from_this()](boost::system::error_code ec) {
     if (!ec && self->open_) self->tick();
   });

@@ -83,6 +83,11 @@ TEST(FrameConnection, TicksOnAGridSharedByAllConnections) {
   // are checked as often as before.
   EXPECT_EQ(next_tick(grid + period, period), grid + 2 * period);
   EXPECT_EQ(next_tick(grid + period, milliseconds(20)), grid + period + milliseconds(20));
+  // A worker takes the heartbeat from the coordinator's welcome, where 1 ms is valid: half of it
+  // is a grid still; a period of nothing (no grid) must not divide by zero.
+  EXPECT_EQ(next_tick(grid + nanoseconds(1), microseconds(500)), grid + microseconds(500));
+  EXPECT_EQ(next_tick(grid + nanoseconds(3), steady_clock::duration::zero()),
+            grid + nanoseconds(3));
 }
 
 // Writes `pieces` to `socket` one after the other, 30 ms apart.
