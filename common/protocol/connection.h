@@ -33,6 +33,13 @@ struct ConnectionTiming {
 using FrameTraffic =
     std::function<void(bool sent, std::optional<MessageType> type, std::size_t bytes)>;
 
+// When a connection ticks next (checks the silence limit, sends a heartbeat if due): the first
+// multiple of `period` on the steady clock after `now`, so at most `period` away. Every
+// connection of a process with the same timing ticks at the same instants: a coordinator with
+// 1,000 workers wakes once a period for all of them, not 1,000 times (docs/SCALING.md, io10).
+std::chrono::steady_clock::time_point next_tick(std::chrono::steady_clock::time_point now,
+                                                std::chrono::steady_clock::duration period);
+
 class FrameConnection : public std::enable_shared_from_this<FrameConnection> {
  public:
   using FrameHandler = std::function<void(Frame)>;

@@ -69,6 +69,27 @@ TEST(FrameConnection, ClosesOnOversizedFrameAndOnSilence) {
   EXPECT_NE(reason.find("silent"), std::string::npos) << reason;
 }
 
+TEST(FrameConnection, TicksOnAGridSharedByAllConnections) {
+  using namespace std::chrono;
+  const steady_clock::duration period = milliseconds(1000);
+  const steady_clock::time_point grid(hours(100));  // a multiple of the period
+  // Connections that tick at different instants within a period all tick next at its end, so one
+  // timer expiry serves them all...
+  for (const steady_clock::duration since : std::initializer_list<steady_clock::duration>{
+           nanoseconds(0), nanoseconds(1), milliseconds(250),
+           milliseconds(999) + microseconds(999)})
+    EXPECT_EQ(next_tick(grid + since, period), grid + period) << since.count();
+  // ...and a tick is never more than a period after the last, so heartbeats and the silence limit
+  // are checked as often as before.
+  EXPECT_EQ(next_tick(grid + period, period), grid + 2 * period);
+  EXPECT_EQ(next_tick(grid + period, milliseconds(20)), grid + period + milliseconds(20));
+  // A worker takes the heartbeat from the coordinator's welcome, where 1 ms is valid: half of it
+  // is a grid still; a period of nothing (no grid) must not divide by zero.
+  EXPECT_EQ(next_tick(grid + nanoseconds(1), microseconds(500)), grid + microseconds(500));
+  EXPECT_EQ(next_tick(grid + nanoseconds(3), steady_clock::duration::zero()),
+            grid + nanoseconds(3));
+}
+
 // Writes `pieces` to `socket` one after the other, 30 ms apart.
 void write_pieces(tcp::socket& socket, std::shared_ptr<std::vector<std::string>> pieces,
                   std::size_t i = 0) {
