@@ -231,18 +231,16 @@ inline FloatBoxRay::FloatBoxRay(const Ray& ray) { set_float_box_ray_per_axis(*th
 // Bit c of the result is set when the ray [0, t_max] may meet child c's box (every box the
 // double test accepts, and some more); entry[c] receives its float entry distance, which is at
 // most float_far_limit of any t_max for which the double test accepts the box (so a later,
-// smaller t_max may skip it). `far_limit` is float_far_limit(t_max). `near_side` is
-// ray.near_side, passed apart so that a traversal can keep it in registers while it reads the
-// ray's vectors from memory (wide_bvh_traverse.h). One child at a time: the path of CPUs without
-// SSE, and the reference the SIMD kernels are tested against.
+// smaller t_max may skip it). `far_limit` is float_far_limit(t_max). One child at a time: the
+// path of CPUs without SSE, and the reference the SIMD kernels are tested against.
 inline unsigned intersect_float_child_boxes_scalar(const FloatChildBoxes& boxes,
-                                                   const FloatBoxRay& ray, const int near_side[3],
-                                                   float far_limit, float entry[kWideChildren]) {
+                                                   const FloatBoxRay& ray, float far_limit,
+                                                   float entry[kWideChildren]) {
   unsigned hits = 0;
   for (int c = 0; c < kWideChildren; ++c) {
     float t0 = 0, t1 = far_limit;
     for (int a = 0; a < 3; ++a) {
-      const int near = near_side[a];
+      const int near = ray.near_side[a];
       const float t_near = (boxes.bound[a][near][c] - ray.origin_near[a][c]) * ray.inv_dir[a][c];
       const float t_far =
           (boxes.bound[a][1 - near][c] - ray.origin_far[a][c]) * ray.inv_dir[a][c] * kFloatFarScale;
@@ -322,8 +320,8 @@ template <typename Lanes>
 // a > b ? a : b and a < b ? a : b, NaN included, as the scalar comparisons.
 template <typename Lanes>
 inline unsigned intersect_float_child_boxes_lanes(const FloatChildBoxes& boxes,
-                                                  const FloatBoxRay& ray, const int near_side[3],
-                                                  float far_limit, int first, float* entry) {
+                                                  const FloatBoxRay& ray, float far_limit,
+                                                  int first, float* entry) {
   using V = typename Lanes::V;
   V t0, t1, far_scale, bound, origin, inv, t_near, t_far;
   Lanes::set1(t0, 0.0f);
@@ -331,7 +329,7 @@ inline unsigned intersect_float_child_boxes_lanes(const FloatChildBoxes& boxes,
   Lanes::set1(far_scale, kFloatFarScale);
 #pragma GCC unroll 3
   for (int a = 0; a < 3; ++a) {
-    const int near = near_side[a];
+    const int near = ray.near_side[a];
     Lanes::load(inv, ray.inv_dir[a]);
     Lanes::load(bound, &boxes.bound[a][near][first]);
     Lanes::load(origin, ray.origin_near[a]);
@@ -357,13 +355,10 @@ inline unsigned intersect_float_child_boxes_lanes(const FloatChildBoxes& boxes,
 // The kernel of CPUs without AVX2: the children in two halves of four.
 [[gnu::flatten]] inline unsigned intersect_float_child_boxes_sse2(const FloatChildBoxes& boxes,
                                                                   const FloatBoxRay& ray,
-                                                                  const int near_side[3],
                                                                   float far_limit,
                                                                   float entry[kWideChildren]) {
-  return intersect_float_child_boxes_lanes<Sse2Lanes>(boxes, ray, near_side, far_limit, 0, entry) |
-         intersect_float_child_boxes_lanes<Sse2Lanes>(boxes, ray, near_side, far_limit, 4,
-                                                      entry + 4)
-             << 4;
+  return intersect_float_child_boxes_lanes<Sse2Lanes>(boxes, ray, far_limit, 0, entry) |
+         intersect_float_child_boxes_lanes<Sse2Lanes>(boxes, ray, far_limit, 4, entry + 4) << 4;
 }
 
 // The ray's constants for the SSE2 kernel and the AVX2 one (with 256-bit stores).
@@ -377,9 +372,9 @@ inline unsigned intersect_float_child_boxes_lanes(const FloatChildBoxes& boxes,
 
 // Eight children in one go; only where the CPU has AVX2 (wide_box_kernel.h).
 [[gnu::target("avx2"), gnu::flatten]] inline unsigned intersect_float_child_boxes_avx2(
-    const FloatChildBoxes& boxes, const FloatBoxRay& ray, const int near_side[3], float far_limit,
+    const FloatChildBoxes& boxes, const FloatBoxRay& ray, float far_limit,
     float entry[kWideChildren]) {
-  return intersect_float_child_boxes_lanes<Avx2Lanes>(boxes, ray, near_side, far_limit, 0, entry);
+  return intersect_float_child_boxes_lanes<Avx2Lanes>(boxes, ray, far_limit, 0, entry);
 }
 #endif
 

@@ -37,10 +37,10 @@ struct WideBvhPending {
 };
 
 // The loop below the root, making the ray's constants with `set_box_ray(box_ray, ray)`, testing
-// boxes with `test_boxes(node.boxes, box_ray, near_side, far_limit, entry)` and passing `kernel`
-// to the leaf visitor. Instantiated once per kernel, each inlined whole (gnu::flatten) into a
-// function compiled for that kernel's instruction set, so that the visitor and the box test run in
-// one loop without calls.
+// boxes with `test_boxes(node.boxes, box_ray, far_limit, entry)` and passing `kernel` to the leaf
+// visitor. Instantiated once per kernel, each inlined
+// whole (gnu::flatten) into a function compiled for that kernel's instruction set, so that the
+// visitor and the box test run in one loop without calls.
 template <WideBvhOrder kOrder, typename Kernel, typename SetBoxRay, typename TestBoxes,
           typename VisitLeaf>
 inline void traverse_wide_bvh_below_root(const Bvh& bvh, const Ray& ray, double t_max,
@@ -49,9 +49,6 @@ inline void traverse_wide_bvh_below_root(const Bvh& bvh, const Ray& ray, double 
                                          TestBoxes test_boxes) {
   FloatBoxRay box_ray;
   set_box_ray(box_ray, ray);
-  // Copied out of box_ray, which the asm below marks as rewritten after every leaf, so that the
-  // box test's offsets derived from them stay computed once a ray.
-  const int near_side[3] = {box_ray.near_side[0], box_ray.near_side[1], box_ray.near_side[2]};
   float far_limit = float_far_limit(t_max);
   WideBvhPending stack[(kWideChildren - 1) * kBvhMaxDepth];  // a step pushes at most 7 a level
   int size = 0;
@@ -60,18 +57,13 @@ inline void traverse_wide_bvh_below_root(const Bvh& bvh, const Ray& ray, double 
   for (;;) {
     if (current.count > 0) {
       const double limit = visit_leaf(current.index, current.count, t_max, kernel);
-      // Told that the leaf may have rewritten the ray's nine box vectors in memory, the compiler
-      // reads them there in the next box test, as its operands, instead of keeping them in
-      // registers across the loop: the leaf test needs those, and they were spilled and reloaded
-      // around every leaf (docs/PERFORMANCE.md "The ray's box vectors read from memory").
-      asm volatile("" : "+m"(box_ray.inv_dir), "+m"(box_ray.origin_near), "+m"(box_ray.origin_far));
       if (limit < 0) return;
       if (limit != t_max) t_max = limit, far_limit = float_far_limit(t_max);
     } else {
       const BvhWideNode& node = wide[current.index];
       alignas(32) float entry[kWideChildren];
       nodes_visited += kWideChildren;
-      const unsigned hits = test_boxes(node.boxes, box_ray, near_side, far_limit, entry);
+      const unsigned hits = test_boxes(node.boxes, box_ray, far_limit, entry);
       if (hits != 0) {
         if ((hits & (hits - 1)) == 0) {  // one child: nothing to order
           const int c = std::countr_zero(hits);

@@ -40,8 +40,7 @@ std::string describe(const Vec3& v) {
 // select gives the same hits and the same entry distances, bit for bit.
 unsigned intersect_with_every_kernel(const FloatChildBoxes& wide, const FloatBoxRay& box_ray,
                                      float far_limit, float entry[kWideChildren]) {
-  const unsigned hits =
-      intersect_float_child_boxes_scalar(wide, box_ray, box_ray.near_side, far_limit, entry);
+  const unsigned hits = intersect_float_child_boxes_scalar(wide, box_ray, far_limit, entry);
 #if defined(__SSE2__)
   const auto expect_same = [&](const char* kernel, unsigned simd_hits,
                                const float simd_entry[kWideChildren]) {
@@ -51,15 +50,11 @@ unsigned intersect_with_every_kernel(const FloatChildBoxes& wide, const FloatBox
           << kernel << " child " << c;
   };
   float simd_entry[kWideChildren];
-  expect_same(
-      "sse2",
-      intersect_float_child_boxes_sse2(wide, box_ray, box_ray.near_side, far_limit, simd_entry),
-      simd_entry);
+  expect_same("sse2", intersect_float_child_boxes_sse2(wide, box_ray, far_limit, simd_entry),
+              simd_entry);
   if (wide_box_kernel_supported(WideBoxKernel::Avx2))
-    expect_same(
-        "avx2",
-        intersect_float_child_boxes_avx2(wide, box_ray, box_ray.near_side, far_limit, simd_entry),
-        simd_entry);
+    expect_same("avx2", intersect_float_child_boxes_avx2(wide, box_ray, far_limit, simd_entry),
+                simd_entry);
 #endif
   return hits;
 }
