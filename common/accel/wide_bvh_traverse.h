@@ -135,6 +135,22 @@ template <WideBvhOrder kOrder, typename VisitLeaf>
 }
 #endif
 
+// Whether a ray from `origin` certainly enters `box` for every direction: the origin lies in the
+// closed box and t_max >= 0, in which case intersect_bounds (common/math/ray.h) accepts the box
+// whatever the direction, so the root test can skip its three divisions and its branches on the
+// direction's signs, which mispredict for incoherent rays (about one a ray in callgrind's model).
+// Why it accepts: per axis, the near plane minus the origin is <= 0 forward (>= 0 backward) and
+// keeps its sign through the rounded subtraction, so t_near is <= 0 (+-0 included) or NaN, and
+// t0 stays 0; the far plane minus the origin has the other sign, so t_far is >= 0 (or -0 or NaN)
+// and t1 stays >= 0 (t_max >= 0 excludes a NaN t_max); t0 <= t1 holds. Secondary rays (shadow
+// feelers, reflections) start on the mesh, inside its root box.
+[[gnu::always_inline]] inline bool starts_inside(const Bounds3& box, const Vec3& origin,
+                                                 double t_max) {
+  // Non-short-circuit operators: one branch instead of seven.
+  return (box.lo.x <= origin.x) & (origin.x <= box.hi.x) & (box.lo.y <= origin.y) &
+         (origin.y <= box.hi.y) & (box.lo.z <= origin.z) & (origin.z <= box.hi.z) & (t_max >= 0);
+}
+
 // Visits the leaves whose boxes the ray [0, t_max] may enter, in the order `order` names:
 // `visit_leaf(first, count, t_max, kernel)` gets the leaf's range [first, first + count) of
 // Bvh::primitive_order and returns the possibly shrunk t_max (closest hit) or a negative value to
@@ -150,7 +166,7 @@ void traverse_wide_bvh_leaves(const Bvh& bvh, const Ray& ray, double t_max,
   if (bvh.nodes.empty()) return;
   ++nodes_visited;
   const BvhNode& root = bvh.nodes[0];
-  {
+  if (!starts_inside(root.bounds, ray.origin, t_max)) {
     const Vec3 inv_dir{1 / ray.direction.x, 1 / ray.direction.y, 1 / ray.direction.z};
     if (!intersect_bounds(root.bounds, ray.origin, inv_dir, t_max)) return;
   }

@@ -19,11 +19,18 @@ TriangleRay prepare_triangle_ray(const Ray& ray) {
   TriangleRay r;
   r.origin = ray.origin;
   const Vec3& d = ray.direction;
-  r.kz = max_axis(abs(d));
-  r.kx = r.kz == 2 ? 0 : r.kz + 1;
-  r.ky = r.kx == 2 ? 0 : r.kx + 1;
+  // max_axis(abs(d)) without its branches, which mispredict for incoherent rays (the largest
+  // axis is a coin toss among three): the same axis, NaN included (comparisons with a NaN are
+  // false in both).
+  const Vec3 m = abs(d);
+  const bool x_over_y = m.x > m.y, x_over_z = m.x > m.z, y_over_z = m.y > m.z;
+  r.kz = 2 - 2 * static_cast<int>(x_over_y & x_over_z) - static_cast<int>(!x_over_y & y_over_z);
+  // The next two axes, cyclically (kx = kz == 2 ? 0 : kz + 1, ky after kx), read from two-bit
+  // tables by shifts: GCC turns the ternaries (and their arithmetic forms) into a branch on kz.
+  r.kx = (0b00'10'01 >> (2 * r.kz)) & 3;
+  r.ky = (0b01'00'10 >> (2 * r.kz)) & 3;
   const Vec3 dp = permute_axes(d, r.kx, r.ky, r.kz);
-  r.usable = dp.z != 0 && is_finite(dp);
+  r.usable = (dp.z != 0) & is_finite(dp);
   r.sx = -dp.x / dp.z;
   r.sy = -dp.y / dp.z;
   r.sz = 1 / dp.z;
