@@ -17,11 +17,9 @@ namespace tessera {
 
 namespace {
 
-// Face numbering (LocalHit::part): -x, +x, -y, +y, -z, +z.
-std::uint32_t face_index(int axis, bool positive) {
-  return static_cast<std::uint32_t>(2 * axis + (positive ? 1 : 0));
-}
-
+// Face numbering (LocalHit::part): 2 axis for the face towards -axis, 2 axis + 1 for the one
+// towards +axis (-x, +x, -y, +y, -z, +z).
+//
 // The outward normal of the face of `axis` that faces +axis when `positive`: +-1 on its axis,
 // +0 on the others. A hit's normal is its face's alone (Instance::face_normals relies on it).
 [[gnu::always_inline]] inline Vec3 face_normal(int axis, bool positive) {
@@ -29,71 +27,76 @@ std::uint32_t face_index(int axis, bool positive) {
   return {axis == 0 ? face : 0.0, axis == 1 ? face : 0.0, axis == 2 ? face : 0.0};
 }
 
-// Where the ray enters and leaves the cube's slabs, and through which faces' axes (-1 when no
-// slab bounds that end); false when it misses.
+// Where the ray enters and leaves the cube's slabs, through which faces (LocalHit::part; -1
+// when no slab bounds that end); false when it misses.
 struct SlabSpan {
   double t_enter = -kInfinity, t_exit = kInfinity;
-  int enter_axis = -1, exit_axis = -1;
+  int enter_face = -1, exit_face = -1;
 };
 
 // slab_span and face_hit are inline, as they were inside intersect_cube before cube_crossings
-// shared them: every cube test pays for the calls otherwise.
-[[gnu::always_inline]] inline bool slab_span(const Vec3& o, const Vec3& d, SlabSpan& span) {
-  if (!is_finite(o) || !is_finite(d)) return false;
-  // An origin outside a slab moving away from it (a ray leaving a face, most often): that
-  // slab's far distance (+-1 - o) / d is <= 0 by its exact sign, so the span below would end at
-  // t <= 0, which neither caller takes. Deciding it first saves the six divisions.
-  for (int a = 0; a < 3; ++a)
-    if ((d[a] > 0 && o[a] >= 1) || (d[a] < 0 && o[a] <= -1)) return false;
-  for (int a = 0; a < 3; ++a) {
-    if (d[a] == 0) {
-      if (!(o[a] >= -1 && o[a] <= 1)) return false;  // parallel and outside (or NaN)
-      continue;
-    }
-    const double t_lo = (-1 - o[a]) / d[a];
-    const double t_hi = (1 - o[a]) / d[a];
-    const double t_near = d[a] > 0 ? t_lo : t_hi;
-    const double t_far = d[a] > 0 ? t_hi : t_lo;
-    if (t_near > span.t_enter) span.t_enter = t_near, span.enter_axis = a;
-    if (t_far < span.t_exit) span.t_exit = t_far, span.exit_axis = a;
-  }
-  return span.t_enter <= span.t_exit;  // also rejects NaN
+// shared them: every cube test pays for the calls otherwise. Each axis is written out rather
+// than looped over by index: GCC kept the loop, every d[a] a chain of selects on a.
+
+// Narrows the span by the slab of `axis` (o, d: the origin's and direction's components there);
+// false when the ray is parallel to it and outside it. A tie keeps the earlier axis.
+[[gnu::always_inline]] inline bool narrow_to_slab(double o, double d, int axis, SlabSpan& span) {
+  if (d == 0) return o >= -1 && o <= 1;
+  const double t_lo = (-1 - o) / d;
+  const double t_hi = (1 - o) / d;
+  const bool rising = d > 0;
+  const double t_near = rising ? t_lo : t_hi;
+  const double t_far = rising ? t_hi : t_lo;
+  // The span would end at t <= 0, which no caller takes: most often an origin outside the slab
+  // moving away from it (a ray leaving a face; t_far's sign is exact, that of a rounded
+  // difference). Deciding it here spares the later axes' divisions.
+  if (!(t_far > 0)) return false;
+  // Entering through the face towards -axis when rising, leaving through the one towards +axis.
+  if (t_near > span.t_enter) span.t_enter = t_near, span.enter_face = 2 * axis + (rising ? 0 : 1);
+  if (t_far < span.t_exit) span.t_exit = t_far, span.exit_face = 2 * axis + (rising ? 1 : 0);
+  return true;
 }
 
-// The hit at t on the face of `axis` that faces +axis when `positive_face`, written into `hit`.
-// Each vector is built whole from its three components, not written by index: a Vec3 stored a
-// component at a time and read back two at a time stalls the load (store forwarding fails),
-// which was most of a cube hit's time.
-[[gnu::always_inline]] inline void face_hit(const Vec3& o, const Vec3& d, double t, int axis,
-                                            bool positive_face, LocalHit& hit) {
-  const double face = positive_face ? 1 : -1;
+[[gnu::always_inline]] inline bool slab_span(const Vec3& o, const Vec3& d, SlabSpan& span) {
+  if (!is_finite(o) || !is_finite(d)) return false;
+  return narrow_to_slab(o.x, d.x, 0, span) && narrow_to_slab(o.y, d.y, 1, span) &&
+         narrow_to_slab(o.z, d.z, 2, span) && span.t_enter <= span.t_exit;  // also rejects NaN
+}
+
+// The hit at t on face `face` (LocalHit::part), written into `hit`. Each vector is built whole
+// from its three components, not written by index: a Vec3 stored a component at a time and read
+// back two at a time stalls the load (store forwarding fails), which was most of a cube hit's
+// time.
+[[gnu::always_inline]] inline void face_hit(const Vec3& o, const Vec3& d, double t, int face,
+                                            LocalHit& hit) {
+  const int axis = face / 2;
+  const double face_coordinate = face % 2 == 1 ? 1 : -1;
   const auto coordinate = [&](int a, double oa, double da) {
-    return a == axis ? face : std::clamp(oa + t * da, -1.0, 1.0);
+    return a == axis ? face_coordinate : std::clamp(oa + t * da, -1.0, 1.0);
   };
   const Vec3 p{coordinate(0, o.x, d.x), coordinate(1, o.y, d.y), coordinate(2, o.z, d.z)};
   const auto error = [&](int a, double pa) {
     return a == axis ? 0.0 : gamma_bound(3) * std::fabs(pa);
   };
-  const Vec3 n = face_normal(axis, positive_face);
+  const Vec3 n = face_normal(axis, face % 2 == 1);
   hit.t = t;
   hit.point = p;
   hit.point_error = {error(0, p.x), error(1, p.y), error(2, p.z)};
   hit.normal = n;
   hit.shading_normal = n;
-  hit.part = face_index(axis, positive_face);
+  hit.part = static_cast<std::uint32_t>(face);
 }
 
-// The nearest face the ray meets with t in (0, t_max): where, on which axis, and whether it is
-// the face towards +axis; false when it meets none.
-[[gnu::always_inline]] inline bool nearest_face(const Ray& ray, double t_max, double& t, int& axis,
-                                                bool& positive_face) {
-  const Vec3& d = ray.direction;
+// The nearest face the ray meets with t in (0, t_max): where, and which (LocalHit::part); false
+// when it meets none.
+[[gnu::always_inline]] inline bool nearest_face(const Ray& ray, double t_max, double& t,
+                                                int& face) {
   SlabSpan span;
-  if (!slab_span(ray.origin, d, span)) return false;
-  if (span.t_enter > 0 && span.enter_axis >= 0) {
-    t = span.t_enter, axis = span.enter_axis, positive_face = d[axis] < 0;
-  } else if (span.t_exit > 0 && span.exit_axis >= 0) {
-    t = span.t_exit, axis = span.exit_axis, positive_face = d[axis] > 0;
+  if (!slab_span(ray.origin, ray.direction, span)) return false;
+  if (span.t_enter > 0 && span.enter_face >= 0) {
+    t = span.t_enter, face = span.enter_face;
+  } else if (span.t_exit > 0 && span.exit_face >= 0) {
+    t = span.t_exit, face = span.exit_face;
   } else {
     return false;
   }
@@ -108,18 +111,16 @@ Vec3 cube_face_normal(std::uint32_t part) {
 
 bool intersect_cube(const Ray& ray, double t_max, LocalHit& hit) {
   double t = 0;
-  int axis = -1;
-  bool positive_face = false;
-  if (!nearest_face(ray, t_max, t, axis, positive_face)) return false;
-  face_hit(ray.origin, ray.direction, t, axis, positive_face, hit);
+  int face = -1;
+  if (!nearest_face(ray, t_max, t, face)) return false;
+  face_hit(ray.origin, ray.direction, t, face, hit);
   return true;
 }
 
 bool occluded_cube(const Ray& ray, double t_max) {
   double t = 0;
-  int axis = -1;
-  bool positive_face = false;
-  return nearest_face(ray, t_max, t, axis, positive_face);
+  int face = -1;
+  return nearest_face(ray, t_max, t, face);
 }
 
 std::vector<LocalHit> cube_crossings(const Ray& ray, double t_max) {
@@ -128,13 +129,12 @@ std::vector<LocalHit> cube_crossings(const Ray& ray, double t_max) {
   std::vector<LocalHit> crossings;
   SlabSpan span;
   if (!slab_span(o, d, span)) return crossings;
-  // A ray parallel to every slab it is inside (d = 0) has no ends: enter_axis is then -1 too.
-  if (span.enter_axis < 0 || span.exit_axis < 0) return crossings;
-  const int enter = span.enter_axis, exit = span.exit_axis;
+  // A ray parallel to every slab it is inside (d = 0) has no ends: enter_face is then -1 too.
+  if (span.enter_face < 0 || span.exit_face < 0) return crossings;
   if (span.t_enter > 0 && span.t_enter < t_max)
-    face_hit(o, d, span.t_enter, enter, d[enter] < 0, crossings.emplace_back());
+    face_hit(o, d, span.t_enter, span.enter_face, crossings.emplace_back());
   if (span.t_exit > 0 && span.t_exit < t_max)
-    face_hit(o, d, span.t_exit, exit, d[exit] > 0, crossings.emplace_back());
+    face_hit(o, d, span.t_exit, span.exit_face, crossings.emplace_back());
   return crossings;
 }
 

@@ -1,6 +1,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <vector>
 
 #include "common/geometry/shapes.h"
 
@@ -80,6 +81,22 @@ TEST(Cube, RaysAlongEdgesAndThroughCorners) {
   ASSERT_TRUE(intersect_cube({{-2, -2, 0.5}, {1, 1, 0}}, kInfinity, hit));
   EXPECT_EQ(hit.t, 1);
   EXPECT_EQ(hit.point, (Vec3{-1, -1, 0.5}));
+}
+
+TEST(Cube, TiesGoToTheFirstAxis) {
+  // Through a corner: the three slabs are entered (and left) at the same t; the hit and both
+  // crossings name the x faces, as they always have (a texture's face depends on it).
+  LocalHit hit;
+  ASSERT_TRUE(intersect_cube({{-2, -2, -2}, {1, 1, 1}}, kInfinity, hit));
+  EXPECT_EQ(hit.part, 0u);
+  EXPECT_EQ(hit.normal, (Vec3{-1, 0, 0}));
+  ASSERT_TRUE(intersect_cube({{0, 0, 0}, {-1, 1, 1}}, kInfinity, hit));  // from inside
+  EXPECT_EQ(hit.part, 0u);
+  const std::vector<LocalHit> crossings = cube_crossings({{2, -2, 2}, {-1, 1, -1}}, kInfinity);
+  ASSERT_EQ(crossings.size(), 2u);
+  EXPECT_EQ(crossings[0].part, 1u);
+  EXPECT_EQ(crossings[1].part, 0u);
+  EXPECT_EQ(crossings[1].point, (Vec3{-1, 1, -1}));
 }
 
 TEST(Cube, PointStaysOnTheCube) {
