@@ -479,7 +479,7 @@ TEST(Torus, ExitProofNeverContradictsTheSearch) {
       }
     }
     // It settles most rays leaving the surface, and not only offset ones: the other three kinds
-    // together about as often (0.98 to 1.14 times on these tori).
+    // together about as often (0.99 to 1.16 times on these tori).
     EXPECT_GT(proven_offset, offset_exits / 2) << torus.tube_radius << " " << torus.torus_radius;
     EXPECT_GT(proven - proven_offset, proven_offset * 9 / 10);
     // Rays leaving the inner half too, away from the plane (2.5 to 13 % of those settled).
