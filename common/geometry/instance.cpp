@@ -263,9 +263,10 @@ template <typename ObjectRayOf>
 // (R + r)(|L_i0| + |L_i1|) + r |L_i2|: for the tori of features/torus.sdl, tipped by 60 degrees,
 // 0.37 r further on two axes, where shadow rays and camera rays that miss the object box went on
 // into the instance's transform and the torus's setup. Padded as the corners' box is, by the
-// rounding of to_world applied to a corner (twice Affine::point_error), with room for the hits'
-// own error bound (surface_hit's, under 16 eps (R + r) off the axis, where the extremes lie) and
-// for a grazing ray's touching root, which lies within rounding of the surface, not on it: the
+// rounding of to_world applied to a corner (twice Affine::point_error), with room for the hit
+// points' own rounding (under 16 eps (R + r) off the axis, where the extremes lie; the bound a
+// thin tube reports is wider, to cover its quartic's rounding band, but its points are as close)
+// and for a grazing ray's touching root, which lies within rounding of the surface, not on it: the
 // tube is widened by 1e-10 (R + r), some 10^5 times that rounding.
 Bounds3 torus_world_bounds(const Torus& torus, const Affine& to_world) {
   const double big_r = torus.torus_radius, r = torus.tube_radius, e = big_r + r;
