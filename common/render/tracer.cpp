@@ -168,8 +168,14 @@ void Tracer::find_packet_hits(const Vec3& eye, const Vec3* directions, int count
 }
 
 Rgb Tracer::trace_packet_ray(int lane, const MediumStack& media, SampleStream& rng) {
-  return trace_from_hit(packet_rays_[lane], packet_found_[lane], packet_hits_[lane],
-                        RayKind::Camera, 0, 1.0, media, rng);
+  // A miss (half the tori's camera rays) returns here, without trace_from_hit's frame and the
+  // media and crossing it sets up for hits.
+  if (!packet_found_[lane]) {
+    poll_interrupt();
+    return missed(packet_rays_[lane].direction, RayKind::Camera);
+  }
+  return trace_from_hit(packet_rays_[lane], packet_hits_[lane], RayKind::Camera, 0, 1.0, media,
+                        rng);
 }
 
 std::optional<WorldHit> Tracer::first_hit(const Ray& ray) {
@@ -482,6 +488,12 @@ Rgb Tracer::apply_atmosphere(const Rgb& color, double distance) const {
   return out;
 }
 
+Rgb Tracer::missed(const Vec3& direction, RayKind kind) const {
+  if (kind == RayKind::Reflected) return Rgb{};  // eq. 4.2
+  const SceneGlobals& g = scene_.scene().globals;
+  return effects_.has(Effect::SkyGradient) ? g.sky->colour(unit_or_zero(direction)) : g.background;
+}
+
 Rgb Tracer::trace(const Ray& ray_in, RayKind kind, int depth, double weight,
                   const MediumStack& media_in, SampleStream& rng) {
   // The hit is left unzeroed: closest_hit writes every member it has before any is read, and
@@ -490,12 +502,15 @@ Rgb Tracer::trace(const Ray& ray_in, RayKind kind, int depth, double weight,
   // so an implicit-lifetime type, within it (C++20 [intro.object]).
   alignas(Hit) std::byte hit_storage[sizeof(Hit)];
   Hit& hit = *std::launder(reinterpret_cast<Hit*>(hit_storage));
-  const bool found = closest_hit(ray_in, hit);
-  return trace_from_hit(ray_in, found, hit, kind, depth, weight, media_in, rng);
+  if (!closest_hit(ray_in, hit)) {
+    poll_interrupt();
+    return missed(ray_in.direction, kind);
+  }
+  return trace_from_hit(ray_in, hit, kind, depth, weight, media_in, rng);
 }
 
-Rgb Tracer::trace_from_hit(const Ray& ray_in, bool found, Hit& hit, RayKind kind, int depth,
-                           double weight, const MediumStack& media_in, SampleStream& rng) {
+Rgb Tracer::trace_from_hit(const Ray& ray_in, Hit& hit, RayKind kind, int depth, double weight,
+                           const MediumStack& media_in, SampleStream& rng) {
   poll_interrupt();
   const Scene& scene = scene_.scene();
   const SceneGlobals& g = scene.globals;
@@ -510,12 +525,9 @@ Rgb Tracer::trace_from_hit(const Ray& ray_in, bool found, Hit& hit, RayKind kind
   double travelled = 0;
   const Material* m = nullptr;
   Crossing crossing;
+  bool found = true;
   for (int skipped = 0;; ++skipped) {
-    if (!found) {
-      if (kind == RayKind::Reflected) return Rgb{};  // eq. 4.2
-      return effects.has(Effect::SkyGradient) ? g.sky->colour(unit_or_zero(ray->direction))
-                                              : g.background;
-    }
+    if (!found) return missed(ray->direction, kind);
     travelled += hit.world.t;
     m = &scene.objects[hit.world.object].material;
     if (!effects.has(Effect::Refraction) || !(m->transparency > g.min_transparency)) break;

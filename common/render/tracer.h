@@ -68,9 +68,12 @@ class Tracer {
     bool known = true;
   };
   bool closest_hit(const Ray& ray, Hit& hit);
-  // trace() once closest_hit has given `found` and `hit` for `ray_in`.
-  Rgb trace_from_hit(const Ray& ray_in, bool found, Hit& hit, RayKind kind, int depth,
-                     double weight, const MediumStack& media_in, SampleStream& rng);
+  // What a ray of `kind` along `direction` that meets nothing brings (eq. 4.2): black for a
+  // reflected ray, else the sky or the background.
+  Rgb missed(const Vec3& direction, RayKind kind) const;
+  // trace() once closest_hit has found `hit` for `ray_in` (a miss is `missed`).
+  Rgb trace_from_hit(const Ray& ray_in, Hit& hit, RayKind kind, int depth, double weight,
+                     const MediumStack& media_in, SampleStream& rng);
   // Crosses the transparent surface at `hit`, together with every other transparent surface
   // that crosses the ray within rounding of it: coincident boundaries (the same sphere twice,
   // flush faces) are one interface, whichever of them closest_hit returned. `hit` becomes the
