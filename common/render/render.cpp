@@ -223,15 +223,20 @@ void render_pixels(const PreparedScene& scene, const RenderSettings& settings,
   const auto check_interrupt = [&] {
     if (interrupt.armed() && interrupt.requested()) throw RenderInterrupted();
   };
-  const PixelRect bounds = bounds_of(pixels);
-  if (samples_depend_on_position_only(render_effects(scene, settings), settings) &&
-      worth_a_lattice(static_cast<long long>(pixels.size()), bounds.area(), settings.aa_samples)) {
-    SampleLattice lattice(bounds);
-    for (std::size_t i = 0; i < pixels.size(); ++i) {
-      check_interrupt();
-      out[i] = shared_pixel(context, lattice, pixels[i].x, pixels[i].y);
+  // The pixels' bounds only with more than one sample a pixel, without which worth_a_lattice
+  // is false: a pass over the pixels (13 instructions each) spent for nothing otherwise.
+  if (settings.aa_samples > 1 &&
+      samples_depend_on_position_only(render_effects(scene, settings), settings)) {
+    const PixelRect bounds = bounds_of(pixels);
+    if (worth_a_lattice(static_cast<long long>(pixels.size()), bounds.area(),
+                        settings.aa_samples)) {
+      SampleLattice lattice(bounds);
+      for (std::size_t i = 0; i < pixels.size(); ++i) {
+        check_interrupt();
+        out[i] = shared_pixel(context, lattice, pixels[i].x, pixels[i].y);
+      }
+      return;
     }
-    return;
   }
   if (one_fixed_sample(context)) {
     trace_packets(context, pixels, out, check_interrupt);
