@@ -132,10 +132,15 @@ void trace_packets(const PassContext& c, std::span<const PixelCoord> pixels, std
   const SampleOffset offset = c.offsets[0];
   for (std::size_t i = 0; i < pixels.size(); i += kPacketLanes) {
     const int count = static_cast<int>(std::min<std::size_t>(kPacketLanes, pixels.size() - i));
+    static_assert(kPacketLanes == 4, "ImageRays::directions_through takes four points");
+    double px[kPacketLanes], py[kPacketLanes];
+    for (int l = 0; l < kPacketLanes; ++l) {  // lanes past `count` repeat its last pixel
+      const PixelCoord& p = pixels[i + static_cast<std::size_t>(std::min(l, count - 1))];
+      px[l] = p.x + offset.dx;
+      py[l] = p.y + offset.dy;
+    }
     Vec3 directions[kPacketLanes];
-    for (int l = 0; l < count; ++l)
-      directions[l] =
-          c.camera.direction_through(pixels[i + l].x + offset.dx, pixels[i + l].y + offset.dy);
+    c.camera.directions_through(px, py, directions);
     c.tracer.find_packet_hits(c.camera.eye(), directions, count);
     for (int l = 0; l < count; ++l) {
       check_interrupt();
