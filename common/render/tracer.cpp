@@ -167,17 +167,6 @@ void Tracer::find_packet_hits(const Vec3& eye, const Vec3* directions, int count
       });
 }
 
-Rgb Tracer::trace_packet_ray(int lane, const MediumStack& media, SampleStream& rng) {
-  // A miss (half the tori's camera rays) returns here, without trace_from_hit's frame and the
-  // media and crossing it sets up for hits.
-  if (!packet_found_[lane]) {
-    poll_interrupt();
-    return missed(packet_rays_[lane].direction, RayKind::Camera);
-  }
-  return trace_from_hit(packet_rays_[lane], packet_hits_[lane], RayKind::Camera, 0, 1.0, media,
-                        rng);
-}
-
 std::optional<WorldHit> Tracer::first_hit(const Ray& ray) {
   Hit hit;
   if (!closest_hit(ray, hit)) return std::nullopt;

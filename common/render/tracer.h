@@ -48,7 +48,17 @@ class Tracer {
   void find_packet_hits(const Vec3& eye, const Vec3* directions, int count);
   // trace(ray, RayKind::Camera, 0, 1, media, rng) of ray `lane` of the last find_packet_hits,
   // bit for bit, its nearest hit already found.
-  Rgb trace_packet_ray(int lane, const MediumStack& media, SampleStream& rng);
+  // Inline, so that a miss costs a pixel no call into the tracer beyond `missed`.
+  Rgb trace_packet_ray(int lane, const MediumStack& media, SampleStream& rng) {
+    // A miss (half the tori's camera rays) returns here, without trace_from_hit's frame and the
+    // media and crossing it sets up for hits.
+    if (!packet_found_[lane]) {
+      poll_interrupt();
+      return missed(packet_rays_[lane].direction, RayKind::Camera);
+    }
+    return trace_from_hit(packet_rays_[lane], packet_hits_[lane], RayKind::Camera, 0, 1.0, media,
+                          rng);
+  }
 
   // The nearest surface along `ray`, for the debug views; nothing when it meets none.
   std::optional<WorldHit> first_hit(const Ray& ray);
