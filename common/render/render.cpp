@@ -130,6 +130,9 @@ template <class CheckInterrupt>
 void trace_packets(const PassContext& c, std::span<const PixelCoord> pixels, std::span<Rgb> out,
                    const CheckInterrupt& check_interrupt) {
   const SampleOffset offset = c.offsets[0];
+  // Out of the loop, where its initializers (zeroes) run once, not at every packet:
+  // directions_through writes all four.
+  Vec3 directions[kPacketLanes];
   for (std::size_t i = 0; i < pixels.size(); i += kPacketLanes) {
     const int count = static_cast<int>(std::min<std::size_t>(kPacketLanes, pixels.size() - i));
     static_assert(kPacketLanes == 4, "ImageRays::directions_through takes four points");
@@ -139,7 +142,6 @@ void trace_packets(const PassContext& c, std::span<const PixelCoord> pixels, std
       px[l] = p.x + offset.dx;
       py[l] = p.y + offset.dy;
     }
-    Vec3 directions[kPacketLanes];
     c.camera.directions_through(px, py, directions);
     c.tracer.find_packet_hits(c.camera.eye(), directions, count);
     for (int l = 0; l < count; ++l) {
