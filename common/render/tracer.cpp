@@ -193,6 +193,25 @@ double Tracer::shadow_factor(const Feeler& feeler) {
   return factor;
 }
 
+// Forced inline into point_shadow, its one caller: as a call it cost the demo's render 0.65 % of
+// its instructions (the call, and the candidates spilled around it).
+[[gnu::always_inline]] inline bool Tracer::leaves_own_hull(const Hit& hit, const Vec3& d) const {
+  // A convex solid cannot block a feeler that leaves it outward: the feeler starts on the outer
+  // side of the plane that touches the solid there (the offset put it beyond the hit's
+  // rounding) and moves away from it; the margin on the angle covers the normal's rounding.
+  // A torus's outer half (rho >= R) lies on the boundary of its convex hull, with the same
+  // normal: a feeler leaving it outward leaves the hull.
+  constexpr double kLeastCosine = 1e-6;
+  const double along = dot(hit.world.normal, d);
+  if (!(along > 0 && along * along > kLeastCosine * kLeastCosine * dot(d, d))) return false;
+  if (scene_.convex(hit.instance)) return true;
+  const auto* torus = std::get_if<Torus>(&scene_.instances()[hit.instance].geometry);
+  if (!torus) return false;
+  const Vec3& p = hit.world.object_point;
+  const double big = torus->torus_radius;
+  return p.x * p.x + p.y * p.y > big * big * (1 + kLeastCosine);
+}
+
 double Tracer::point_shadow(const Feeler& feeler, const Hit& hit, std::size_t light) {
   const LightBuffer* buffer = scene_.light_buffer(light);
   if (!buffer) return shadow_factor(feeler);
@@ -212,23 +231,6 @@ double Tracer::point_shadow(const Feeler& feeler, const Hit& hit, std::size_t li
       factor *= scene_.scene().objects[object].material.transparency;
   }
   return factor;
-}
-
-bool Tracer::leaves_own_hull(const Hit& hit, const Vec3& d) const {
-  // A convex solid cannot block a feeler that leaves it outward: the feeler starts on the outer
-  // side of the plane that touches the solid there (the offset put it beyond the hit's
-  // rounding) and moves away from it; the margin on the angle covers the normal's rounding.
-  // A torus's outer half (rho >= R) lies on the boundary of its convex hull, with the same
-  // normal: a feeler leaving it outward leaves the hull.
-  constexpr double kLeastCosine = 1e-6;
-  const double along = dot(hit.world.normal, d);
-  if (!(along > 0 && along * along > kLeastCosine * kLeastCosine * dot(d, d))) return false;
-  if (scene_.convex(hit.instance)) return true;
-  const auto* torus = std::get_if<Torus>(&scene_.instances()[hit.instance].geometry);
-  if (!torus) return false;
-  const Vec3& p = hit.world.object_point;
-  const double big = torus->torus_radius;
-  return p.x * p.x + p.y * p.y > big * big * (1 + kLeastCosine);
 }
 
 Vec3 Tracer::spawn_offset(const Hit& hit, double epsilon) const {
