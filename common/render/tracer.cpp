@@ -479,12 +479,6 @@ Rgb Tracer::apply_atmosphere(const Rgb& color, double distance) const {
   return out;
 }
 
-Rgb Tracer::missed(const Vec3& direction, RayKind kind) const {
-  if (kind == RayKind::Reflected) return Rgb{};  // eq. 4.2
-  const SceneGlobals& g = scene_.scene().globals;
-  return effects_.has(Effect::SkyGradient) ? g.sky->colour(unit_or_zero(direction)) : g.background;
-}
-
 Rgb Tracer::trace(const Ray& ray_in, RayKind kind, int depth, double weight,
                   const MediumStack& media_in, SampleStream& rng) {
   // The hit is left unzeroed: closest_hit writes every member it has before any is read, and

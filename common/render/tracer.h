@@ -79,8 +79,14 @@ class Tracer {
   };
   bool closest_hit(const Ray& ray, Hit& hit);
   // What a ray of `kind` along `direction` that meets nothing brings (eq. 4.2): black for a
-  // reflected ray, else the sky or the background.
-  Rgb missed(const Vec3& direction, RayKind kind) const;
+  // reflected ray, else the sky or the background. Inline: as a call it cost each miss some 20
+  // instructions, 0.5 % of the tori's.
+  Rgb missed(const Vec3& direction, RayKind kind) const {
+    if (kind == RayKind::Reflected) return Rgb{};  // eq. 4.2
+    const SceneGlobals& g = scene_.scene().globals;
+    return effects_.has(Effect::SkyGradient) ? g.sky->colour(unit_or_zero(direction))
+                                             : g.background;
+  }
   // trace() once closest_hit has found `hit` for `ray_in` (a miss is `missed`).
   Rgb trace_from_hit(const Ray& ray_in, Hit& hit, RayKind kind, int depth, double weight,
                      const MediumStack& media_in, SampleStream& rng);
