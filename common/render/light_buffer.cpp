@@ -139,36 +139,4 @@ void LightBuffer::insert(std::size_t cell, double reach_squared_double, std::uin
   }
 }
 
-LightBuffer::Candidates LightBuffer::candidates(const Vec3& origin) const {
-  Candidates out;
-  if (cells_.empty()) return out;
-  const Vec3 v = origin - light_;
-  const double squared = dot(v, v);
-  if (!(squared > 0 && squared < kInfinity)) return out;  // NaN too
-  // The face of the largest coordinate (ties to the first) and the tangents across it, as
-  // cells. A cell here may differ from the build's by rounding: each object covers one more.
-  const double ax = std::fabs(v.x), ay = std::fabs(v.y), az = std::fabs(v.z);
-  double major, a, b;
-  int face;
-  if (ax >= ay && ax >= az) {
-    major = v.x, a = v.y, b = v.z, face = 0;
-  } else if (ay >= az) {
-    major = v.y, a = v.z, b = v.x, face = 2;
-  } else {
-    major = v.z, a = v.x, b = v.y, face = 4;
-  }
-  if (major < 0) ++face;
-  const double scale = kHalf / std::fabs(major);
-  // In [0, kN] (a tangent is at most 1), truncated towards zero.
-  const int i = std::min(static_cast<int>(a * scale + kHalf), kN - 1);
-  const int j = std::min(static_cast<int>(b * scale + kHalf), kN - 1);
-  const Cell& c = cells_[(static_cast<std::size_t>(face) * kN + i) * kN + j];
-  if (!(squared < c.reach[2])) return out;
-  out.walk = false;
-  out.count = squared < c.reach[0] ? 0 : squared < c.reach[1] ? 1 : 2;
-  out.ids[0] = c.ids[0];
-  out.ids[1] = c.ids[1];
-  return out;
-}
-
 }  // namespace tessera

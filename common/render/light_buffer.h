@@ -9,6 +9,8 @@
 // nodes and shape tests fall.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <limits>
 #include <span>
@@ -57,10 +59,46 @@ class LightBuffer {
     std::uint16_t ids[2] = {};
   };
   static constexpr float kNoReach = std::numeric_limits<float>::infinity();
+  static constexpr double kHalfCells = kCells / 2.0;
   void insert(std::size_t cell, double reach_squared, std::uint32_t id);
 
   Vec3 light_;
   std::vector<Cell> cells_;  // face * kCells^2 + row * kCells + column
 };
+
+// Here and forced inline: point_shadow looks up every hard shadow feeler, and the call (its
+// result packed into registers and spilled again) cost the renders 0.5 % of their instructions.
+[[gnu::always_inline]] inline LightBuffer::Candidates LightBuffer::candidates(
+    const Vec3& origin) const {
+  Candidates out;
+  if (cells_.empty()) return out;
+  const Vec3 v = origin - light_;
+  const double squared = dot(v, v);
+  if (!(squared > 0 && squared < kInfinity)) return out;  // NaN too
+  // The face of the largest coordinate (ties to the first) and the tangents across it, as
+  // cells. A cell here may differ from the build's by rounding: each object covers one more.
+  const double ax = std::fabs(v.x), ay = std::fabs(v.y), az = std::fabs(v.z);
+  double major, a, b;
+  int face;
+  if (ax >= ay && ax >= az) {
+    major = v.x, a = v.y, b = v.z, face = 0;
+  } else if (ay >= az) {
+    major = v.y, a = v.z, b = v.x, face = 2;
+  } else {
+    major = v.z, a = v.x, b = v.y, face = 4;
+  }
+  if (major < 0) ++face;
+  const double scale = kHalfCells / std::fabs(major);
+  // In [0, kCells] (a tangent is at most 1), truncated towards zero.
+  const int i = std::min(static_cast<int>(a * scale + kHalfCells), kCells - 1);
+  const int j = std::min(static_cast<int>(b * scale + kHalfCells), kCells - 1);
+  const Cell& c = cells_[(static_cast<std::size_t>(face) * kCells + i) * kCells + j];
+  if (!(squared < c.reach[2])) return out;
+  out.walk = false;
+  out.count = squared < c.reach[0] ? 0 : squared < c.reach[1] ? 1 : 2;
+  out.ids[0] = c.ids[0];
+  out.ids[1] = c.ids[1];
+  return out;
+}
 
 }  // namespace tessera

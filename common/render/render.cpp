@@ -130,12 +130,19 @@ template <class CheckInterrupt>
 void trace_packets(const PassContext& c, std::span<const PixelCoord> pixels, std::span<Rgb> out,
                    const CheckInterrupt& check_interrupt) {
   const SampleOffset offset = c.offsets[0];
+  // Out of the loop, where its initializers (zeroes) run once, not at every packet:
+  // directions_through writes all four.
+  Vec3 directions[kPacketLanes];
   for (std::size_t i = 0; i < pixels.size(); i += kPacketLanes) {
     const int count = static_cast<int>(std::min<std::size_t>(kPacketLanes, pixels.size() - i));
-    Vec3 directions[kPacketLanes];
-    for (int l = 0; l < count; ++l)
-      directions[l] =
-          c.camera.direction_through(pixels[i + l].x + offset.dx, pixels[i + l].y + offset.dy);
+    static_assert(kPacketLanes == 4, "ImageRays::directions_through takes four points");
+    double px[kPacketLanes], py[kPacketLanes];
+    for (int l = 0; l < kPacketLanes; ++l) {  // lanes past `count` repeat its last pixel
+      const PixelCoord& p = pixels[i + static_cast<std::size_t>(std::min(l, count - 1))];
+      px[l] = p.x + offset.dx;
+      py[l] = p.y + offset.dy;
+    }
+    c.camera.directions_through(px, py, directions);
     c.tracer.find_packet_hits(c.camera.eye(), directions, count);
     for (int l = 0; l < count; ++l) {
       check_interrupt();
@@ -223,15 +230,20 @@ void render_pixels(const PreparedScene& scene, const RenderSettings& settings,
   const auto check_interrupt = [&] {
     if (interrupt.armed() && interrupt.requested()) throw RenderInterrupted();
   };
-  const PixelRect bounds = bounds_of(pixels);
-  if (samples_depend_on_position_only(render_effects(scene, settings), settings) &&
-      worth_a_lattice(static_cast<long long>(pixels.size()), bounds.area(), settings.aa_samples)) {
-    SampleLattice lattice(bounds);
-    for (std::size_t i = 0; i < pixels.size(); ++i) {
-      check_interrupt();
-      out[i] = shared_pixel(context, lattice, pixels[i].x, pixels[i].y);
+  // The pixels' bounds only with more than one sample a pixel, without which worth_a_lattice
+  // is false: a pass over the pixels (13 instructions each) spent for nothing otherwise.
+  if (settings.aa_samples > 1 &&
+      samples_depend_on_position_only(render_effects(scene, settings), settings)) {
+    const PixelRect bounds = bounds_of(pixels);
+    if (worth_a_lattice(static_cast<long long>(pixels.size()), bounds.area(),
+                        settings.aa_samples)) {
+      SampleLattice lattice(bounds);
+      for (std::size_t i = 0; i < pixels.size(); ++i) {
+        check_interrupt();
+        out[i] = shared_pixel(context, lattice, pixels[i].x, pixels[i].y);
+      }
+      return;
     }
-    return;
   }
   if (one_fixed_sample(context)) {
     trace_packets(context, pixels, out, check_interrupt);
