@@ -41,13 +41,6 @@ inline double horner_error(const double* c, int n, double x) {
   return gamma_bound(2 * n + 1) * v;
 }
 
-// The derivative's coefficients of the degree-N polynomial c, in dc[0..N-1]; N a constant, so
-// that the loop is unrolled.
-template <int N>
-void derivative_coefficients(const double* c, double* dc) {
-  for (int i = 1; i <= N; ++i) dc[i - 1] = i * c[i];
-}
-
 // The root in (a, b), where the degree-N polynomial c is monotone and c(a) = fa, c(b) have
 // opposite signs, neither zero (dc: its derivative): Newton steps that stay inside the bracket,
 // bisection otherwise. The bracket shrinks every step, so it ends within an ulp or two of the
@@ -78,16 +71,6 @@ double bracketed_root(const double* c, const double* dc, double a, double b, dou
     x = next;
   }
   return x;
-}
-
-// polished_root for a polynomial of degree exactly N: the derivative and the value at a with the
-// degree a constant, unrolled as in the search (read at run time, it cost a torus's camera hit
-// some 25 instructions more, of its polish's 340).
-template <int N>
-double polished_root_of_degree(const double* c, double a, double b) {
-  double dc[N];
-  derivative_coefficients<N>(c, dc);
-  return bracketed_root<N>(c, dc, a, b, horner(c, N, a));
 }
 
 // Degrees 1 and 2 in closed form (the cancellation-free q form), with the same contract as
@@ -141,7 +124,7 @@ template <int N, class Visit, class EndsSearch>
 bool visit_roots(const double* c, double lo, double hi, const Visit& visit,
                  const EndsSearch& ends_search) {
   double dc[N];
-  derivative_coefficients<N>(c, dc);
+  for (int i = 1; i <= N; ++i) dc[i - 1] = i * c[i];
 
   // The split points, in order: lo, the derivative's roots (p's extrema and inflections) as they
   // are found, hi. Each piece between two of them is monotone and holds a root when p changes
@@ -247,8 +230,11 @@ bool visit_real_roots(const Polynomial& p, double lo, double hi, RootVisitor vis
 }
 
 double polished_root(const Polynomial& p, double a, double b) {
-  return p.degree == 3 ? polished_root_of_degree<3>(p.c, a, b)
-                       : polished_root_of_degree<4>(p.c, a, b);
+  double dc[kMaxPolynomialDegree];
+  for (int i = 1; i <= p.degree; ++i) dc[i - 1] = i * p.c[i];
+  const double fa = horner(p.c, p.degree, a);
+  return p.degree == 3 ? bracketed_root<3>(p.c, dc, a, b, fa)
+                       : bracketed_root<4>(p.c, dc, a, b, fa);
 }
 
 int real_roots(const Polynomial& p, double lo, double hi,
