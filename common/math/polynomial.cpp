@@ -22,12 +22,9 @@ int effective_degree(const Polynomial& p) {
 int sign(double v) { return (v > 0) - (v < 0); }
 
 // Horner's rule on c[0..n] (evaluate), inline so that the root search below, which passes
-// a constant degree, gets it unrolled. The pragma makes sure of it: at -O2 GCC unrolled the
-// cubic's loop but kept the quartic's as a loop (five instructions a step instead of two), in
-// the Newton steps that polish every torus hit.
+// a constant degree, gets it unrolled.
 inline double horner(const double* c, int n, double x) {
   double v = c[n];
-#pragma GCC unroll 4
   for (int i = n - 1; i >= 0; --i) v = v * x + c[i];
   return v;
 }
@@ -36,7 +33,6 @@ inline double horner(const double* c, int n, double x) {
 inline double horner_error(const double* c, int n, double x) {
   const double ax = std::fabs(x);
   double v = std::fabs(c[n]);
-#pragma GCC unroll 4
   for (int i = n - 1; i >= 0; --i) v = v * ax + std::fabs(c[i]);
   return gamma_bound(2 * n + 1) * v;
 }
