@@ -15,6 +15,7 @@
 
 #include "common/accel/bvh.h"
 #include "common/accel/wide_box_kernel.h"
+#include "common/accel/wide_bvh_pending.h"
 
 namespace tessera {
 
@@ -28,13 +29,6 @@ template <WideBvhOrder kOrder>
 using WideBvhOrderTag = std::integral_constant<WideBvhOrder, kOrder>;
 inline constexpr WideBvhOrderTag<WideBvhOrder::NearestFirst> kNearestFirst;
 inline constexpr WideBvhOrderTag<WideBvhOrder::Any> kAnyOrder;
-
-// A child to visit: an interior one (count 0, index into Bvh::wide) or a leaf's range.
-struct WideBvhPending {
-  std::uint32_t index;
-  std::uint32_t count;
-  float entry;
-};
 
 // The loop below the root, making the ray's constants with `set_box_ray(box_ray, ray)`, testing
 // boxes with `test_boxes(node.boxes, box_ray, far_limit, entry)` and passing `kernel` to the leaf
@@ -50,7 +44,8 @@ inline void traverse_wide_bvh_below_root(const Bvh& bvh, const Ray& ray, double 
   FloatBoxRay box_ray;
   set_box_ray(box_ray, ray);
   float far_limit = float_far_limit(t_max);
-  WideBvhPending stack[(kWideChildren - 1) * kBvhMaxDepth];  // a step pushes at most 7 a level
+  // A step pushes at most 7 a level; the AVX2 one stores past the top (wide_bvh_pending.h).
+  WideBvhPending stack[(kWideChildren - 1) * kBvhMaxDepth + kWideBvhStackSlack];
   int size = 0;
   WideBvhPending current{0, 0, 0};
   const BvhWideNode* wide = bvh.wide.data();
@@ -70,6 +65,13 @@ inline void traverse_wide_bvh_below_root(const Bvh& bvh, const Ray& ray, double 
           current = {node.child[c], node.count[c], entry[c]};
           continue;
         }
+#if defined(__SSE2__)
+        if constexpr (kOrder == WideBvhOrder::NearestFirst &&
+                      Kernel::value == WideBoxKernel::Avx2) {
+          current = push_hits_nearest_first_avx2(node, entry, hits, stack, size);
+          continue;
+        }
+#endif
         if constexpr (kOrder == WideBvhOrder::Any) {
           unsigned rest = hits;
           const int c0 = std::countr_zero(rest);
