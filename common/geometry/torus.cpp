@@ -369,30 +369,19 @@ bool proven_blocked(const QuarticSignProof& signs, bool from_outside, double s_l
     return inside_at(quarter_points[0]) || inside_at(quarter_points[1]) ||
            inside_at(quarter_points[2]);
   }
-  // The first point with a clear sign, and a later one with the other: the quarter points, then
-  // (a ray that leaves the surface only to enter the tube again soon after, across a horn's
-  // pinch or a spindle's lemon) finer points near the start.
-  const auto sign_change_among = [&](const double* points, int count) {
-    int first_sign = 0;
-    double first = 0;
-    for (int i = 0; i < count; ++i) {
-      const double s = points[i];
-      const int sign = signs.clearly_positive(s) ? 1 : signs.clearly_negative(s) ? -1 : 0;
-      if (first_sign == 0) {
-        first_sign = sign;
-        first = s;
-      } else if (sign == -first_sign) {
-        return crossing_hits(first, s);
-      }
+  // The first quarter point with a clear sign, and a later one with the other.
+  int first_sign = 0;
+  double first = 0;
+  for (const double s : quarter_points) {
+    const int sign = signs.clearly_positive(s) ? 1 : signs.clearly_negative(s) ? -1 : 0;
+    if (first_sign == 0) {
+      first_sign = sign;
+      first = s;
+    } else if (sign == -first_sign) {
+      return crossing_hits(first, s);
     }
-    return false;
-  };
-  if (sign_change_among(quarter_points, 3)) return true;
-  const double e = w / 16;
-  const double fine_points[9] = {s_lo + e,     s_lo + 2 * e, s_lo + 3 * e,
-                                 s_lo + 4 * e, s_lo + 6 * e, s_lo + 8 * e,
-                                 s_lo + w,     s_lo + 2 * w, s_lo + 3 * w};
-  return sign_change_among(fine_points, 9);
+  }
+  return false;
 }
 
 // What a search for the ray's hits is for: every hit, in order (the nearest hit is the first);
