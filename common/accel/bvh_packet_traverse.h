@@ -152,27 +152,6 @@ struct PacketRays {
 }
 #endif
 
-// Bit l set where a[l] < b[l], or a[l] <= b[l] with kOrEqual, over kPacketLanes lanes: the
-// walk's per-lane decisions. cmpltpd and cmplepd are ordered compares, false where either side is
-// NaN, as the scalar < and <= they replace; SSE2 rather than AVX2, as the always-inline walk
-// (BvhPacketWalk::walk_from) may inline no AVX2 function.
-template <bool kOrEqual>
-inline unsigned lanes_below(const double* a, const double* b) {
-#if defined(__SSE2__)
-  static_assert(kPacketLanes == 4);
-  const auto below = [](const double* x, const double* y) {
-    const __m128d x2 = _mm_loadu_pd(x), y2 = _mm_loadu_pd(y);
-    return _mm_movemask_pd(kOrEqual ? _mm_cmple_pd(x2, y2) : _mm_cmplt_pd(x2, y2));
-  };
-  return static_cast<unsigned>(below(a, b) | (below(a + 2, b + 2) << 2));
-#else
-  unsigned mask = 0;
-  for (int l = 0; l < kPacketLanes; ++l)
-    mask |= ((kOrEqual ? a[l] <= b[l] : a[l] < b[l]) ? 1u : 0u) << l;
-  return mask;
-#endif
-}
-
 // The walk of traverse_bvh_packet_leaves: run() tests boxes with intersect_child_boxes_packet,
 // run_avx2() with intersect_child_boxes_packet_avx2 (wide_box_kernel() chooses).
 template <typename VisitLeaf>
@@ -234,8 +213,11 @@ class BvhPacketWalk {
         hits[0] &= current.lanes;
         hits[1] &= current.lanes;
         // The lanes that enter both children and, as a ray alone would, take the second first.
-        const unsigned both = hits[0] & hits[1];
-        unsigned second_first = both & lanes_below<false>(entry[1], entry[0]);
+        unsigned both = hits[0] & hits[1], second_first = 0;
+        for (unsigned m = both; m != 0; m &= m - 1) {
+          const int l = std::countr_zero(m);
+          if (entry[1][l] < entry[0][l]) second_first |= 1u << l;
+        }
         if (second_first != 0 && second_first != both) {
           // Split: those lanes walk on alone, on a copy of the stack.
           Pending fork[kBvhMaxDepth];
@@ -264,9 +246,13 @@ class BvhPacketWalk {
       for (;;) {
         if (size == 0) return;
         current = stack[--size];
-        // The lanes that may still meet the entry's box before their nearest hit.
-        current.lanes &= walk & lanes_below<true>(current.entry, t_max_);
-        if (current.lanes != 0) break;
+        unsigned lanes = 0;
+        for (unsigned m = current.lanes & walk; m != 0; m &= m - 1) {
+          const int l = std::countr_zero(m);
+          if (current.entry[l] <= t_max_[l]) lanes |= 1u << l;
+        }
+        current.lanes = lanes;
+        if (lanes != 0) break;
       }
     }
   }
