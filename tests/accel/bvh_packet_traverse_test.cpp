@@ -183,6 +183,17 @@ TEST(BvhPacket, EachRayWalksAsAlone) {
   EXPECT_GT(splits_possible, 100);
 }
 
+// Every box entered at the same t by every ray: a stacked child whose entry equals a lane's t_max
+// is still visited (<=, not <), and equal entries do not make the second child come first.
+TEST(BvhPacket, EachRayWalksAsAloneOnTiedEntries) {
+  std::vector<Bounds3> boxes;
+  for (int i = 0; i < 64; ++i) boxes.push_back(Bounds3{{0, 0, 0}, {1, 1, 1.0 + i}});
+  const Bvh bvh = build_bvh(boxes, BvhMode::Sah);
+  Ray rays[kPacketLanes];
+  for (int l = 0; l < kPacketLanes; ++l) rays[l] = Ray{{0.2 * (l + 1), 0.5, -1}, {0, 0, 1}};
+  expect_packet_walks_as_alone(boxes, bvh, rays, kPacketLanes);
+}
+
 TEST(BvhPacket, EmptyAndSingleLeafTrees) {
   const std::vector<Bounds3> one = {Bounds3{{0, 0, 0}, {1, 1, 1}}};
   const Ray rays[kPacketLanes] = {
