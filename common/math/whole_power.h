@@ -10,8 +10,9 @@
 // The price is accuracy: each of the chain's roundings is carried into the power as many times
 // as that factor is used, so x^n is within (n - 1) roundings, (n - 1) * 2^-53 relative, of the
 // exact value (pow: within about 0.52 ulp). For the exponents scenes use (4 to 120) that is
-// below 10^-14, far below a pixel's float32 step. Exponents that are not whole, or above
-// kMaxWholeExponent, still go to std::pow (and keep its dependence on the host's libm).
+// at most 1.2 * 10^-14 (98 ulps at n = 120), far below a pixel's float32 step (6 * 10^-8).
+// Exponents that are not whole, or above kMaxWholeExponent, still go to std::pow (and keep its
+// dependence on the host's libm).
 #pragma once
 
 #include <cmath>
