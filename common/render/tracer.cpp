@@ -9,6 +9,7 @@
 
 #include "common/accel/bvh_traverse.h"
 #include "common/math/float_error.h"
+#include "common/math/whole_power.h"
 #include "common/render/cone.h"
 #include "common/render/optics.h"
 #include "common/render/render.h"
@@ -393,13 +394,13 @@ Rgb Tracer::local_illumination(const Hit& hit, const Material& m, const SurfaceC
     }
     if (shadow <= 0) continue;
     const double cone = light.is_spot && light.spot.exponent != 0
-                            ? std::pow(std::max(cos_alpha, 0.0), light.spot.exponent)
+                            ? shading_power(std::max(cos_alpha, 0.0), light.spot.exponent)
                             : 1;
 
     Rgb contribution = colours.diffuse * light.color * (n_dot_l * diffuse_scale);  // eq. 4.8
     if (n_dot_h > 0)                                                               // eq. 4.9
       contribution +=
-          m.specular * light.color * (std::pow(n_dot_h, m.specular_exponent) * specular_scale);
+          m.specular * light.color * (shading_power(n_dot_h, m.specular_exponent) * specular_scale);
     color += contribution * (attenuation * shadow * cone);  // eq. 4.7
   }
   return color;
