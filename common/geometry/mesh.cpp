@@ -35,9 +35,31 @@ template <typename Kernel, typename Step>
         return intersect_triangle_quad(&accel.leaf_pairs[i / 2], lanes_ray, t_max, hits) & inside;
       });
     };
-    for (std::uint32_t i = first, rest = count;; i += 4, rest -= 4) {
-      if (rest <= 4) return quad(i, 15u >> ((4 - rest % 4) % 4));
+    std::uint32_t i = first, rest = count;
+    for (; rest > 16; rest -= 4, i += 4)
       if (!quad(i, 15)) return false;
+    const unsigned last_inside = 15u >> ((4 - rest % 4) % 4);
+    // Five cases (with 0, and nothing else possible): GCC makes a jump table of five or more,
+    // a tree of compares below.
+    switch ((rest + 3) / 4) {
+      case 4:
+        if (!quad(i, 15)) return false;
+        i += 4;
+        [[fallthrough]];
+      case 3:
+        if (!quad(i, 15)) return false;
+        i += 4;
+        [[fallthrough]];
+      case 2:
+        if (!quad(i, 15)) return false;
+        i += 4;
+        [[fallthrough]];
+      case 1:
+        return quad(i, last_inside);
+      case 0:
+        return true;
+      default:
+        __builtin_unreachable();
     }
   }
 #endif
