@@ -56,8 +56,7 @@ MeshAccel build_mesh_accel(const Mesh& mesh, BvhMode mode, int threads) {
   for (int lane = 0; lane < 2; ++lane)
     for (int c = 0; c < 3; ++c) set_pair_corner(never_hit, c, lane, Vec3{kNaN, kNaN, kNaN});
   const std::vector<std::uint32_t>& order = accel.bvh.primitive_order;
-  // One NaN pair more: the AVX2 leaf test reads a last quad whole (mesh.cpp).
-  accel.leaf_pairs.assign((order.size() + 1) / 2 + 1, never_hit);
+  accel.leaf_pairs.assign((order.size() + 1) / 2, never_hit);
   for (std::size_t i = 0; i < order.size(); ++i) {
     const std::uint32_t index = order[i];
     if (index == MeshAccel::kNoTriangle || degenerate[index]) continue;

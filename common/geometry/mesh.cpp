@@ -12,64 +12,24 @@
 namespace tessera {
 namespace {
 
-// Tests the triangles of the leaf [first, first + count) of Bvh::primitive_order in order:
-// `step(i, test)` for each group from position i on, where `test(t_max, hits)` returns the lanes
-// hit as bits (lane l for the triangle at i + l, only those inside the leaf); stops when `step`
-// returns false, and returns false then. In the traversal compiled for AVX2 the groups are quads
-// (two pairs; a last quad reaching past the leaf has those lanes masked off, and reads the next
-// leaf's pairs or the NaN pair after the last leaf), elsewhere pairs.
-//
-// A leaf's quads, up to four (count <= 16, nearly every leaf), run as a jump into a run of four
-// (Duff's device), so that how many run is one indirect jump: a loop's exit test after each quad
-// mispredicted 1.8 times an incoherent ray in callgrind's model, leaves of 4, 8 and 12 triangles
-// being visited about as often (docs/PERFORMANCE.md "A leaf's quads without a loop").
-template <typename Kernel, typename Step>
-[[gnu::always_inline]] inline bool for_each_leaf_test(Kernel, const MeshAccel& accel,
-                                                      std::uint32_t first, std::uint32_t count,
-                                                      const TriangleLanesRay& lanes_ray,
-                                                      Step&& step) {
+// Tests the triangles of a leaf ending at `end` from its position i (even) on: four (two pairs)
+// in the traversal compiled for AVX2 while more than two remain, else one pair; `next` receives
+// the position after them. Returns the lanes hit as bits, lane l for the triangle at i + l.
+template <typename Kernel>
+[[gnu::always_inline]] inline unsigned intersect_leaf_triangles(
+    Kernel, const MeshAccel& accel, std::uint32_t i, std::uint32_t end,
+    const TriangleLanesRay& lanes_ray, double t_max, TriangleLaneHits& hits, std::uint32_t& next) {
+  const TrianglePair* pairs = &accel.leaf_pairs[i / 2];
 #if defined(__SSE2__)
   if constexpr (Kernel::value == WideBoxKernel::Avx2) {
-    const auto quad = [&](std::uint32_t i, unsigned inside) {
-      return step(i, [&, i, inside](double t_max, TriangleLaneHits& hits) {
-        return intersect_triangle_quad(&accel.leaf_pairs[i / 2], lanes_ray, t_max, hits) & inside;
-      });
-    };
-    std::uint32_t i = first, rest = count;
-    for (; rest > 16; rest -= 4, i += 4)
-      if (!quad(i, 15)) return false;
-    const unsigned last_inside = 15u >> ((4 - rest % 4) % 4);
-    // Five cases (with 0, and nothing else possible): GCC makes a jump table of five or more,
-    // a tree of compares below.
-    switch ((rest + 3) / 4) {
-      case 4:
-        if (!quad(i, 15)) return false;
-        i += 4;
-        [[fallthrough]];
-      case 3:
-        if (!quad(i, 15)) return false;
-        i += 4;
-        [[fallthrough]];
-      case 2:
-        if (!quad(i, 15)) return false;
-        i += 4;
-        [[fallthrough]];
-      case 1:
-        return quad(i, last_inside);
-      case 0:
-        return true;
-      default:
-        __builtin_unreachable();
+    if (end - i > 2) {
+      next = i + 4;
+      return intersect_triangle_quad(pairs, lanes_ray, t_max, hits);
     }
   }
 #endif
-  for (std::uint32_t i = first; i < first + count; i += 2) {
-    const bool go_on = step(i, [&, i](double t_max, TriangleLaneHits& hits) {
-      return intersect_triangle_pair(accel.leaf_pairs[i / 2], lanes_ray, t_max, hits);
-    });
-    if (!go_on) return false;
-  }
-  return true;
+  next = i + 2;
+  return intersect_triangle_pair(*pairs, lanes_ray, t_max, hits);
 }
 
 }  // namespace
@@ -98,10 +58,12 @@ bool intersect_mesh(const MeshAccel& accel, bool interpolate_normals, const Ray&
         nearest = h, found_triangle = triangle, found_position = position, found = true;
         t_limit = h.t;
       };
-      for_each_leaf_test(kernel, accel, first, count, lanes_ray, [&](std::uint32_t i, auto test) {
+      const std::uint32_t end = first + count;
+      for (std::uint32_t i = first, next; i < end; i = next) {
         const double limit = found ? next_up(t_limit) : t_limit;
         TriangleLaneHits hits;
-        const unsigned lanes = test(limit, hits);
+        const unsigned lanes =
+            intersect_leaf_triangles(kernel, accel, i, end, lanes_ray, limit, hits, next);
         for (unsigned rest = lanes; rest != 0; rest &= rest - 1) {
           const int lane = std::countr_zero(rest);
           // One triangle at a time, a lane would have been tested against the limit after the
@@ -115,8 +77,7 @@ bool intersect_mesh(const MeshAccel& accel, bool interpolate_normals, const Ray&
                                  pair_corner(pair, 2, lane % 2), lanes_ray.ray, limit_now, h))
             take(h, i + static_cast<std::uint32_t>(lane));
         }
-        return true;
-      });
+      }
       return t_limit;
     };
   });
@@ -137,17 +98,19 @@ bool occluded_mesh(const MeshAccel& accel, const Ray& ray, double t_max,
     return [&, lanes_ray = prepare_triangle_lanes_ray(ray) ](
         std::uint32_t first, std::uint32_t count, double t_limit, auto kernel)
         __attribute__((always_inline)) {
-      found = !for_each_leaf_test(
-          kernel, accel, first, count, lanes_ray, [&](std::uint32_t i, auto test) {
-            TriangleLaneHits hits;
-            const unsigned lanes = test(t_limit, hits);
-            if (lanes == 0) return true;
-            // Counted as one at a time: up to the first triangle hit.
-            counters.triangle_tests +=
-                i - first + static_cast<std::uint32_t>(std::countr_zero(lanes)) + 1;
-            return false;  // any hit will do
-          });
-      if (found) return -1.0;
+      const std::uint32_t end = first + count;
+      for (std::uint32_t i = first, next; i < end; i = next) {
+        TriangleLaneHits hits;
+        const unsigned lanes =
+            intersect_leaf_triangles(kernel, accel, i, end, lanes_ray, t_limit, hits, next);
+        if (lanes != 0) {
+          // Counted as one at a time: up to the first triangle hit.
+          counters.triangle_tests +=
+              i - first + static_cast<std::uint32_t>(std::countr_zero(lanes)) + 1;
+          found = true;
+          return -1.0;  // any hit will do
+        }
+      }
       counters.triangle_tests += count;
       return t_limit;
     };
@@ -166,16 +129,17 @@ std::vector<LocalHit> mesh_crossings(const MeshAccel& accel, bool interpolate_no
         std::uint32_t first, std::uint32_t count, double limit, auto kernel)
         __attribute__((always_inline)) {
       counters.triangle_tests += count;
-      for_each_leaf_test(kernel, accel, first, count, lanes_ray, [&](std::uint32_t i, auto test) {
+      const std::uint32_t end = first + count;
+      for (std::uint32_t i = first, next; i < end; i = next) {
         TriangleLaneHits lane_hits;
-        const unsigned lanes = test(limit, lane_hits);
+        const unsigned lanes =
+            intersect_leaf_triangles(kernel, accel, i, end, lanes_ray, limit, lane_hits, next);
         for (unsigned rest = lanes; rest != 0; rest &= rest - 1) {
           const auto lane = static_cast<std::uint32_t>(std::countr_zero(rest));
           hits.emplace_back(lane_hits.lane(static_cast<int>(lane)),
                             accel.bvh.primitive_order[i + lane]);
         }
-        return true;
-      });
+      }
       return limit;  // every hit, not only the nearest
     };
   });
