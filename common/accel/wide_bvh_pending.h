@@ -102,22 +102,16 @@ template <int k>
 // a tie) and pushes the others onto `stack` above `size`, the nearer ones on top: the insertion
 // sort's order exactly. Two children, most often, take one comparison and selections by masks;
 // more take push_ranked_hits_avx2. `stack` needs kWideBvhStackSlack slots past the traversal's
-// deepest. `leaf` receives whether the nearest is a leaf: for two children from `leaf_bits` (the
-// node's leaf children, leaf_children in wide_bvh_traverse.h), without waiting for its count.
+// deepest.
 [[gnu::target("avx2"), gnu::flatten]] inline WideBvhPending push_hits_nearest_first_avx2(
-    const BvhWideNode& node, const float entry[kWideChildren], unsigned hits, unsigned leaf_bits,
-    WideBvhPending* stack, int& size, bool& leaf) {
+    const BvhWideNode& node, const float entry[kWideChildren], unsigned hits, WideBvhPending* stack,
+    int& size) {
   const unsigned rest = hits & (hits - 1);
-  if ((rest & (rest - 1)) != 0) {
-    const WideBvhPending nearest = push_ranked_hits_avx2(node, entry, hits, stack, size);
-    leaf = nearest.count > 0;
-    return nearest;
-  }
+  if ((rest & (rest - 1)) != 0) return push_ranked_hits_avx2(node, entry, hits, stack, size);
   const int a = std::countr_zero(hits), b = std::countr_zero(rest);
   const int b_nearer = -static_cast<int>(entry[b] < entry[a]);  // a on a tie
   const int near = a ^ ((a ^ b) & b_nearer), far = a ^ b ^ near;
   stack[size++] = {node.child[far], node.count[far], entry[far]};
-  leaf = ((leaf_bits >> near) & 1) != 0;
   return {node.child[near], node.count[near], entry[near]};
 }
 #endif

@@ -113,7 +113,8 @@ inline void traverse_wide_bvh_below_root(const Bvh& bvh, const Ray& ray, double 
 #if defined(__SSE2__)
         if constexpr (kOrder == WideBvhOrder::NearestFirst &&
                       Kernel::value == WideBoxKernel::Avx2) {
-          current = push_hits_nearest_first_avx2(node, entry, hits, leaf_bits, stack, size, leaf);
+          current = push_hits_nearest_first_avx2(node, entry, hits, stack, size);
+          leaf = current.count > 0;
           continue;
         }
 #endif
@@ -125,7 +126,7 @@ inline void traverse_wide_bvh_below_root(const Bvh& bvh, const Ray& ray, double 
             stack[size++] = {node.child[c], node.count[c], entry[c]};
           }
           current = {node.child[c0], node.count[c0], entry[c0]};
-          leaf = ((leaf_bits >> c0) & 1) != 0;
+          leaf = current.count > 0;
           continue;
         }
         // The children hit, nearest first (the lower slot on a tie): an insertion sort of at

@@ -53,11 +53,8 @@ TEST(WideBvhPending, TheAvx2StepOrdersChildrenAsTheInsertionSort) {
     std::vector<WideBvhPending> stack(static_cast<std::size_t>(below + kWideBvhStackSlack));
     for (int s = 0; s < below; ++s) stack[static_cast<std::size_t>(s)] = {7u, 3u, 1.5f};
     int size = below;
-    unsigned leaf_bits = 0;
-    for (int c = 0; c < kWideChildren; ++c) leaf_bits |= (node.count[c] > 0 ? 1u : 0u) << c;
-    bool leaf = false;
     const WideBvhPending nearest =
-        push_hits_nearest_first_avx2(node, entry, hits, leaf_bits, stack.data(), size, leaf);
+        push_hits_nearest_first_avx2(node, entry, hits, stack.data(), size);
 
     ASSERT_EQ(size, below + static_cast<int>(order.size()) - 1) << "case " << i;
     const auto expect = [&](const WideBvhPending& got, int c) {
@@ -67,7 +64,6 @@ TEST(WideBvhPending, TheAvx2StepOrdersChildrenAsTheInsertionSort) {
           << "case " << i << " child " << c;
     };
     expect(nearest, order[0]);
-    EXPECT_EQ(leaf, nearest.count > 0) << "case " << i;
     // The farthest deepest, the second nearest on top.
     for (std::size_t k = 1; k < order.size(); ++k)
       expect(stack[static_cast<std::size_t>(size) - k], order[k]);
