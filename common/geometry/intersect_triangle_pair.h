@@ -236,6 +236,7 @@ template <typename Lanes>
   abs(abs_det, det);
   Lanes::not_lt(compared, abs_det, infinity);
   Lanes::bit_or(missed, missed, compared);
+  if (Lanes::mask(missed) == Lanes::kAllLanes) return 0;
 
   Lanes::mul(q0.z, q0.z, shear_z);
   Lanes::mul(q1.z, q1.z, shear_z);
@@ -263,6 +264,7 @@ template <typename Lanes>
   Lanes::bit_or(compared, compared, beyond);
   Lanes::bit_and(out, side, compared);
   Lanes::bit_or(missed, missed, out);
+  if (Lanes::mask(missed) == Lanes::kAllLanes) return 0;
 
   V one, inv_det, t;
   Lanes::set1(one, 1.0);
