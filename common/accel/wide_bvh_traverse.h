@@ -17,6 +17,10 @@
 #include "common/accel/wide_box_kernel.h"
 #include "common/accel/wide_bvh_pending.h"
 
+#if defined(__SSE2__)
+#include <immintrin.h>
+#endif
+
 namespace tessera {
 
 // The order a traversal visits the children a ray enters: nearest first (kNearestFirst), for
@@ -29,6 +33,39 @@ template <WideBvhOrder kOrder>
 using WideBvhOrderTag = std::integral_constant<WideBvhOrder, kOrder>;
 inline constexpr WideBvhOrderTag<WideBvhOrder::NearestFirst> kNearestFirst;
 inline constexpr WideBvhOrderTag<WideBvhOrder::Any> kAnyOrder;
+
+#if defined(__SSE2__)
+// leaf_children for the AVX2 kernel (compiled for AVX2 apart: an always-inline function cannot
+// take another target's instructions, and gnu::flatten inlines this one into that kernel's loop).
+[[gnu::target("avx2")]] inline unsigned leaf_children_avx2(const BvhWideNode& node) {
+  const __m256i count = _mm256_load_si256(reinterpret_cast<const __m256i*>(node.count));
+  return static_cast<unsigned>(
+      _mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpgt_epi32(count, _mm256_setzero_si256()))));
+}
+#endif
+
+// The children of `node` that are leaves (count > 0), as bits (bit c for slot c), with the
+// kernel's instructions: they depend on the node's load alone, not on its box test. Counts are
+// compared as signed 32-bit integers: a wide node's leaves hold a few dozen at most.
+template <typename Kernel>
+[[gnu::always_inline]] inline unsigned leaf_children(const BvhWideNode& node, Kernel) {
+  static_assert(kWideChildren == 8);
+#if defined(__SSE2__)
+  if constexpr (Kernel::value == WideBoxKernel::Avx2) {
+    return leaf_children_avx2(node);
+  } else if constexpr (Kernel::value == WideBoxKernel::Sse2) {
+    const __m128i zero = _mm_setzero_si128();
+    const auto* count = reinterpret_cast<const __m128i*>(node.count);
+    const int low = _mm_movemask_ps(_mm_castsi128_ps(_mm_cmpgt_epi32(_mm_load_si128(count), zero)));
+    const int high =
+        _mm_movemask_ps(_mm_castsi128_ps(_mm_cmpgt_epi32(_mm_load_si128(count + 1), zero)));
+    return static_cast<unsigned>(low | high << 4);
+  }
+#endif
+  unsigned bits = 0;
+  for (int c = 0; c < kWideChildren; ++c) bits |= static_cast<unsigned>(node.count[c] > 0) << c;
+  return bits;
+}
 
 // The loop below the root, making the ray's constants with `set_box_ray(box_ray, ray)`, testing
 // boxes with `test_boxes(node.boxes, box_ray, far_limit, entry)` and passing `kernel` to the leaf
@@ -49,8 +86,14 @@ inline void traverse_wide_bvh_below_root(const Bvh& bvh, const Ray& ray, double 
   int size = 0;
   WideBvhPending current{0, 0, 0};
   const BvhWideNode* wide = bvh.wide.data();
+  // Whether `current` is a leaf. After a step that enters one child, the most common step, it
+  // comes from the node's leaf bits (leaf_children), ready as soon as the box test's hits are,
+  // instead of from the child's count, which can only be loaded once the hits have named the
+  // child: the branch on it, mispredicted about once in four for incoherent rays, resolves a
+  // load sooner (docs/PERFORMANCE.md "The leaf-or-node branch from the node's leaf bits").
+  bool leaf = false;
   for (;;) {
-    if (current.count > 0) {
+    if (leaf) {
       const double limit = visit_leaf(current.index, current.count, t_max, kernel);
       if (limit < 0) return;
       if (limit != t_max) t_max = limit, far_limit = float_far_limit(t_max);
@@ -58,17 +101,20 @@ inline void traverse_wide_bvh_below_root(const Bvh& bvh, const Ray& ray, double 
       const BvhWideNode& node = wide[current.index];
       alignas(32) float entry[kWideChildren];
       nodes_visited += kWideChildren;
+      const unsigned leaf_bits = leaf_children(node, kernel);
       const unsigned hits = test_boxes(node.boxes, box_ray, far_limit, entry);
       if (hits != 0) {
         if ((hits & (hits - 1)) == 0) {  // one child: nothing to order
           const int c = std::countr_zero(hits);
           current = {node.child[c], node.count[c], entry[c]};
+          leaf = (hits & leaf_bits) != 0;
           continue;
         }
 #if defined(__SSE2__)
         if constexpr (kOrder == WideBvhOrder::NearestFirst &&
                       Kernel::value == WideBoxKernel::Avx2) {
           current = push_hits_nearest_first_avx2(node, entry, hits, stack, size);
+          leaf = current.count > 0;
           continue;
         }
 #endif
@@ -80,6 +126,7 @@ inline void traverse_wide_bvh_below_root(const Bvh& bvh, const Ray& ray, double 
             stack[size++] = {node.child[c], node.count[c], entry[c]};
           }
           current = {node.child[c0], node.count[c0], entry[c0]};
+          leaf = current.count > 0;
           continue;
         }
         // The children hit, nearest first (the lower slot on a tie): an insertion sort of at
@@ -94,6 +141,7 @@ inline void traverse_wide_bvh_below_root(const Bvh& bvh, const Ray& ray, double 
         for (int i = n - 1; i > 0; --i)
           stack[size++] = {node.child[order[i]], node.count[order[i]], entry[order[i]]};
         current = {node.child[order[0]], node.count[order[0]], entry[order[0]]};
+        leaf = current.count > 0;
         continue;
       }
     }
@@ -103,6 +151,7 @@ inline void traverse_wide_bvh_below_root(const Bvh& bvh, const Ray& ray, double 
       // Without the order, entries are no reason to skip: t_max does not shrink.
       if (kOrder == WideBvhOrder::Any || current.entry <= far_limit) break;
     }
+    leaf = current.count > 0;
   }
 }
 

@@ -14,6 +14,7 @@
 
 #include "common/accel/mesh_accel.h"
 #include "common/accel/wide_box_kernel.h"
+#include "common/accel/wide_bvh_traverse.h"
 #include "common/geometry/shapes.h"
 #include "common/loaders/scene_loader.h"
 #include "common/render/prepared_scene.h"
@@ -177,6 +178,31 @@ TEST(WideBoxKernels, EveryKernelTracesStacksOfTrianglesAlike) {
       } else {
         EXPECT_EQ(answers, *reference);
       }
+    }
+  }
+}
+
+// The traversal takes a child entered alone for a leaf from leaf_children's bit rather than from
+// its count: every kernel's bits must be the children with a count, in slot order.
+TEST(WideBoxKernels, LeafChildrenAreTheChildrenWithACount) {
+  std::mt19937_64 rng(18);
+  const std::uint32_t counts[] = {0, 1, 2, 5, 16, 17, 24, 0x7fffffff};
+  std::uniform_int_distribution<std::size_t> pick(0, std::size(counts) - 1);
+  std::bernoulli_distribution interior(0.4);
+  for (int n = 0; n < 20000; ++n) {
+    BvhWideNode node;
+    unsigned expected = 0;
+    for (int c = 0; c < kWideChildren; ++c) {
+      node.count[c] = interior(rng) ? 0 : counts[pick(rng)];
+      node.child[c] = static_cast<std::uint32_t>(rng());
+      if (node.count[c] > 0) expected |= 1u << c;
+    }
+    ASSERT_EQ(leaf_children(node, WideBoxKernelTag<WideBoxKernel::Scalar>{}), expected);
+    if (wide_box_kernel_supported(WideBoxKernel::Sse2)) {
+      ASSERT_EQ(leaf_children(node, WideBoxKernelTag<WideBoxKernel::Sse2>{}), expected);
+    }
+    if (wide_box_kernel_supported(WideBoxKernel::Avx2)) {
+      ASSERT_EQ(leaf_children(node, WideBoxKernelTag<WideBoxKernel::Avx2>{}), expected);
     }
   }
 }
