@@ -51,7 +51,7 @@ bool finite(const Bounds3& b) {
 }  // namespace
 
 LightBuffer::LightBuffer(const Vec3& light, std::span<const Bounds3> bounds,
-                         std::span<const std::uint32_t> ids)
+                         std::span<const std::uint32_t> ids, std::span<const InscribedBall> balls)
     : light_(light), cells_(6 * kN * kN) {
   static const std::array<double, kN> tangents = least_squared_tangents();
   const double light_size = max_component(abs(light));
@@ -116,6 +116,7 @@ LightBuffer::LightBuffer(const Vec3& light, std::span<const Bounds3> bounds,
       }
     }
   }
+  for (const InscribedBall& ball : balls) insert_ball(ball);
 }
 
 void LightBuffer::insert(std::size_t cell, double reach_squared_double, std::uint32_t id) {
@@ -137,6 +138,71 @@ void LightBuffer::insert(std::size_t cell, double reach_squared_double, std::uin
     c.reach[0] = reach;
     c.ids[0] = static_cast<std::uint16_t>(id);
   }
+}
+
+void LightBuffer::insert_ball(const InscribedBall& ball) {
+  const Vec3 v = ball.centre - light_;
+  const double distance2 = dot(v, v), b = ball.radius;
+  // Not from inside the ball or its rim; nor so near the light, against the coordinates' size,
+  // that the rounding of a feeler's direction (origin - light) could reach the cells' margin.
+  if (!(distance2 > b * b * (1 + 1e-6) && distance2 > 1e-12 * dot(light_, light_))) return;
+  // Beyond the ball: |o - light| > |v| + b, squared, rounded up.
+  const double beyond = std::sqrt(distance2) * (1 + 1e-9) + b;
+  const double beyond2 = beyond * beyond * (1 + 1e-9);
+  float blocked = static_cast<float>(std::min(beyond2, double{std::numeric_limits<float>::max()}));
+  if (blocked < beyond2) blocked = std::nextafter(blocked, kNoReach);
+  if (!(blocked < std::numeric_limits<float>::max())) return;
+  // A direction passes within b of the centre when its angle to v is at most asin(b / |v|).
+  // The cone taken is narrower by twice the widening of a cell's corners, a millionth of a
+  // cell (at most 1e-6 / kHalf in tangent, so in angle): a feeler's cell index, from tangents
+  // exact to a few units in the last place, is then right for every direction of the cell.
+  const double angle = std::asin(b / std::sqrt(distance2)) * (1 - 1e-9) - 2e-6 / kHalf;
+  if (!(angle > 0)) return;
+  const double cosine = std::cos(angle);
+  // (d . v)^2 >= |d|^2 |v|^2 cos^2, with d . v > 0.
+  const double least_cosine2 = distance2 * cosine * cosine * (1 + 1e-9);
+  bool used = false;
+  std::vector<char> corners;
+  for (int face = 0; face < 6; ++face) {
+    const int k = face / 2, ka = (k + 1) % 3, kb = (k + 2) % 3;
+    const double sign = face % 2 ? -1 : 1;
+    // The cells that the ball's box projects to, when the ball lies wholly before the face's
+    // plane: the cone of directions through a ball across the plane is left to the boxes.
+    const double major_lo = sign * v[k] - b, major_hi = sign * v[k] + b;
+    if (!(major_lo > 0)) continue;
+    const double u_lo = std::min((v[ka] - b) / major_lo, (v[ka] - b) / major_hi);
+    const double u_hi = std::max((v[ka] + b) / major_lo, (v[ka] + b) / major_hi);
+    const double w_lo = std::min((v[kb] - b) / major_lo, (v[kb] - b) / major_hi);
+    const double w_hi = std::max((v[kb] + b) / major_lo, (v[kb] + b) / major_hi);
+    int i0, i1, j0, j1;
+    if (!cell_range(u_lo, u_hi, i0, i1) || !cell_range(w_lo, w_hi, j0, j1)) continue;
+    // Which corners of the cells lie in the cone, once each: the cone meets the face's plane in
+    // a convex set, so a cell lies in it when its four corners do.
+    const int rows = i1 - i0 + 2, columns = j1 - j0 + 2;
+    corners.assign(static_cast<std::size_t>(rows) * columns, 0);
+    for (int i = 0; i < rows; ++i)
+      for (int j = 0; j < columns; ++j) {
+        Vec3 d;
+        d[k] = sign;
+        d[ka] = -1 + (i0 + i) / kHalf;
+        d[kb] = -1 + (j0 + j) / kHalf;
+        const double along = dot(d, v);
+        corners[static_cast<std::size_t>(i) * columns + j] =
+            along > 0 && along * along >= dot(d, d) * least_cosine2;
+      }
+    const std::size_t base = static_cast<std::size_t>(face) * kN * kN;
+    for (int i = 0; i + 1 < rows; ++i)
+      for (int j = 0; j + 1 < columns; ++j) {
+        const char* corner = &corners[static_cast<std::size_t>(i) * columns + j];
+        if (!(corner[0] && corner[1] && corner[columns] && corner[columns + 1])) continue;
+        float& third = cells_[base + static_cast<std::size_t>(i0 + i) * kN + j0 + j].reach[2];
+        // Only where it does not hide a third candidate (a negative third is another ball's).
+        if (!(blocked <= std::fabs(third))) continue;
+        third = -blocked;
+        used = true;
+      }
+  }
+  if (used) longest_blocked_ = std::min(longest_blocked_, ball.longest * ball.longest * (1 - 1e-9));
 }
 
 }  // namespace tessera
