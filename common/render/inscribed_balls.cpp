@@ -18,10 +18,10 @@ constexpr int kTorusBalls = 32;
 
 // A ball's radius, as a share of the largest that fits: the feeler's line passes within this
 // share of it from the centre (the cells' test, in world space)...
-constexpr double kCovered = 0.9;
-// ...and, after the rounding of the object ray (bounded below to a twentieth of the largest
-// radius), within this share in object space, where the shape's test decides.
-constexpr double kInside = 0.95;
+constexpr double kCovered = 0.97;
+// ...and, after the rounding of the object ray (bounded below to the difference), within this
+// share in object space, where the shape's test decides.
+constexpr double kInside = 0.98;
 
 // The instance's transform taken as |world point| + |translation|, over the least singular
 // value: a bound on the object-space size of a feeler's points and of the terms its transform
@@ -70,8 +70,9 @@ void torus_balls(const Torus& torus, const Instance& instance, const Vec3& light
   // |o|_1 + |d|_1 t <= 6 size; (2) the object ray's rounding (16 eps size, generously) moves q
   // by under (kInside - kCovered) m and the light by under a tenth of its margin from the box.
   const double rounding = 32768 * kMachineEpsilon * e * e * e;
-  const double size_limit = std::min((inside / (2 * rounding) - e) / 6,
-                                     std::min(0.05 * m, 1e-7 * r) / (16 * kMachineEpsilon));
+  const double size_limit =
+      std::min((inside / (2 * rounding) - e) / 6,
+               std::min((kInside - kCovered) * m, 1e-7 * r) / (16 * kMachineEpsilon));
   const double longest = longest_feeler(size, size_limit);
   if (!(longest > 0)) return;
   for (int k = 0; k < kTorusBalls; ++k) {
@@ -90,7 +91,7 @@ void sphere_balls(const Instance& instance, const Vec3& light, const SingularVal
                   const ObjectSize& size, std::vector<InscribedBall>& out) {
   const Vec3 l = instance.to_object.apply_point(light);
   if (!(dot(l, l) > (1 + 1e-6) * (1 + 1e-6))) return;
-  const double size_limit = 1e-7 / (16 * kMachineEpsilon);
+  const double size_limit = std::min(kInside - kCovered, 1e-7) / (16 * kMachineEpsilon);
   const double longest = longest_feeler(size, size_limit);
   if (!(longest > 0)) return;
   out.push_back(

@@ -31,15 +31,15 @@ std::array<double, kN> least_squared_tangents() {
   return out;
 }
 
-// The cells [first, last] a coordinate range [lo, hi] reaches, widened by a cell each side so
-// that a feeler whose direction rounding moved into a neighbouring cell (or onto the next face)
-// still finds the object; false when it reaches none.
-bool cell_range(double lo, double hi, int& first, int& last) {
+// The cells [first, last] a coordinate range [lo, hi] reaches, widened by `widen` cells each
+// side (a cell, for boxes: so that a feeler whose direction rounding moved into a neighbouring
+// cell, or onto the next face, still finds the object); false when it reaches none.
+bool cell_range(double lo, double hi, int& first, int& last, int widen = 1) {
   // Clamped before the conversion: a box near the light's plane projects to huge tangents.
   const double a = std::clamp((lo + 1) * kHalf, -4.0, kN + 4.0);
   const double b = std::clamp((hi + 1) * kHalf, -4.0, kN + 4.0);
-  first = std::max(static_cast<int>(std::floor(a)) - 1, 0);
-  last = std::min(static_cast<int>(std::floor(b)) + 1, kN - 1);
+  first = std::max(static_cast<int>(std::floor(a)) - widen, 0);
+  last = std::min(static_cast<int>(std::floor(b)) + widen, kN - 1);
   return first <= last;
 }
 
@@ -174,8 +174,9 @@ void LightBuffer::insert_ball(const InscribedBall& ball) {
     const double u_hi = std::max((v[ka] + b) / major_lo, (v[ka] + b) / major_hi);
     const double w_lo = std::min((v[kb] - b) / major_lo, (v[kb] - b) / major_hi);
     const double w_hi = std::max((v[kb] + b) / major_lo, (v[kb] + b) / major_hi);
+    // (Only the cells that the cone meets can lie in it: no widening.)
     int i0, i1, j0, j1;
-    if (!cell_range(u_lo, u_hi, i0, i1) || !cell_range(w_lo, w_hi, j0, j1)) continue;
+    if (!cell_range(u_lo, u_hi, i0, i1, 0) || !cell_range(w_lo, w_hi, j0, j1, 0)) continue;
     // Which corners of the cells lie in the cone, once each: the cone meets the face's plane in
     // a convex set, so a cell lies in it when its four corners do.
     const int rows = i1 - i0 + 2, columns = j1 - j0 + 2;
