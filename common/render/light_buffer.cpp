@@ -116,7 +116,23 @@ LightBuffer::LightBuffer(const Vec3& light, std::span<const Bounds3> bounds,
       }
     }
   }
-  for (const InscribedBall& ball : balls) insert_ball(ball);
+  if (balls.empty()) return;
+  // The least distance (squared) beyond which some ball blocks the cell's feelers, then stored.
+  std::vector<float> blocked(cells_.size(), kNoReach);
+  std::vector<std::uint32_t> covered;  // the cells with a finite `blocked`
+  for (const InscribedBall& ball : balls) insert_ball(ball, blocked, covered);
+  for (const std::uint32_t cell : covered) {
+    Cell& c = cells_[cell];
+    if (blocked[cell] <= c.reach[2]) {
+      c.reach[2] = -blocked[cell];
+    } else {
+      // A third candidate is nearer: its bound moves to the third place, negated, and the
+      // second holds the ball's, negated too; the second candidate is then tested from the
+      // first's bound on (where its own bound lay before).
+      c.reach[1] = -blocked[cell];
+      c.reach[2] = -c.reach[2];
+    }
+  }
 }
 
 void LightBuffer::insert(std::size_t cell, double reach_squared_double, std::uint32_t id) {
@@ -140,7 +156,8 @@ void LightBuffer::insert(std::size_t cell, double reach_squared_double, std::uin
   }
 }
 
-void LightBuffer::insert_ball(const InscribedBall& ball) {
+void LightBuffer::insert_ball(const InscribedBall& ball, std::vector<float>& blocked_beyond,
+                              std::vector<std::uint32_t>& covered) {
   const Vec3 v = ball.centre - light_;
   const double distance2 = dot(v, v), b = ball.radius;
   // Not from inside the ball or its rim; nor so near the light, against the coordinates' size,
@@ -196,10 +213,9 @@ void LightBuffer::insert_ball(const InscribedBall& ball) {
       for (int j = 0; j + 1 < columns; ++j) {
         const char* corner = &corners[static_cast<std::size_t>(i) * columns + j];
         if (!(corner[0] && corner[1] && corner[columns] && corner[columns + 1])) continue;
-        float& third = cells_[base + static_cast<std::size_t>(i0 + i) * kN + j0 + j].reach[2];
-        // Only where it does not hide a third candidate (a negative third is another ball's).
-        if (!(blocked <= std::fabs(third))) continue;
-        third = -blocked;
+        const std::size_t cell = base + static_cast<std::size_t>(i0 + i) * kN + j0 + j;
+        if (!(blocked_beyond[cell] < kNoReach)) covered.push_back(static_cast<std::uint32_t>(cell));
+        blocked_beyond[cell] = std::min(blocked_beyond[cell], blocked);
         used = true;
       }
   }

@@ -58,9 +58,11 @@ class LightBuffer {
  private:
   // The three least lower bounds (squared, shrunk by a margin, rounded down to floats) over
   // the objects whose bounds reach the cell or one of its neighbours, and the ids of the two
-  // nearest. A negative third bound -d^2 says that a ball blocks every feeler of the cell
-  // longer than d (rounded up), d being no more than the third bound it replaces: feelers
-  // shorter than that have at most two candidates, as before.
+  // nearest. A negative third bound says that a ball blocks every feeler of the cell longer
+  // than some d (rounded up): the third is -d^2 when d^2 is no more than the third bound it
+  // replaces (feelers shorter than d have at most two candidates, as before); otherwise the
+  // third holds minus that bound and the second -d^2: feelers between them walk, those shorter
+  // test both candidates from the first bound on.
   struct alignas(16) Cell {
     float reach[3] = {kNoReach, kNoReach, kNoReach};
     std::uint16_t ids[2] = {};
@@ -68,8 +70,11 @@ class LightBuffer {
   static constexpr float kNoReach = std::numeric_limits<float>::infinity();
   static constexpr double kHalfCells = kCells / 2.0;
   void insert(std::size_t cell, double reach_squared, std::uint32_t id);
-  // Marks the cells the ball covers as blocked beyond it (after every insert).
-  void insert_ball(const InscribedBall& ball);
+  // Lowers `blocked_beyond` (by cell) to the distance, squared and rounded up, beyond which
+  // the ball blocks the feelers of each cell it covers; adds the cells it lowers from infinity
+  // to `covered`.
+  void insert_ball(const InscribedBall& ball, std::vector<float>& blocked_beyond,
+                   std::vector<std::uint32_t>& covered);
 
   Vec3 light_;
   std::vector<Cell> cells_;  // face * kCells^2 + row * kCells + column
@@ -107,7 +112,8 @@ class LightBuffer {
   const Cell& c = cells_[(static_cast<std::size_t>(face) * kCells + i) * kCells + j];
   const float third = c.reach[2];
   if (!(squared < std::fabs(third))) {
-    if (third < 0 && squared < longest_blocked_) {
+    const float second = c.reach[1];
+    if (third < 0 && !(squared < -second) && squared < longest_blocked_) {
       out.walk = false;
       out.blocked = true;
     }

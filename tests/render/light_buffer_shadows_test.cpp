@@ -87,5 +87,52 @@ TEST(LightBufferShadows, TransparentBlockersMultiply) {
   }
 }
 
+// A torus (R = 1, r = 0.4) under three transparent slabs, lit from straight above its tube at
+// (1, 0, 0). A floor point below the tube is in its shadow: the feeler passes through a ball in
+// the tube and is settled as blocked, with no shape tested. The tube's top lies nearer the light
+// than the far side of that ball, behind more candidates than the cell holds: its feeler walks
+// and is lit through the slabs. Both as a render without a BVH has them.
+
+TEST(LightBufferShadows, AnInscribedBallBlocksOnlyFeelersFromBeyondIt) {
+  Scene scene;
+  scene.camera = camera_on_z();
+  scene.objects.push_back(object(Torus{0.4, 1}, Affine::identity(), kMatte));
+  scene.objects.push_back(
+      object(Cube{}, Affine::translation({0, 0, -2}) * Affine::scaling({5, 5, 0.1}), kMatte));
+  const double transparencies[] = {0.5, 0.25, 0.75};
+  for (int k = 0; k < 3; ++k) {
+    Material glass = black_material();
+    glass.transparency = transparencies[k];
+    scene.objects.push_back(object(
+        Cube{}, Affine::translation({0, 0, 3.0 + 2 * k}) * Affine::scaling({3, 3, 0.05}), glass));
+  }
+  scene.lights.push_back(point_light({1, 0, 10}, {1, 1, 1}));
+  const PreparedScene prepared(scene, BvhMode::Sah);
+  const PreparedScene walked(scene, BvhMode::None);
+  ASSERT_NE(prepared.light_buffer(0), nullptr);
+  // The shapes the ray's feeler tests: those of a render with it less those of one without.
+  const auto trace = [&](const Ray& ray, double& value) {
+    const auto shape_tests = [&](ShadowMode mode, double& g) {
+      RenderSettings s = hard_shadows();
+      s.shadows = mode;
+      RenderStats stats;
+      Tracer tracer(prepared, s, stats);
+      SampleStream rng(s.seed, 0, 0, 0);
+      g = tracer.trace(ray, RayKind::Camera, 0, 1, MediumStack{}, rng).g;
+      return stats.intersections.shape_tests;
+    };
+    double unshadowed = 0;
+    return shape_tests(ShadowMode::Hard, value) - shape_tests(ShadowMode::None, unshadowed);
+  };
+  const Ray floor{{1, 0, -1}, {0, 0, -1}, 0}, top{{1, 0, 2}, {0, 0, -1}, 0};
+  double floor_value = 0, top_value = 0;
+  EXPECT_EQ(trace(floor, floor_value), 0u);
+  EXPECT_EQ(floor_value, 0.0);
+  EXPECT_EQ(floor_value, trace_ray(walked, floor, hard_shadows()).g);
+  EXPECT_GT(trace(top, top_value), 0u);
+  EXPECT_NEAR(top_value, 0.5 * 0.5 * 0.25 * 0.75, 1e-12);
+  EXPECT_EQ(top_value, trace_ray(walked, top, hard_shadows()).g);
+}
+
 }  // namespace
 }  // namespace tessera::test
