@@ -31,15 +31,15 @@ std::array<double, kN> least_squared_tangents() {
   return out;
 }
 
-// The cells [first, last] a coordinate range [lo, hi] reaches, widened by a cell each side so
-// that a feeler whose direction rounding moved into a neighbouring cell (or onto the next face)
-// still finds the object; false when it reaches none.
-bool cell_range(double lo, double hi, int& first, int& last) {
+// The cells [first, last] a coordinate range [lo, hi] reaches, widened by `widen` cells each
+// side (a cell, for boxes: so that a feeler whose direction rounding moved into a neighbouring
+// cell, or onto the next face, still finds the object); false when it reaches none.
+bool cell_range(double lo, double hi, int& first, int& last, int widen = 1) {
   // Clamped before the conversion: a box near the light's plane projects to huge tangents.
   const double a = std::clamp((lo + 1) * kHalf, -4.0, kN + 4.0);
   const double b = std::clamp((hi + 1) * kHalf, -4.0, kN + 4.0);
-  first = std::max(static_cast<int>(std::floor(a)) - 1, 0);
-  last = std::min(static_cast<int>(std::floor(b)) + 1, kN - 1);
+  first = std::max(static_cast<int>(std::floor(a)) - widen, 0);
+  last = std::min(static_cast<int>(std::floor(b)) + widen, kN - 1);
   return first <= last;
 }
 
@@ -51,7 +51,7 @@ bool finite(const Bounds3& b) {
 }  // namespace
 
 LightBuffer::LightBuffer(const Vec3& light, std::span<const Bounds3> bounds,
-                         std::span<const std::uint32_t> ids)
+                         std::span<const std::uint32_t> ids, std::span<const InscribedBall> balls)
     : light_(light), cells_(6 * kN * kN) {
   static const std::array<double, kN> tangents = least_squared_tangents();
   const double light_size = max_component(abs(light));
@@ -116,6 +116,23 @@ LightBuffer::LightBuffer(const Vec3& light, std::span<const Bounds3> bounds,
       }
     }
   }
+  if (balls.empty()) return;
+  // The least distance (squared) beyond which some ball blocks the cell's feelers, then stored.
+  std::vector<float> blocked(cells_.size(), kNoReach);
+  std::vector<std::uint32_t> covered;  // the cells with a finite `blocked`
+  for (const InscribedBall& ball : balls) insert_ball(ball, blocked, covered);
+  for (const std::uint32_t cell : covered) {
+    Cell& c = cells_[cell];
+    if (blocked[cell] <= c.reach[2]) {
+      c.reach[2] = -blocked[cell];
+    } else {
+      // A third candidate is nearer: its bound moves to the third place, negated, and the
+      // second holds the ball's, negated too; the second candidate is then tested from the
+      // first's bound on (where its own bound lay before).
+      c.reach[1] = -blocked[cell];
+      c.reach[2] = -c.reach[2];
+    }
+  }
 }
 
 void LightBuffer::insert(std::size_t cell, double reach_squared_double, std::uint32_t id) {
@@ -137,6 +154,72 @@ void LightBuffer::insert(std::size_t cell, double reach_squared_double, std::uin
     c.reach[0] = reach;
     c.ids[0] = static_cast<std::uint16_t>(id);
   }
+}
+
+void LightBuffer::insert_ball(const InscribedBall& ball, std::vector<float>& blocked_beyond,
+                              std::vector<std::uint32_t>& covered) {
+  const Vec3 v = ball.centre - light_;
+  const double distance2 = dot(v, v), b = ball.radius;
+  // Not from inside the ball or its rim; nor so near the light, against the coordinates' size,
+  // that the rounding of a feeler's direction (origin - light) could reach the cells' margin.
+  if (!(distance2 > b * b * (1 + 1e-6) && distance2 > 1e-12 * dot(light_, light_))) return;
+  // Beyond the ball: |o - light| > |v| + b, squared, rounded up.
+  const double beyond = std::sqrt(distance2) * (1 + 1e-9) + b;
+  const double beyond2 = beyond * beyond * (1 + 1e-9);
+  float blocked = static_cast<float>(std::min(beyond2, double{std::numeric_limits<float>::max()}));
+  if (blocked < beyond2) blocked = std::nextafter(blocked, kNoReach);
+  if (!(blocked < std::numeric_limits<float>::max())) return;
+  // A direction passes within b of the centre when its angle to v is at most asin(b / |v|).
+  // The cone taken is narrower by twice the widening of a cell's corners, a millionth of a
+  // cell (at most 1e-6 / kHalf in tangent, so in angle): a feeler's cell index, from tangents
+  // exact to a few units in the last place, is then right for every direction of the cell.
+  const double angle = std::asin(b / std::sqrt(distance2)) * (1 - 1e-9) - 2e-6 / kHalf;
+  if (!(angle > 0)) return;
+  const double cosine = std::cos(angle);
+  // (d . v)^2 >= |d|^2 |v|^2 cos^2, with d . v > 0.
+  const double least_cosine2 = distance2 * cosine * cosine * (1 + 1e-9);
+  bool used = false;
+  std::vector<char> corners;
+  for (int face = 0; face < 6; ++face) {
+    const int k = face / 2, ka = (k + 1) % 3, kb = (k + 2) % 3;
+    const double sign = face % 2 ? -1 : 1;
+    // The cells that the ball's box projects to, when the ball lies wholly before the face's
+    // plane: the cone of directions through a ball across the plane is left to the boxes.
+    const double major_lo = sign * v[k] - b, major_hi = sign * v[k] + b;
+    if (!(major_lo > 0)) continue;
+    const double u_lo = std::min((v[ka] - b) / major_lo, (v[ka] - b) / major_hi);
+    const double u_hi = std::max((v[ka] + b) / major_lo, (v[ka] + b) / major_hi);
+    const double w_lo = std::min((v[kb] - b) / major_lo, (v[kb] - b) / major_hi);
+    const double w_hi = std::max((v[kb] + b) / major_lo, (v[kb] + b) / major_hi);
+    // (Only the cells that the cone meets can lie in it: no widening.)
+    int i0, i1, j0, j1;
+    if (!cell_range(u_lo, u_hi, i0, i1, 0) || !cell_range(w_lo, w_hi, j0, j1, 0)) continue;
+    // Which corners of the cells lie in the cone, once each: the cone meets the face's plane in
+    // a convex set, so a cell lies in it when its four corners do.
+    const int rows = i1 - i0 + 2, columns = j1 - j0 + 2;
+    corners.assign(static_cast<std::size_t>(rows) * columns, 0);
+    for (int i = 0; i < rows; ++i)
+      for (int j = 0; j < columns; ++j) {
+        Vec3 d;
+        d[k] = sign;
+        d[ka] = -1 + (i0 + i) / kHalf;
+        d[kb] = -1 + (j0 + j) / kHalf;
+        const double along = dot(d, v);
+        corners[static_cast<std::size_t>(i) * columns + j] =
+            along > 0 && along * along >= dot(d, d) * least_cosine2;
+      }
+    const std::size_t base = static_cast<std::size_t>(face) * kN * kN;
+    for (int i = 0; i + 1 < rows; ++i)
+      for (int j = 0; j + 1 < columns; ++j) {
+        const char* corner = &corners[static_cast<std::size_t>(i) * columns + j];
+        if (!(corner[0] && corner[1] && corner[columns] && corner[columns + 1])) continue;
+        const std::size_t cell = base + static_cast<std::size_t>(i0 + i) * kN + j0 + j;
+        if (!(blocked_beyond[cell] < kNoReach)) covered.push_back(static_cast<std::uint32_t>(cell));
+        blocked_beyond[cell] = std::min(blocked_beyond[cell], blocked);
+        used = true;
+      }
+  }
+  if (used) longest_blocked_ = std::min(longest_blocked_, ball.longest * ball.longest * (1 - 1e-9));
 }
 
 }  // namespace tessera

@@ -5,8 +5,9 @@
 // |origin - light| away: only objects whose bound in that cell is nearer can block it. Where
 // those are at most two, the tracer tests them alone instead of walking the scene BVH (and not
 // even the feeler's own object when it provably cannot block); otherwise the feeler walks as
-// before. Shadows, hence images, stay bit for bit those of the walk; only the counts of BVH
-// nodes and shape tests fall.
+// before. The far side: a cell whose every direction passes through a ball inside an opaque
+// solid (inscribed_balls.h) settles as blocked every feeler from beyond the ball. Shadows, hence
+// images, stay bit for bit those of the walk; only the counts of BVH nodes and shape tests fall.
 #pragma once
 
 #include <algorithm>
@@ -18,6 +19,7 @@
 
 #include "common/math/ray.h"
 #include "common/math/vec3.h"
+#include "common/render/inscribed_balls.h"
 
 namespace tessera {
 
@@ -32,17 +34,20 @@ class LightBuffer {
   static constexpr std::uint32_t kMaxId = 0xFFFF;  // a cell is 16 bytes
 
   // The objects that may block a feeler from some origin to the light: at most two, or
-  // `walk` when there may be more (or the buffer cannot tell).
+  // `walk` when there may be more (or the buffer cannot tell); or `blocked`, when an opaque
+  // solid certainly blocks it (then `walk` is false and there are no candidates).
   struct Candidates {
     bool walk = true;
+    bool blocked = false;
     int count = 0;
     std::uint32_t ids[2] = {};
   };
 
   // The buffer of the light at `light` over objects with world bounds `bounds`, identified by
-  // `ids` (the same length). Empty (every feeler walks) past kMaxEntries or kMaxId.
+  // `ids` (the same length), and balls inside opaque solids `balls` (inscribed_balls.h, for
+  // this light). Empty (every feeler walks) past kMaxEntries or kMaxId.
   LightBuffer(const Vec3& light, std::span<const Bounds3> bounds,
-              std::span<const std::uint32_t> ids);
+              std::span<const std::uint32_t> ids, std::span<const InscribedBall> balls = {});
 
   // Which objects' bounds may meet the segment from `origin` to the light, the light excluded:
   // nearest first.
@@ -53,7 +58,11 @@ class LightBuffer {
  private:
   // The three least lower bounds (squared, shrunk by a margin, rounded down to floats) over
   // the objects whose bounds reach the cell or one of its neighbours, and the ids of the two
-  // nearest.
+  // nearest. A negative third bound says that a ball blocks every feeler of the cell longer
+  // than some d (rounded up): the third is -d^2 when d^2 is no more than the third bound it
+  // replaces (feelers shorter than d have at most two candidates, as before); otherwise the
+  // third holds minus that bound and the second -d^2: feelers between them walk, those shorter
+  // test both candidates from the first bound on.
   struct alignas(16) Cell {
     float reach[3] = {kNoReach, kNoReach, kNoReach};
     std::uint16_t ids[2] = {};
@@ -61,9 +70,17 @@ class LightBuffer {
   static constexpr float kNoReach = std::numeric_limits<float>::infinity();
   static constexpr double kHalfCells = kCells / 2.0;
   void insert(std::size_t cell, double reach_squared, std::uint32_t id);
+  // Lowers `blocked_beyond` (by cell) to the distance, squared and rounded up, beyond which
+  // the ball blocks the feelers of each cell it covers; adds the cells it lowers from infinity
+  // to `covered`.
+  void insert_ball(const InscribedBall& ball, std::vector<float>& blocked_beyond,
+                   std::vector<std::uint32_t>& covered);
 
   Vec3 light_;
   std::vector<Cell> cells_;  // face * kCells^2 + row * kCells + column
+  // Feelers this long or longer (squared) are never settled as blocked: the balls' proofs
+  // assume less (InscribedBall::longest).
+  double longest_blocked_ = kInfinity;
 };
 
 // Here and forced inline: point_shadow looks up every hard shadow feeler, and the call (its
@@ -93,7 +110,15 @@ class LightBuffer {
   const int i = std::min(static_cast<int>(a * scale + kHalfCells), kCells - 1);
   const int j = std::min(static_cast<int>(b * scale + kHalfCells), kCells - 1);
   const Cell& c = cells_[(static_cast<std::size_t>(face) * kCells + i) * kCells + j];
-  if (!(squared < c.reach[2])) return out;
+  const float third = c.reach[2];
+  if (!(squared < std::fabs(third))) {
+    const float second = c.reach[1];
+    if (third < 0 && !(squared < -second) && squared < longest_blocked_) {
+      out.walk = false;
+      out.blocked = true;
+    }
+    return out;
+  }
   out.walk = false;
   out.count = squared < c.reach[0] ? 0 : squared < c.reach[1] ? 1 : 2;
   out.ids[0] = c.ids[0];

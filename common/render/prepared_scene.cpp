@@ -238,8 +238,9 @@ constexpr int kMaxLightBuffers = 16;
 
 // A light buffer for each point light and spotlight that casts shadows, over the objects the
 // scene BVH holds (children of boolean objects are reached through their parents).
-std::vector<std::optional<LightBuffer>> build_light_buffers(const Scene& scene, const Bvh& bvh,
-                                                            const std::vector<Bounds3>& bounds) {
+std::vector<std::optional<LightBuffer>> build_light_buffers(
+    const Scene& scene, const Bvh& bvh, const std::vector<Bounds3>& bounds,
+    const std::vector<Instance>& instances) {
   std::vector<Bounds3> top_bounds;
   top_bounds.reserve(bvh.primitive_order.size());
   for (const std::uint32_t index : bvh.primitive_order) top_bounds.push_back(bounds[index]);
@@ -248,7 +249,8 @@ std::vector<std::optional<LightBuffer>> build_light_buffers(const Scene& scene, 
   for (std::size_t l = 0; l < scene.lights.size() && built < kMaxLightBuffers; ++l) {
     const Light& light = scene.lights[l];
     if (light.is_directional || !light.casts_shadows) continue;
-    out[l].emplace(light.position, top_bounds, bvh.primitive_order);
+    out[l].emplace(light.position, top_bounds, bvh.primitive_order,
+                   opaque_balls(scene, instances, bvh.primitive_order, light.position));
     ++built;
   }
   return out;
@@ -311,7 +313,8 @@ PreparedScene::PreparedScene(const Scene& scene, BvhMode mode, int build_threads
   bvh_ = build_scene_bvh(bounds, csg_children, mode);
   transparent_neighbours_ = find_transparent_neighbours(*scene_, effects_, bounds, csg_children);
   convex_ = find_convex(instances_);
-  if (mode != BvhMode::None) light_buffers_ = build_light_buffers(*scene_, bvh_, bounds);
+  if (mode != BvhMode::None)
+    light_buffers_ = build_light_buffers(*scene_, bvh_, bounds, instances_);
   light_buffers_.resize(scene_->lights.size());
 }
 

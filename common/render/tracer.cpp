@@ -220,6 +220,8 @@ double Tracer::point_shadow(const Feeler& feeler, const Hit& hit, std::size_t li
   if (candidates.walk) return shadow_factor(feeler);
   ++stats_.shadow_rays;
   poll_interrupt();
+  // An opaque object blocks it: the walk's product would hold a factor 0.
+  if (candidates.blocked) return 0;
   // No other object can block the feeler: each candidate's own test is all the walk would
   // have found, and with at most two factors their product does not depend on their order.
   double factor = 1;

@@ -22,6 +22,25 @@ const Material kMatte = [] {
   return m;
 }();
 
+// What the ray's hard shadow feelers cost: the intersection counts of a trace with them less
+// those of one without; `value` is the green intensity it returns with them.
+IntersectionCounters feeler_work(const PreparedScene& prepared, const Ray& ray, double& value) {
+  const auto counts = [&](ShadowMode mode, double& g) {
+    RenderSettings s = hard_shadows();
+    s.shadows = mode;
+    RenderStats stats;
+    Tracer tracer(prepared, s, stats);
+    SampleStream rng(s.seed, 0, 0, 0);
+    g = tracer.trace(ray, RayKind::Camera, 0, 1, MediumStack{}, rng).g;
+    return stats.intersections;
+  };
+  double unshadowed = 0;
+  const IntersectionCounters with = counts(ShadowMode::Hard, value);
+  const IntersectionCounters without = counts(ShadowMode::None, unshadowed);
+  return {with.shape_tests - without.shape_tests, with.triangle_tests - without.triangle_tests,
+          with.bvh_nodes - without.bvh_nodes};
+}
+
 // A torus in the XY plane (R = 1, r = 0.4) lit from (-5, 0, 0): seen from its centre along +x,
 // the inner side of the tube at (0.6, 0, 0) faces the light, but the far side of the tube
 // stands between. The feeler leaves its own surface outward, yet where the surface is not the
@@ -68,23 +87,45 @@ TEST(LightBufferShadows, TransparentBlockersMultiply) {
     ASSERT_NE(prepared.light_buffer(0), nullptr);
     ASSERT_EQ(walked.light_buffer(0), nullptr);
     const Ray down{{0, 0.5, 0}, {0, -1, 0}, 0};
-    // The BVH nodes the feeler visits: those of a render with it less those of one without.
-    const auto bvh_nodes = [&](ShadowMode mode, double& value) {
-      RenderSettings s = hard_shadows();
-      s.shadows = mode;
-      RenderStats stats;
-      Tracer tracer(prepared, s, stats);
-      SampleStream rng(s.seed, 0, 0, 0);
-      value = tracer.trace(down, RayKind::Camera, 0, 1, MediumStack{}, rng).g;
-      return stats.intersections.bvh_nodes;
-    };
-    double got = 0, unshadowed = 0;
-    const std::uint64_t feeler_nodes =
-        bvh_nodes(ShadowMode::Hard, got) - bvh_nodes(ShadowMode::None, unshadowed);
+    double got = 0;
+    const std::uint64_t feeler_nodes = feeler_work(prepared, down, got).bvh_nodes;
     EXPECT_EQ(got, expected) << slabs << " slabs";
     EXPECT_EQ(got, trace_ray(walked, down, hard_shadows()).g) << slabs << " slabs";
     EXPECT_EQ(feeler_nodes == 0, slabs < 3) << slabs << " slabs: " << feeler_nodes;
   }
+}
+
+// A torus (R = 1, r = 0.4) under three transparent slabs, lit from straight above its tube at
+// (1, 0, 0). A floor point below the tube is in its shadow: the feeler passes through a ball in
+// the tube and is settled as blocked, with no shape tested. The tube's top lies nearer the light
+// than the far side of that ball, behind more candidates than the cell holds: its feeler walks
+// and is lit through the slabs. Both as a render without a BVH has them.
+
+TEST(LightBufferShadows, AnInscribedBallBlocksOnlyFeelersFromBeyondIt) {
+  Scene scene;
+  scene.camera = camera_on_z();
+  scene.objects.push_back(object(Torus{0.4, 1}, Affine::identity(), kMatte));
+  scene.objects.push_back(
+      object(Cube{}, Affine::translation({0, 0, -2}) * Affine::scaling({5, 5, 0.1}), kMatte));
+  const double transparencies[] = {0.5, 0.25, 0.75};
+  for (int k = 0; k < 3; ++k) {
+    Material glass = black_material();
+    glass.transparency = transparencies[k];
+    scene.objects.push_back(object(
+        Cube{}, Affine::translation({0, 0, 3.0 + 2 * k}) * Affine::scaling({3, 3, 0.05}), glass));
+  }
+  scene.lights.push_back(point_light({1, 0, 10}, {1, 1, 1}));
+  const PreparedScene prepared(scene, BvhMode::Sah);
+  const PreparedScene walked(scene, BvhMode::None);
+  ASSERT_NE(prepared.light_buffer(0), nullptr);
+  const Ray floor{{1, 0, -1}, {0, 0, -1}, 0}, top{{1, 0, 2}, {0, 0, -1}, 0};
+  double floor_value = 0, top_value = 0;
+  EXPECT_EQ(feeler_work(prepared, floor, floor_value).shape_tests, 0u);
+  EXPECT_EQ(floor_value, 0.0);
+  EXPECT_EQ(floor_value, trace_ray(walked, floor, hard_shadows()).g);
+  EXPECT_GT(feeler_work(prepared, top, top_value).shape_tests, 0u);
+  EXPECT_NEAR(top_value, 0.5 * 0.5 * 0.25 * 0.75, 1e-12);
+  EXPECT_EQ(top_value, trace_ray(walked, top, hard_shadows()).g);
 }
 
 }  // namespace
