@@ -1,4 +1,5 @@
-// What a ray/shape intersection routine reports, in the shape's own object space.
+// What a ray/shape intersection routine reports, in the shape's own object space. A routine that
+// reports a hit writes every member: intersect_instance hands them a LocalHit left unzeroed.
 #pragma once
 
 #include <cstdint>
