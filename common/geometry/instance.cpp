@@ -15,14 +15,17 @@
 //     transforms it grows with the (Skeel) condition number, as the real error does.
 #include "common/geometry/instance.h"
 
+#include <bit>
 #include <cmath>
 #include <cstddef>
 #include <new>
 #include <variant>
 
+#include "common/accel/wide_box_kernel.h"
 #include "common/geometry/csg.h"
 #include "common/geometry/motion.h"
 #include "common/geometry/shapes.h"
+#include "common/geometry/torus_packet.h"
 #include "common/math/float_error.h"
 
 namespace tessera {
@@ -263,6 +266,34 @@ template <typename ObjectRayOf>
   return FullTransforms{instance}.object_ray(world_ray);
 }
 
+#if defined(__SSE2__)
+// intersect_instance_packet's torus lanes: each lane's object direction as intersect_instance takes
+// it, the frames four at a time, each lane's hit back to world space as intersect_instance takes
+// it.
+template <typename Transforms>
+unsigned intersect_torus_lanes(const Transforms& transforms, const Torus& torus, const Ray rays[4],
+                               unsigned lanes, const Vec3& object_origin, const double t_max[4],
+                               WorldHit* const hits[4], IntersectionCounters& counters) {
+  Vec3 directions[kTorusPacketLanes];
+  const int first = std::countr_zero(lanes);
+  for (int l = 0; l < kTorusPacketLanes; ++l)
+    if (lanes & (1u << l)) directions[l] = transforms.object_vector(rays[l].direction);
+  for (int l = 0; l < kTorusPacketLanes; ++l)
+    if (!(lanes & (1u << l))) directions[l] = directions[first];  // computed, not used
+  counters.shape_tests += static_cast<std::uint64_t>(std::popcount(lanes));
+  // Unzeroed, as intersect_with's (an array is an implicit-lifetime type too).
+  alignas(LocalHit) std::byte local_storage[kTorusPacketLanes * sizeof(LocalHit)];
+  LocalHit* locals = std::launder(reinterpret_cast<LocalHit*>(local_storage));
+  const unsigned hit_lanes =
+      intersect_torus_packet_avx2(torus, object_origin, directions, lanes, t_max, locals);
+  for (unsigned m = hit_lanes; m != 0; m &= m - 1) {
+    const int l = std::countr_zero(m);
+    to_world_hit_with(transforms, locals[l], *hits[l]);
+  }
+  return hit_lanes;
+}
+#endif
+
 // A torus's world box, tighter than its object box's corners: the torus is its core circle
 // (radius R in the xy plane) swept by a ball of radius r, so its image under the linear part L
 // is an ellipse swept by an ellipsoid, and support functions add: along world axis i it reaches
@@ -389,6 +420,30 @@ bool intersect_instance(const Instance& instance, const Ray& world_ray, const Ve
   return intersect_placed(instance, world_ray, t_max, hit, counters, [&](const auto& transforms) {
     return Ray{object_origin, transforms.object_vector(world_ray.direction), world_ray.time};
   });
+}
+
+unsigned intersect_instance_packet(const Instance& instance, const Ray rays[4], unsigned lanes,
+                                   const Vec3& object_origin, const double t_max[4],
+                                   WorldHit* const hits[4], IntersectionCounters& counters) {
+#if defined(__SSE2__)
+  // A moving torus takes the lanes one at a time (posed at each ray's time).
+  const Torus* torus = std::get_if<Torus>(&instance.geometry);
+  if (torus && !instance.motion && !std::has_single_bit(lanes) &&
+      wide_box_kernel() == WideBoxKernel::Avx2) {
+    if (instance.diagonal)
+      return intersect_torus_lanes(DiagonalTransforms{instance, *instance.diagonal}, *torus, rays,
+                                   lanes, object_origin, t_max, hits, counters);
+    return intersect_torus_lanes(FullTransforms{instance}, *torus, rays, lanes, object_origin,
+                                 t_max, hits, counters);
+  }
+#endif
+  unsigned hit_lanes = 0;
+  for (unsigned m = lanes; m != 0; m &= m - 1) {
+    const int l = std::countr_zero(m);
+    if (intersect_instance(instance, rays[l], object_origin, t_max[l], *hits[l], counters))
+      hit_lanes |= 1u << l;
+  }
+  return hit_lanes;
 }
 
 bool occluded_instance(const Instance& instance, const Ray& world_ray, double t_max,
