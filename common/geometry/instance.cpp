@@ -274,12 +274,14 @@ template <typename Transforms>
 unsigned intersect_torus_lanes(const Transforms& transforms, const Torus& torus, const Ray rays[4],
                                unsigned lanes, const Vec3& object_origin, const double t_max[4],
                                WorldHit* const hits[4], IntersectionCounters& counters) {
-  Vec3 directions[kTorusPacketLanes];
+  // Lanes outside `lanes` repeat the first one's ray (computed, not used). Built whole: an array
+  // of Vec3 declared first is zeroed (a `rep stos`).
   const int first = std::countr_zero(lanes);
-  for (int l = 0; l < kTorusPacketLanes; ++l)
-    if (lanes & (1u << l)) directions[l] = transforms.object_vector(rays[l].direction);
-  for (int l = 0; l < kTorusPacketLanes; ++l)
-    if (!(lanes & (1u << l))) directions[l] = directions[first];  // computed, not used
+  const auto direction = [&](int l) {
+    return transforms.object_vector(rays[(lanes >> l) & 1u ? l : first].direction);
+  };
+  const Vec3 directions[kTorusPacketLanes] = {direction(0), direction(1), direction(2),
+                                              direction(3)};
   counters.shape_tests += static_cast<std::uint64_t>(std::popcount(lanes));
   // Unzeroed, as intersect_with's (an array is an implicit-lifetime type too).
   alignas(LocalHit) std::byte local_storage[kTorusPacketLanes * sizeof(LocalHit)];
