@@ -17,8 +17,6 @@
 
 #include <bit>
 #include <cmath>
-#include <cstddef>
-#include <new>
 #include <variant>
 
 #include "common/accel/wide_box_kernel.h"
@@ -231,12 +229,8 @@ template <typename Transforms>
                                                   double t_max, WorldHit& hit,
                                                   IntersectionCounters& counters) {
   ++counters.shape_tests;
-  // The local hit is left unzeroed: every shape's routine writes every member on a hit
-  // (LocalHit.EveryMemberIsWrittenOnAHit) and none is read after a miss, and the members'
-  // initializers cost some 20 instructions a call. The byte array's lifetime implicitly creates
-  // the LocalHit, an aggregate and so an implicit-lifetime type, within it (C++20 [intro.object]).
-  alignas(LocalHit) std::byte local_storage[sizeof(LocalHit)];
-  LocalHit& local = *std::launder(reinterpret_cast<LocalHit*>(local_storage));
+  UnzeroedLocalHits<1> storage;
+  LocalHit& local = *storage.hits();
   if (!std::visit(LocalIntersect{{transforms.instance, world_ray, ray, t_max, counters}, local},
                   transforms.instance.geometry))
     return false;
@@ -283,9 +277,8 @@ unsigned intersect_torus_lanes(const Transforms& transforms, const Torus& torus,
   const Vec3 directions[kTorusPacketLanes] = {direction(0), direction(1), direction(2),
                                               direction(3)};
   counters.shape_tests += static_cast<std::uint64_t>(std::popcount(lanes));
-  // Unzeroed, as intersect_with's (an array is an implicit-lifetime type too).
-  alignas(LocalHit) std::byte local_storage[kTorusPacketLanes * sizeof(LocalHit)];
-  LocalHit* locals = std::launder(reinterpret_cast<LocalHit*>(local_storage));
+  UnzeroedLocalHits<kTorusPacketLanes> storage;
+  LocalHit* locals = storage.hits();
   const unsigned hit_lanes =
       intersect_torus_packet_avx2(torus, object_origin, directions, lanes, t_max, locals);
   for (unsigned m = hit_lanes; m != 0; m &= m - 1) {
