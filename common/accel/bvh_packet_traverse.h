@@ -195,10 +195,7 @@ class BvhPacketWalk {
   [[gnu::always_inline]] void walk_from(unsigned walk, Pending current, Pending* stack, int size) {
     for (;;) {
       if (current.count > 0) {
-        for (unsigned m = current.lanes; m != 0; m &= m - 1) {
-          const int l = std::countr_zero(m);
-          t_max_[l] = visit_leaf_(l, current.index, current.count, t_max_[l]);
-        }
+        visit_leaf_(current.lanes, current.index, current.count);
       } else {
         const BvhPair& pair = pairs_[current.index];
         double entry[2][kPacketLanes];
@@ -280,10 +277,12 @@ class BvhPacketWalk {
 };
 
 // Visits, for each ray l of `rays`, the leaves traverse_bvh_leaves would visit for it alone, in
-// the same order: `visit_leaf(l, first, count, t_max)` gets the leaf's range of
-// Bvh::primitive_order and returns ray l's possibly shrunk t_max (closest hit; the walk has no
-// any-hit stop). t_max[l] starts as ray l's limit and ends as its last. Counts the box tests as
-// the rays' own traversals would in `nodes_visited`.
+// the same order: `visit_leaf(lanes, first, count)` gets the leaf's range of Bvh::primitive_order
+// for the rays whose lanes are set in `lanes` (bit l for ray l; those that reach the leaf together,
+// so that they may test its shapes together) and may shrink t_max[l] for each of them (closest
+// hit; the walk has no any-hit stop), as ray l's visit alone would. t_max[l] starts as ray l's
+// limit and ends as its last. Counts the box tests as the rays' own traversals would in
+// `nodes_visited`.
 template <typename VisitLeaf>
 void traverse_bvh_packet_leaves(const Bvh& bvh, const PacketRays& rays, double* t_max,
                                 std::uint64_t& nodes_visited, VisitLeaf&& visit_leaf) {
@@ -296,7 +295,7 @@ void traverse_bvh_packet_leaves(const Bvh& bvh, const PacketRays& rays, double* 
       const Vec3 origin{rays.origin[0][l], rays.origin[1][l], rays.origin[2][l]};
       const Vec3 inv_dir{rays.inv_dir[0][l], rays.inv_dir[1][l], rays.inv_dir[2][l]};
       if (intersect_bounds(root.bounds, origin, inv_dir, t_max[l]))
-        t_max[l] = visit_leaf(l, root.first_or_second_child, root.count, t_max[l]);
+        visit_leaf(1u << l, root.first_or_second_child, root.count);
     }
     return;
   }

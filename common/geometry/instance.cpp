@@ -15,12 +15,15 @@
 //     transforms it grows with the (Skeel) condition number, as the real error does.
 #include "common/geometry/instance.h"
 
+#include <bit>
 #include <cmath>
 #include <variant>
 
+#include "common/accel/wide_box_kernel.h"
 #include "common/geometry/csg.h"
 #include "common/geometry/motion.h"
 #include "common/geometry/shapes.h"
+#include "common/geometry/torus_packet.h"
 #include "common/math/float_error.h"
 
 namespace tessera {
@@ -226,7 +229,8 @@ template <typename Transforms>
                                                   double t_max, WorldHit& hit,
                                                   IntersectionCounters& counters) {
   ++counters.shape_tests;
-  LocalHit local;
+  UnzeroedLocalHits<1> storage;
+  LocalHit& local = *storage.hits();
   if (!std::visit(LocalIntersect{{transforms.instance, world_ray, ray, t_max, counters}, local},
                   transforms.instance.geometry))
     return false;
@@ -255,6 +259,35 @@ template <typename ObjectRayOf>
     return DiagonalTransforms{instance, *instance.diagonal}.object_ray(world_ray);
   return FullTransforms{instance}.object_ray(world_ray);
 }
+
+#if defined(__SSE2__)
+// intersect_instance_packet's torus lanes: each lane's object direction as intersect_instance takes
+// it, the frames four at a time, each lane's hit back to world space as intersect_instance takes
+// it.
+template <typename Transforms>
+unsigned intersect_torus_lanes(const Transforms& transforms, const Torus& torus, const Ray rays[4],
+                               unsigned lanes, const Vec3& object_origin, const double t_max[4],
+                               WorldHit* const hits[4], IntersectionCounters& counters) {
+  // Lanes outside `lanes` repeat the first one's ray (computed, not used). Built whole: an array
+  // of Vec3 declared first is zeroed (a `rep stos`).
+  const int first = std::countr_zero(lanes);
+  const auto direction = [&](int l) {
+    return transforms.object_vector(rays[(lanes >> l) & 1u ? l : first].direction);
+  };
+  const Vec3 directions[kTorusPacketLanes] = {direction(0), direction(1), direction(2),
+                                              direction(3)};
+  counters.shape_tests += static_cast<std::uint64_t>(std::popcount(lanes));
+  UnzeroedLocalHits<kTorusPacketLanes> storage;
+  LocalHit* locals = storage.hits();
+  const unsigned hit_lanes =
+      intersect_torus_packet_avx2(torus, object_origin, directions, lanes, t_max, locals);
+  for (unsigned m = hit_lanes; m != 0; m &= m - 1) {
+    const int l = std::countr_zero(m);
+    to_world_hit_with(transforms, locals[l], *hits[l]);
+  }
+  return hit_lanes;
+}
+#endif
 
 // A torus's world box, tighter than its object box's corners: the torus is its core circle
 // (radius R in the xy plane) swept by a ball of radius r, so its image under the linear part L
@@ -382,6 +415,30 @@ bool intersect_instance(const Instance& instance, const Ray& world_ray, const Ve
   return intersect_placed(instance, world_ray, t_max, hit, counters, [&](const auto& transforms) {
     return Ray{object_origin, transforms.object_vector(world_ray.direction), world_ray.time};
   });
+}
+
+unsigned intersect_instance_packet(const Instance& instance, const Ray rays[4], unsigned lanes,
+                                   const Vec3& object_origin, const double t_max[4],
+                                   WorldHit* const hits[4], IntersectionCounters& counters) {
+#if defined(__SSE2__)
+  // A moving torus takes the lanes one at a time (posed at each ray's time).
+  const Torus* torus = std::get_if<Torus>(&instance.geometry);
+  if (torus && !instance.motion && !std::has_single_bit(lanes) &&
+      wide_box_kernel() == WideBoxKernel::Avx2) {
+    if (instance.diagonal)
+      return intersect_torus_lanes(DiagonalTransforms{instance, *instance.diagonal}, *torus, rays,
+                                   lanes, object_origin, t_max, hits, counters);
+    return intersect_torus_lanes(FullTransforms{instance}, *torus, rays, lanes, object_origin,
+                                 t_max, hits, counters);
+  }
+#endif
+  unsigned hit_lanes = 0;
+  for (unsigned m = lanes; m != 0; m &= m - 1) {
+    const int l = std::countr_zero(m);
+    if (intersect_instance(instance, rays[l], object_origin, t_max[l], *hits[l], counters))
+      hit_lanes |= 1u << l;
+  }
+  return hit_lanes;
 }
 
 bool occluded_instance(const Instance& instance, const Ray& world_ray, double t_max,

@@ -85,6 +85,15 @@ Vec3 object_origin(const Instance& instance, const Vec3& world_origin);
 bool intersect_instance(const Instance& instance, const Ray& world_ray, const Vec3& object_origin,
                         double t_max, WorldHit& hit, IntersectionCounters& counters);
 
+// intersect_instance for up to four rays from one origin (a camera packet's lanes at one leaf):
+// for each lane l in `lanes` (bit l), the ray rays[l] with limit t_max[l]; bit l of the answer is
+// set when it hits, *hits[l] then written, as intersect_instance would, bit for bit. A torus
+// forms the lanes' quartics together (torus_packet.h) when AVX2 is in use and two or more lanes
+// ask; every other case takes intersect_instance a lane at a time.
+unsigned intersect_instance_packet(const Instance& instance, const Ray rays[4], unsigned lanes,
+                                   const Vec3& object_origin, const double t_max[4],
+                                   WorldHit* const hits[4], IntersectionCounters& counters);
+
 // Whether the ray meets the instance with t in (0, t_max): the answer of intersect_instance,
 // for shadow feelers, without the world-space hit (point, error bound, normals) and through a
 // mesh's any-hit traversal. `object` becomes the scene object whose surface blocks the ray: the

@@ -73,13 +73,12 @@ namespace {
          narrow_to_slab(o.z, d.z, h, t_enter, t_exit) && t_enter <= t_exit;
 }
 
-// The span through the torus's bounding box, padded so that it certainly holds the rounded
-// surface.
-constexpr double kBoxPad = 1 + 1e-9;
+// The span through the torus's bounding box, padded (kTorusBoxPad) so that it certainly holds the
+// rounded surface.
 [[gnu::always_inline]] inline bool padded_box_span(const Torus& torus, const Vec3& o, const Vec3& d,
                                                    double& t_enter, double& t_exit) {
   const double big_r = torus.torus_radius, r = torus.tube_radius;
-  return box_span(o, d, (big_r + r) * kBoxPad, r * kBoxPad, t_enter, t_exit);
+  return box_span(o, d, (big_r + r) * kTorusBoxPad, r * kTorusBoxPad, t_enter, t_exit);
 }
 
 // surface_hit's error bounds on the hit point, per coordinate: a few roundings of quantities of
@@ -390,37 +389,38 @@ bool proven_blocked(const QuarticSignProof& signs, bool from_outside, double s_l
 // re-projecting it.
 enum class HitSearch { kInOrder, kAnyHit };
 
-// The roots of the ray's quartic with t in (0, t_max), ascending, as hits handed to
-// take(hit, touching) until it returns false: the search stops there, so a caller that needs
-// only the first hit pays only for it. Returns false when the search was ended: by take, or
-// (kAnyHit) at a root proven to be a hit that take was not given.
-template <class Take>
-bool visit_torus_hits(const Torus& torus, const Ray& ray, double t_max, HitSearch search,
-                      const Take& take) {
+// What form_line found: the ray misses, is blocked (kAnyHit), or its quartic is to be formed.
+enum class FrameAnswer { kMiss, kBlocked, kFormed };
+
+// The ray's line in the quartic's frame (TorusLine), unless it is shown to miss or (kAnyHit) to
+// be blocked before the quartic is formed. torus_frames_avx2 (torus_packet.cpp) takes the kInOrder
+// steps for four rays at once. Kept apart from the quartic, which the root search takes by
+// reference, so that the line's values stay in registers.
+[[gnu::always_inline]] inline FrameAnswer form_line(const Torus& torus, const Vec3& o,
+                                                    const Vec3& d, double t_max, HitSearch search,
+                                                    TorusLine& line) {
   const double big_r = torus.torus_radius, r = torus.tube_radius;
-  const Vec3& o = ray.origin;
-  const Vec3& d = ray.direction;
   const double dd = dot(d, d);
   if (!is_finite(o) || !is_finite(d) || !(dd > 0) || !std::isfinite(dd) || !(t_max > 0))
-    return true;
+    return FrameAnswer::kMiss;
 
   // |d|, which the shadow rays' exit proofs need before the box; the other queries take it after
   // the box, which a sixth of their calls miss (features/torus.sdl).
   double len = search == HitSearch::kAnyHit ? std::sqrt(dd) : 0;
   // Most shadow rays that form the quartic leave the torus's own surface, outwards, only for the
   // miss proof to show it root-free; shown here before the box, which they all pass.
-  if (search == HitSearch::kAnyHit && leaves_for_good(torus, o, d, len)) return true;
+  if (search == HitSearch::kAnyHit && leaves_for_good(torus, o, d, len)) return FrameAnswer::kMiss;
 
   double t_enter = 0, t_exit = 0;
-  if (!padded_box_span(torus, o, d, t_enter, t_exit)) return true;
+  if (!padded_box_span(torus, o, d, t_enter, t_exit)) return FrameAnswer::kMiss;
   if (search != HitSearch::kAnyHit) len = std::sqrt(dd);
   const double t_lo = std::max(t_enter, 0.0), t_hi = std::min(t_exit, t_max);
-  if (!(t_lo < t_hi)) return true;
+  if (!(t_lo < t_hi)) return FrameAnswer::kMiss;
   // Most shadow rays from outside the box that form the quartic are blocked, the ray crossing the
   // torus's plane deep inside the tube or clipping it near the core circle: shown from the
   // geometry, without the quartic.
   if (search == HitSearch::kAnyHit && crosses_into_tube(torus, o, d, len, t_enter, t_max))
-    return false;
+    return FrameAnswer::kBlocked;
 
   // The frame: origin at the line's point nearest the centre, unit direction; s = (t - t0) |d|.
   const Vec3 u = d / len;
@@ -438,16 +438,15 @@ bool visit_torus_hits(const Torus& torus, const Ray& ray, double t_max, HitSearc
     const double x = f.x + u.x * s, y = f.y + u.y * s;
     return x * x + y * y;
   };
-  const double pad2 = kBoxPad * kBoxPad;
+  const double pad2 = kTorusBoxPad * kTorusBoxPad;
   const double s_nearest = P > 0 ? std::clamp(-Q / P, s_lo, s_hi) : s_lo;
-  if (axis_distance2(s_nearest) > (big_r + r) * (big_r + r) * pad2) return true;
+  if (axis_distance2(s_nearest) > (big_r + r) * (big_r + r) * pad2) return FrameAnswer::kMiss;
   if (big_r > r &&
       std::max(axis_distance2(s_lo), axis_distance2(s_hi)) < (big_r - r) * (big_r - r) / pad2)
-    return true;
+    return FrameAnswer::kMiss;
 
-  // F(f + s u) = (A s^2 + B s + C)^2 - 4 R^2 (P s^2 + 2 Q s + S).
-  const double big_r2 = big_r * big_r;
-  const double A = dot(u, u), B = 2 * dot(f, u), f2 = dot(f, f), C = f2 + big_r2 - r * r;
+  // A, B as in the quartic (line_quartic).
+  const double A = dot(u, u), B = 2 * dot(f, u), f2 = dot(f, f);
   // The torus also lies in the ball of radius R + r about its centre: F >= (|p|^2 - (R + r)^2)
   // (|p|^2 - (R - r)^2), since rho <= |p|, so a ray that stays outside it, padded as the
   // cylinders are, misses. |f + s u|^2 = A s^2 + B s + |f|^2 has its vertex at s ~ 0 (B is
@@ -458,8 +457,20 @@ bool visit_torus_hits(const Torus& torus, const Ray& ray, double t_max, HitSearc
     const double s_c = std::clamp(0.0, s_lo, s_hi);
     if (f2 + A * s_c * s_c - std::fabs(B) * std::max(-s_lo, s_hi) >
         (big_r + r) * (big_r + r) * pad2)
-      return true;
+      return FrameAnswer::kMiss;
   }
+  line = {u, f, len, t0, s_lo, s_hi, P, Q};
+  return FrameAnswer::kFormed;
+}
+
+// F(f + s u) = (A s^2 + B s + C)^2 - 4 R^2 (P s^2 + 2 Q s + S), the ray's quartic in s. A, B and
+// C as form_line computes them (where the compiler shares them).
+[[gnu::always_inline]] inline Polynomial line_quartic(const Torus& torus, const TorusLine& line) {
+  const double big_r = torus.torus_radius, r = torus.tube_radius;
+  const Vec3 u = line.u, f = line.f;
+  const double P = line.P, Q = line.Q;
+  const double big_r2 = big_r * big_r;
+  const double A = dot(u, u), B = 2 * dot(f, u), f2 = dot(f, f), C = f2 + big_r2 - r * r;
   const double rho = hypot_inline(f.x, f.y);
   Polynomial quartic;
   quartic.degree = 4;
@@ -469,7 +480,18 @@ bool visit_torus_hits(const Torus& torus, const Ray& ray, double t_max, HitSearc
   quartic.c[1] = 2 * B * C - 8 * big_r2 * Q;
   quartic.c[0] = ((rho - big_r) * (rho - big_r) + f.z * f.z - r * r) *
                  ((rho + big_r) * (rho + big_r) + f.z * f.z - r * r);
+  return quartic;
+}
 
+// The roots of the frame's quartic with t in (0, t_max), ascending, as in visit_torus_hits.
+template <class Take>
+[[gnu::always_inline]] inline bool visit_frame_hits(const Torus& torus, const TorusLine& line,
+                                                    const Polynomial& quartic, double t_max,
+                                                    HitSearch search, const Take& take) {
+  const double big_r = torus.torus_radius, r = torus.tube_radius;
+  const Vec3 u = line.u, f = line.f;
+  const double len = line.len, t0 = line.t0, s_lo = line.s_lo, s_hi = line.s_hi;
+  const double P = line.P, Q = line.Q;
   const auto t_at = [&](double s) { return t0 + s / len; };
   // Within a few error bounds of the origin: the surface the ray is leaving.
   const auto leaves_the_origin = [&](double t, const Vec3& point_error) {
@@ -538,10 +560,46 @@ bool visit_torus_hits(const Torus& torus, const Ray& ray, double t_max, HitSearc
   return visit_real_roots(quartic, s_lo, s_hi, at_root, is_hit_bracket);
 }
 
+// The roots of the ray's quartic with t in (0, t_max), ascending, as hits handed to
+// take(hit, touching) until it returns false: the search stops there, so a caller that needs
+// only the first hit pays only for it. Returns false when the search was ended: by take, or
+// (kAnyHit) at a root proven to be a hit that take was not given.
+template <class Take>
+bool visit_torus_hits(const Torus& torus, const Ray& ray, double t_max, HitSearch search,
+                      const Take& take) {
+  TorusLine line;
+  switch (form_line(torus, ray.origin, ray.direction, t_max, search, line)) {
+    case FrameAnswer::kMiss:
+      return true;
+    case FrameAnswer::kBlocked:
+      return false;
+    case FrameAnswer::kFormed:
+      break;
+  }
+  return visit_frame_hits(torus, line, line_quartic(torus, line), t_max, search, take);
+}
+
 }  // namespace
 
 bool leaves_the_torus_for_good(const Torus& torus, const Ray& ray) {
   return leaves_for_good(torus, ray.origin, ray.direction, length(ray.direction));
+}
+
+bool torus_frame(const Torus& torus, const Vec3& origin, const Vec3& direction, double t_max,
+                 TorusFrame& frame) {
+  if (form_line(torus, origin, direction, t_max, HitSearch::kInOrder, frame.line) !=
+      FrameAnswer::kFormed)
+    return false;
+  frame.quartic = line_quartic(torus, frame.line);
+  return true;
+}
+
+bool nearest_torus_hit(const Torus& torus, const TorusFrame& frame, double t_max, LocalHit& hit) {
+  return nearest_ordered_hit(
+      [&](const auto& take) {
+        visit_frame_hits(torus, frame.line, frame.quartic, t_max, HitSearch::kInOrder, take);
+      },
+      hit);
 }
 
 bool intersect_torus(const Torus& torus, const Ray& ray, double t_max, LocalHit& hit) {

@@ -1,6 +1,8 @@
 // Parts of the ray / torus intersection (torus.cpp) that its tests reach directly.
 #pragma once
 
+#include "common/geometry/local_hit.h"
+#include "common/math/polynomial.h"
 #include "common/math/ray.h"
 #include "common/scene/shape.h"
 
@@ -23,5 +25,29 @@ bool leaves_the_torus_for_good(const Torus& torus, const Ray& ray);
 // the quartic the search would form and of the search itself. Most shadow rays from outside a
 // torus that it blocks. False says nothing.
 bool crosses_into_the_tube(const Torus& torus, const Ray& ray, double t_max);
+
+// The padding of the torus's bounding box (|x|, |y| <= R + r, |z| <= r), by which the ray's span
+// through it certainly holds the rounded surface.
+inline constexpr double kTorusBoxPad = 1 + 1e-9;
+
+// A ray's frame for its quartic, as the nearest-hit query forms it: origin f at the line's point
+// nearest the centre, unit direction u, s = (t - t0) len with len = |d|; [s_lo, s_hi] the span
+// through the padded box and (0, t_max); P and Q as in F(f + s u) = (A s^2 + B s + C)^2 -
+// 4 R^2 (P s^2 + 2 Q s + S); the quartic in s.
+struct TorusLine {
+  Vec3 u, f;
+  double len, t0, s_lo, s_hi, P, Q;
+};
+struct TorusFrame {
+  TorusLine line;
+  Polynomial quartic;
+};
+
+// The frame of the ray from `origin` along `direction` for intersect_torus with t_max; false when
+// the ray is shown to miss before the quartic is formed.
+bool torus_frame(const Torus& torus, const Vec3& origin, const Vec3& direction, double t_max,
+                 TorusFrame& frame);
+// intersect_torus from the ray's frame.
+bool nearest_torus_hit(const Torus& torus, const TorusFrame& frame, double t_max, LocalHit& hit);
 
 }  // namespace tessera

@@ -148,23 +148,27 @@ void Tracer::find_packet_hits(const Vec3& eye, const Vec3* directions, int count
     for (std::size_t i = 0; i < instances.size(); ++i)
       packet_object_origins_[i] = object_origin(instances[i], eye);
   }
-  // The leaf visit of closest_hit's traverse_bvh, per ray.
+  static_assert(kPacketLanes == 4);  // intersect_instance_packet's lanes
+  WorldHit* const world_hits[kPacketLanes] = {&packet_hits_[0].world, &packet_hits_[1].world,
+                                              &packet_hits_[2].world, &packet_hits_[3].world};
+  // The leaf visit of closest_hit's traverse_bvh, for the rays that reach the leaf together: each
+  // shape is tested for them together (intersect_instance_packet), each ray's limit shrinking with
+  // its hits as its own visit's would.
   traverse_bvh_packet_leaves(
       scene_.bvh(), PacketRays(packet_rays_, count), t_max, stats_.intersections.bvh_nodes,
-      [&](int lane, std::uint32_t first, std::uint32_t size, double limit) {
-        Hit& hit = packet_hits_[lane];
-        const Ray& ray = packet_rays_[lane];
+      [&](unsigned lanes, std::uint32_t first, std::uint32_t size) {
         for (std::uint32_t i = first; i < first + size; ++i) {
           const std::uint32_t index = scene_.bvh().primitive_order[i];
-          const Instance& instance = instances[index];
-          if (!intersect_instance(instance, ray, packet_object_origins_[index], limit, hit.world,
-                                  stats_.intersections))
-            continue;
-          hit.instance = index;
-          packet_found_[lane] = true;
-          limit = hit.world.t;
+          for (unsigned m = intersect_instance_packet(instances[index], packet_rays_, lanes,
+                                                      packet_object_origins_[index], t_max,
+                                                      world_hits, stats_.intersections);
+               m != 0; m &= m - 1) {
+            const int l = std::countr_zero(m);
+            packet_hits_[l].instance = index;
+            packet_found_[l] = true;
+            t_max[l] = packet_hits_[l].world.t;
+          }
         }
-        return limit;
       });
 }
 

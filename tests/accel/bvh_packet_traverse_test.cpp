@@ -135,9 +135,13 @@ void expect_packet_walks_as_alone_now(const std::vector<Bounds3>& boxes, const B
     together_t[l] = kInfinity;
   }
   traverse_bvh_packet_leaves(bvh, PacketRays(rays, count), together_t, together_nodes,
-                             [&](int l, std::uint32_t first, std::uint32_t size, double t_max) {
-                               together[l].emplace_back(first, size, t_max);
-                               return nearest_entry(boxes, bvh, rays[l], first, size, t_max);
+                             [&](unsigned lanes, std::uint32_t first, std::uint32_t size) {
+                               for (int l = 0; l < kPacketLanes; ++l) {
+                                 if (!(lanes & (1u << l))) continue;
+                                 together[l].emplace_back(first, size, together_t[l]);
+                                 together_t[l] =
+                                     nearest_entry(boxes, bvh, rays[l], first, size, together_t[l]);
+                               }
                              });
   EXPECT_EQ(together_nodes, alone_nodes);
   for (int l = 0; l < count; ++l) {

@@ -1,0 +1,229 @@
+// Four rays' torus frames at once (torus_packet.h). Each step is torus.cpp's form_line and
+// line_quartic for kInOrder, lane by lane: the same operations on the same operands in the same
+// order. The scalar code's early returns become a mask: a lane is formed when it passes every
+// test, which is when the scalar code passes them all; the values of lanes that fail one are
+// computed and dropped. Where std::max / std::min / std::clamp pick an operand, the choice is made
+// as they make it, NaN and signed zeros included: std::max(a, b) is (a < b ? b : a), which is
+// _mm256_max_pd(b, a) (its second operand when the compare is false or unordered), and
+// std::min(a, b), (b < a ? b : a), is _mm256_min_pd(b, a).
+#include "common/geometry/torus_packet.h"
+
+#include <bit>
+#include <cmath>
+
+#include "common/math/float_error.h"
+
+#if defined(__SSE2__)
+#include <immintrin.h>
+#endif
+
+namespace tessera {
+
+#if defined(__SSE2__)
+
+namespace {
+
+using V = __m256d;
+
+[[gnu::target("avx2"), gnu::always_inline]] inline V splat(double x) { return _mm256_set1_pd(x); }
+[[gnu::target("avx2"), gnu::always_inline]] inline V add(V a, V b) { return _mm256_add_pd(a, b); }
+[[gnu::target("avx2"), gnu::always_inline]] inline V sub(V a, V b) { return _mm256_sub_pd(a, b); }
+[[gnu::target("avx2"), gnu::always_inline]] inline V mul(V a, V b) { return _mm256_mul_pd(a, b); }
+[[gnu::target("avx2"), gnu::always_inline]] inline V divide(V a, V b) {
+  return _mm256_div_pd(a, b);
+}
+[[gnu::target("avx2"), gnu::always_inline]] inline V negate(V a) {
+  return _mm256_xor_pd(a, splat(-0.0));
+}
+[[gnu::target("avx2"), gnu::always_inline]] inline V magnitude(V a) {
+  return _mm256_andnot_pd(splat(-0.0), a);
+}
+// std::max(a, b) and std::min(a, b), see above.
+[[gnu::target("avx2"), gnu::always_inline]] inline V std_max(V a, V b) {
+  return _mm256_max_pd(b, a);
+}
+[[gnu::target("avx2"), gnu::always_inline]] inline V std_min(V a, V b) {
+  return _mm256_min_pd(b, a);
+}
+// c ? a : b per lane, c a compare's all-ones or all-zeros lanes.
+[[gnu::target("avx2"), gnu::always_inline]] inline V select(V c, V a, V b) {
+  return _mm256_blendv_pd(b, a, c);
+}
+// std::clamp(v, lo, hi): v < lo ? lo : (hi < v ? hi : v).
+[[gnu::target("avx2"), gnu::always_inline]] inline V std_clamp(V v, V lo, V hi) {
+  return select(_mm256_cmp_pd(v, lo, _CMP_LT_OQ), lo,
+                select(_mm256_cmp_pd(hi, v, _CMP_LT_OQ), hi, v));
+}
+
+// The components of a vector of lanes, a lane each.
+struct Lanes {
+  alignas(32) double v[4];
+};
+[[gnu::target("avx2"), gnu::always_inline]] inline Lanes lanes_of(V a) {
+  Lanes out;
+  _mm256_store_pd(out.v, a);
+  return out;
+}
+
+// hypot_inline (hypot.h) per lane; lanes outside its ranges take std::hypot, as it does.
+[[gnu::target("avx2"), gnu::always_inline]] inline V hypot_lanes(V x, V y) {
+  const V abs_x = magnitude(x), abs_y = magnitude(y);
+  const V ax = std_max(abs_x, abs_y), ay = std_min(abs_x, abs_y);
+  const V in_range = _mm256_and_pd(_mm256_and_pd(_mm256_cmp_pd(ax, splat(0x1p511), _CMP_LE_OQ),
+                                                 _mm256_cmp_pd(ay, splat(0x1p-459), _CMP_GE_OQ)),
+                                   _mm256_cmp_pd(ay, mul(ax, splat(0x1p-54)), _CMP_GT_OQ));
+  const V h = _mm256_sqrt_pd(add(mul(ax, ax), mul(ay, ay)));
+  const V two = splat(2.0);
+  const V near_ay = _mm256_cmp_pd(h, mul(two, ay), _CMP_LE_OQ);
+  const V delta_y = sub(h, ay), delta_x = sub(h, ax);
+  const V t1 = select(near_ay, mul(ax, sub(mul(two, delta_y), ax)),
+                      mul(mul(two, delta_x), sub(ax, mul(two, ay))));
+  const V t2 = select(near_ay, mul(sub(delta_y, mul(two, sub(ax, ay))), delta_y),
+                      add(mul(sub(mul(splat(4.0), delta_x), ay), ay), mul(delta_x, delta_x)));
+  V result = sub(h, divide(add(t1, t2), mul(two, h)));
+  const int outside = ~_mm256_movemask_pd(in_range) & 0xf;
+  if (outside != 0) [[unlikely]] {
+    Lanes r = lanes_of(result);
+    const Lanes xs = lanes_of(x), ys = lanes_of(y);
+    for (int l = 0; l < 4; ++l)
+      if (outside & (1 << l)) r.v[l] = std::hypot(xs.v[l], ys.v[l]);
+    result = _mm256_load_pd(r.v);
+  }
+  return result;
+}
+
+// The squared distance from the axis of f + u s (axis_distance2 in torus.cpp).
+[[gnu::target("avx2"), gnu::always_inline]] inline V axis_distance2_lanes(V fx, V fy, V ux, V uy,
+                                                                          V s) {
+  const V x = add(fx, mul(ux, s)), y = add(fy, mul(uy, s));
+  return add(mul(x, x), mul(y, y));
+}
+
+// narrow_to_slab (torus.cpp) for the lanes: the span [t_enter, t_exit] narrowed to the planes at
+// -half and +half on one axis; `formed` loses the lanes parallel to them and outside.
+[[gnu::target("avx2"), gnu::always_inline]] inline void narrow_to_slab(double o, V d, double half,
+                                                                       V& t_enter, V& t_exit,
+                                                                       V& formed) {
+  const V zero = _mm256_cmp_pd(d, _mm256_setzero_pd(), _CMP_EQ_OQ);
+  if (!(std::fabs(o) <= half)) formed = _mm256_andnot_pd(zero, formed);
+  const V near_plane =
+      select(_mm256_cmp_pd(d, _mm256_setzero_pd(), _CMP_LT_OQ), splat(half), splat(-half));
+  const V t_near = divide(sub(near_plane, splat(o)), d);
+  const V t_far = divide(sub(negate(near_plane), splat(o)), d);
+  t_enter = select(zero, t_enter, std_max(t_enter, t_near));
+  t_exit = select(zero, t_exit, std_min(t_exit, t_far));
+}
+
+}  // namespace
+
+[[gnu::target("avx2")]] unsigned torus_frames_avx2(const Torus& torus, const Vec3& o,
+                                                   const Vec3 directions[4], const double t_max[4],
+                                                   TorusFrame frames[4]) {
+  const double big_r = torus.torus_radius, r = torus.tube_radius;
+  if (!is_finite(o)) return 0;
+  const V dx = _mm256_setr_pd(directions[0].x, directions[1].x, directions[2].x, directions[3].x);
+  const V dy = _mm256_setr_pd(directions[0].y, directions[1].y, directions[2].y, directions[3].y);
+  const V dz = _mm256_setr_pd(directions[0].z, directions[1].z, directions[2].z, directions[3].z);
+  const V limit = _mm256_loadu_pd(t_max);
+  const V inf = splat(kInfinity);
+  const V dd = add(add(mul(dx, dx), mul(dy, dy)), mul(dz, dz));
+  // is_finite(d), dd > 0 and finite, t_max > 0.
+  V formed = _mm256_and_pd(_mm256_and_pd(_mm256_cmp_pd(magnitude(dx), inf, _CMP_LT_OQ),
+                                         _mm256_cmp_pd(magnitude(dy), inf, _CMP_LT_OQ)),
+                           _mm256_cmp_pd(magnitude(dz), inf, _CMP_LT_OQ));
+  formed = _mm256_and_pd(formed, _mm256_cmp_pd(dd, _mm256_setzero_pd(), _CMP_GT_OQ));
+  formed = _mm256_and_pd(formed, _mm256_cmp_pd(dd, inf, _CMP_LT_OQ));
+  formed = _mm256_and_pd(formed, _mm256_cmp_pd(limit, _mm256_setzero_pd(), _CMP_GT_OQ));
+
+  // padded_box_span.
+  V t_enter = splat(-kInfinity), t_exit = inf;
+  narrow_to_slab(o.x, dx, (big_r + r) * kTorusBoxPad, t_enter, t_exit, formed);
+  narrow_to_slab(o.y, dy, (big_r + r) * kTorusBoxPad, t_enter, t_exit, formed);
+  narrow_to_slab(o.z, dz, r * kTorusBoxPad, t_enter, t_exit, formed);
+  formed = _mm256_and_pd(formed, _mm256_cmp_pd(t_enter, t_exit, _CMP_LE_OQ));
+  const V len = _mm256_sqrt_pd(dd);
+  const V t_lo = std_max(t_enter, _mm256_setzero_pd()), t_hi = std_min(t_exit, limit);
+  formed = _mm256_and_pd(formed, _mm256_cmp_pd(t_lo, t_hi, _CMP_LT_OQ));
+
+  // The frame.
+  const V ux = divide(dx, len), uy = divide(dy, len), uz = divide(dz, len);
+  const V ox = splat(o.x), oy = splat(o.y), oz = splat(o.z);
+  const V t0 = divide(negate(add(add(mul(ox, dx), mul(oy, dy)), mul(oz, dz))), dd);
+  const V fx = add(ox, mul(dx, t0)), fy = add(oy, mul(dy, t0)), fz = add(oz, mul(dz, t0));
+  const V s_lo = mul(sub(t_lo, t0), len), s_hi = mul(sub(t_hi, t0), len);
+
+  // The cylinders.
+  const V P = add(mul(ux, ux), mul(uy, uy)), Q = add(mul(fx, ux), mul(fy, uy));
+  const double pad2 = kTorusBoxPad * kTorusBoxPad;
+  const double outer2 = (big_r + r) * (big_r + r) * pad2;
+  const V s_nearest = select(_mm256_cmp_pd(P, _mm256_setzero_pd(), _CMP_GT_OQ),
+                             std_clamp(divide(negate(Q), P), s_lo, s_hi), s_lo);
+  formed = _mm256_and_pd(formed, _mm256_cmp_pd(axis_distance2_lanes(fx, fy, ux, uy, s_nearest),
+                                               splat(outer2), _CMP_NGT_UQ));
+  if (big_r > r) {
+    const V farthest = std_max(axis_distance2_lanes(fx, fy, ux, uy, s_lo),
+                               axis_distance2_lanes(fx, fy, ux, uy, s_hi));
+    formed = _mm256_and_pd(
+        formed, _mm256_cmp_pd(farthest, splat((big_r - r) * (big_r - r) / pad2), _CMP_NLT_UQ));
+  }
+
+  // The ball.
+  const V A = add(add(mul(ux, ux), mul(uy, uy)), mul(uz, uz));
+  const V B = mul(splat(2.0), add(add(mul(fx, ux), mul(fy, uy)), mul(fz, uz)));
+  const V f2 = add(add(mul(fx, fx), mul(fy, fy)), mul(fz, fz));
+  const V s_c = std_clamp(_mm256_setzero_pd(), s_lo, s_hi);
+  const V ball =
+      sub(add(f2, mul(mul(A, s_c), s_c)), mul(magnitude(B), std_max(negate(s_lo), s_hi)));
+  formed = _mm256_and_pd(formed, _mm256_cmp_pd(ball, splat(outer2), _CMP_NGT_UQ));
+  const unsigned formed_lanes = static_cast<unsigned>(_mm256_movemask_pd(formed));
+  if (formed_lanes == 0) return 0;
+
+  // The quartic.
+  const double big_r2 = big_r * big_r;
+  const V C = sub(add(f2, splat(big_r2)), splat(r * r));
+  const V rho = hypot_lanes(fx, fy);
+  const V two_a = mul(splat(2.0), A);
+  const V fz2 = mul(fz, fz);
+  const V rho_minus = sub(rho, splat(big_r)), rho_plus = add(rho, splat(big_r));
+  const Lanes c4 = lanes_of(mul(A, A));
+  const Lanes c3 = lanes_of(mul(two_a, B));
+  const Lanes c2 = lanes_of(sub(add(mul(B, B), mul(two_a, C)), mul(splat(4 * big_r2), P)));
+  const Lanes c1 = lanes_of(sub(mul(mul(splat(2.0), B), C), mul(splat(8 * big_r2), Q)));
+  const Lanes c0 = lanes_of(mul(sub(add(mul(rho_minus, rho_minus), fz2), splat(r * r)),
+                                sub(add(mul(rho_plus, rho_plus), fz2), splat(r * r))));
+  const Lanes ux_ = lanes_of(ux), uy_ = lanes_of(uy), uz_ = lanes_of(uz);
+  const Lanes fx_ = lanes_of(fx), fy_ = lanes_of(fy), fz_ = lanes_of(fz);
+  const Lanes len_ = lanes_of(len), t0_ = lanes_of(t0), s_lo_ = lanes_of(s_lo),
+              s_hi_ = lanes_of(s_hi), P_ = lanes_of(P), Q_ = lanes_of(Q);
+  for (unsigned m = formed_lanes; m != 0; m &= m - 1) {
+    const int l = std::countr_zero(m);
+    TorusFrame& frame = frames[l];
+    frame.line = {{ux_.v[l], uy_.v[l], uz_.v[l]},
+                  {fx_.v[l], fy_.v[l], fz_.v[l]},
+                  len_.v[l],
+                  t0_.v[l],
+                  s_lo_.v[l],
+                  s_hi_.v[l],
+                  P_.v[l],
+                  Q_.v[l]};
+    frame.quartic = Polynomial{{c0.v[l], c1.v[l], c2.v[l], c3.v[l], c4.v[l]}, 4};
+  }
+  return formed_lanes;
+}
+
+unsigned intersect_torus_packet_avx2(const Torus& torus, const Vec3& origin,
+                                     const Vec3 directions[4], unsigned lanes,
+                                     const double t_max[4], LocalHit hits[4]) {
+  TorusFrame frames[kTorusPacketLanes];
+  unsigned hit_lanes = 0;
+  for (unsigned m = torus_frames_avx2(torus, origin, directions, t_max, frames) & lanes; m != 0;
+       m &= m - 1) {
+    const int l = std::countr_zero(m);
+    if (nearest_torus_hit(torus, frames[l], t_max[l], hits[l])) hit_lanes |= 1u << l;
+  }
+  return hit_lanes;
+}
+
+#endif
+
+}  // namespace tessera

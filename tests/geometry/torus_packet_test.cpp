@@ -1,0 +1,162 @@
+// Four rays' torus frames formed together with AVX2 (torus_packet.h) must be torus_frame's, bit
+// for bit, and the instance's packet test (intersect_instance_packet) intersect_instance's, with
+// every box kernel (the scalar path stays for machines without AVX2).
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <cstring>
+#include <limits>
+#include <random>
+#include <vector>
+
+#include "common/accel/wide_box_kernel.h"
+#include "common/geometry/instance.h"
+#include "common/geometry/torus_packet.h"
+
+namespace tessera {
+namespace {
+
+// The same bits, or NaN in both (a NaN's sign depends on the compiler's operand order).
+bool same_value(double a, double b) {
+  return std::memcmp(&a, &b, sizeof a) == 0 || (std::isnan(a) && std::isnan(b));
+}
+bool same_value(const Vec3& a, const Vec3& b) {
+  return same_value(a.x, b.x) && same_value(a.y, b.y) && same_value(a.z, b.z);
+}
+
+bool same_frame(const TorusFrame& a, const TorusFrame& b) {
+  const TorusLine &p = a.line, &q = b.line;
+  bool same = same_value(p.u, q.u) && same_value(p.f, q.f) && same_value(p.len, q.len) &&
+              same_value(p.t0, q.t0) && same_value(p.s_lo, q.s_lo) && same_value(p.s_hi, q.s_hi) &&
+              same_value(p.P, q.P) && same_value(p.Q, q.Q) && a.quartic.degree == b.quartic.degree;
+  for (int i = 0; i <= kMaxPolynomialDegree; ++i)
+    same = same && same_value(a.quartic.c[i], b.quartic.c[i]);
+  return same;
+}
+
+bool same_hit(const WorldHit& a, const WorldHit& b) {
+  return same_value(a.t, b.t) && same_value(a.point, b.point) &&
+         same_value(a.point_error, b.point_error) && same_value(a.normal, b.normal) &&
+         same_value(a.shading_normal, b.shading_normal) &&
+         same_value(a.object_point, b.object_point) && a.part == b.part && a.object == b.object;
+}
+
+// A component: often a special value (zeros of both signs, values beyond hypot_inline's ranges,
+// infinity, NaN), else uniform in [-spread, spread].
+double component(std::mt19937_64& rng, double spread) {
+  static const double kSpecial[] = {0.0,
+                                    -0.0,
+                                    1.0,
+                                    -1.0,
+                                    1e-300,
+                                    1e300,
+                                    1e-160,
+                                    1e-170,
+                                    1e-320,
+                                    std::numeric_limits<double>::infinity(),
+                                    std::numeric_limits<double>::quiet_NaN()};
+  const int i = std::uniform_int_distribution<int>(0, 40)(rng);
+  if (i < 11) return kSpecial[i];
+  return std::uniform_real_distribution<double>(-spread, spread)(rng);
+}
+
+// Ring, horn, spindle, a thin tube and a degenerate one (no tube).
+const Torus kTori[] = {{0.4, 1.1}, {0.75, 0.75}, {0.9, 0.5}, {0.01, 1}, {0, 1}};
+
+TEST(TorusPacket, FramesAreTorusFramesBitForBit) {
+  if (!wide_box_kernel_supported(WideBoxKernel::Avx2)) GTEST_SKIP() << "no AVX2";
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> unit(-1, 1);
+  int formed = 0, compared = 0;
+  for (const Torus& torus : kTori) {
+    for (int i = 0; i < 40000; ++i) {
+      // Mostly an eye outside the box with rays towards the torus, as a camera's; some of
+      // everything else.
+      const bool special = i % 4 == 0;
+      const Vec3 origin = special ? Vec3{component(rng, 3), component(rng, 3), component(rng, 3)}
+                                  : Vec3{unit(rng) * 4, unit(rng) * 4, unit(rng) * 4};
+      Vec3 directions[kTorusPacketLanes];
+      double t_max[kTorusPacketLanes];
+      for (int l = 0; l < kTorusPacketLanes; ++l) {
+        const Vec3 target{unit(rng) * 1.5, unit(rng) * 1.5, unit(rng) * 0.8};
+        directions[l] = special ? Vec3{component(rng, 1), component(rng, 1), component(rng, 1)}
+                                : (target - origin) * (1 + unit(rng) * 0.5);
+        t_max[l] = special ? component(rng, 2) : (l == 3 ? 0.9 : kInfinity);
+      }
+      TorusFrame together[kTorusPacketLanes];
+      const unsigned lanes = torus_frames_avx2(torus, origin, directions, t_max, together);
+      for (int l = 0; l < kTorusPacketLanes; ++l) {
+        TorusFrame alone;
+        const bool alone_formed = torus_frame(torus, origin, directions[l], t_max[l], alone);
+        ASSERT_EQ((lanes >> l) & 1u, alone_formed ? 1u : 0u) << i << " lane " << l;
+        if (!alone_formed) continue;
+        ++formed;
+        ASSERT_TRUE(same_frame(together[l], alone)) << i << " lane " << l;
+        ++compared;
+      }
+    }
+  }
+  EXPECT_GT(formed, 100000);
+  EXPECT_EQ(compared, formed);
+}
+
+// Whole packet tests of tori, turned (full products) and diagonal, against each lane alone, with
+// every box kernel; lanes left out of the mask are not written.
+TEST(TorusPacket, InstancePacketsAreEachRayAlone) {
+  std::mt19937_64 rng(12);
+  std::uniform_real_distribution<double> unit(-1, 1);
+  std::vector<Instance> instances;
+  for (const Torus& torus : kTori)
+    for (const Affine& m : {Affine::translation({-3.6, 0, 0}) * *Affine::rotation(-60, {1, 0, 0}),
+                            Affine::translation({0, 0.5, -0.0}) * Affine::scaling({2, 0.5, 1})}) {
+      std::optional<Instance> made = make_instance(torus, m, nullptr);
+      ASSERT_TRUE(made.has_value());
+      instances.push_back(*made);
+    }
+  const Vec3 eye{0, 3, 12};
+  int hits = 0;
+  for (const WideBoxKernel kernel :
+       {WideBoxKernel::Scalar, WideBoxKernel::Sse2, WideBoxKernel::Avx2}) {
+    if (!wide_box_kernel_supported(kernel)) continue;
+    force_wide_box_kernel(kernel);
+    for (const Instance& instance : instances) {
+      const Vec3 origin = object_origin(instance, eye);
+      const Vec3 centre{instance.to_world.m[0][3], instance.to_world.m[1][3],
+                        instance.to_world.m[2][3]};
+      for (int i = 0; i < 3000; ++i) {
+        Ray rays[kTorusPacketLanes];
+        double t_max[kTorusPacketLanes];
+        for (int l = 0; l < kTorusPacketLanes; ++l) {
+          const Vec3 target = centre + Vec3{unit(rng) * 2.5, unit(rng) * 2.5, unit(rng) * 2.5};
+          rays[l] = Ray{eye, target - eye, 0};
+          t_max[l] = l == 2 ? 0.7 + unit(rng) * 0.1 : kInfinity;
+        }
+        const unsigned lanes = 1 + static_cast<unsigned>(i % 15);
+        WorldHit together[kTorusPacketLanes], alone[kTorusPacketLanes];
+        WorldHit* const together_hits[kTorusPacketLanes] = {&together[0], &together[1],
+                                                            &together[2], &together[3]};
+        IntersectionCounters together_counts, alone_counts;
+        const unsigned hit_lanes = intersect_instance_packet(instance, rays, lanes, origin, t_max,
+                                                             together_hits, together_counts);
+        for (int l = 0; l < kTorusPacketLanes; ++l) {
+          const bool in = (lanes >> l) & 1u;
+          const bool hit =
+              in && intersect_instance(instance, rays[l], t_max[l], alone[l], alone_counts);
+          ASSERT_EQ((hit_lanes >> l) & 1u, hit ? 1u : 0u) << i << " lane " << l;
+          if (hit) {
+            ++hits;
+            EXPECT_TRUE(same_hit(together[l], alone[l])) << i << " lane " << l;
+          } else {
+            EXPECT_TRUE(same_hit(together[l], WorldHit{})) << i << " lane " << l;
+          }
+        }
+        EXPECT_EQ(together_counts.shape_tests, alone_counts.shape_tests);
+      }
+    }
+  }
+  force_wide_box_kernel(std::nullopt);
+  EXPECT_GT(hits, 10000);
+}
+
+}  // namespace
+}  // namespace tessera
