@@ -13,6 +13,7 @@
 #include <numbers>
 
 #include "common/geometry/shapes.h"
+#include "common/math/portable_math.h"
 
 namespace tessera {
 
@@ -39,9 +40,9 @@ double max_speed(const Affine& transform, const ObjectMotion& motion, const Boun
                  double half_shutter) {
   double log_scale = 0, growth = 1;
   for (int i = 0; i < 3; ++i) {
-    const double l = std::fabs(std::log(motion.scale[i]));
+    const double l = std::fabs(tessera::log(motion.scale[i]));
     log_scale = std::max(log_scale, l);
-    growth = std::max(growth, std::exp(l * half_shutter));
+    growth = std::max(growth, tessera::exp(l * half_shutter));
   }
   const double angle = std::fabs(motion.angle_degrees) * std::numbers::pi / 180;
   const double object_speed = (angle + log_scale) * growth * farthest_corner(local);
@@ -51,8 +52,8 @@ double max_speed(const Affine& transform, const ObjectMotion& motion, const Boun
 }  // namespace
 
 Affine transform_at(const Affine& transform, const ObjectMotion& motion, double time) {
-  const Vec3 scale{std::pow(motion.scale.x, time), std::pow(motion.scale.y, time),
-                   std::pow(motion.scale.z, time)};
+  const Vec3 scale{tessera::pow(motion.scale.x, time), tessera::pow(motion.scale.y, time),
+                   tessera::pow(motion.scale.z, time)};
   const Affine rotation =
       Affine::rotation(motion.angle_degrees * time, motion.axis).value_or(Affine::identity());
   return Affine::translation(motion.translation * time) * transform * rotation *

@@ -7,6 +7,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "common/math/portable_math.h"
 #include "common/math/vec3.h"
 #include "common/render/sampler.h"
 
@@ -33,8 +34,8 @@ class Cone {
   Vec3 rim_direction(int k, int count, SampleStream& rng) const {
     const double angle = 2 * std::numbers::pi * (k - 1) / (count - 1);
     const double jitter = radius_ / 4;
-    const double du = radius_ * std::cos(angle) + (rng.next() - 0.5) * jitter;
-    const double dv = radius_ * std::sin(angle) + (rng.next() - 0.5) * jitter;
+    const double du = radius_ * tessera::cos(angle) + (rng.next() - 0.5) * jitter;
+    const double dv = radius_ * tessera::sin(angle) + (rng.next() - 0.5) * jitter;
     return normalize_or(axis_ + u_ * du + v_ * dv, axis_);
   }
 
