@@ -46,7 +46,8 @@ std::vector<Vec3> cube_corners(double s) {
 void add_ring(std::vector<Vec3>& points, int count, double r, double z) {
   for (int k = 0; k < count; ++k) {
     const double angle = 2 * std::numbers::pi * k / count;
-    points.push_back({r * tessera::cos(angle), r * tessera::sin(angle), z});
+    const SinCos sc = tessera::sincos(angle);
+    points.push_back({r * sc.cos, r * sc.sin, z});
   }
 }
 

@@ -403,7 +403,7 @@ class Converter : public ProtoFiles {
     const auto [ss, st] = sf_vec2(*n, "scale", {1, 1});
     const auto [ts, tt] = sf_vec2(*n, "translation", {0, 0});
     const double angle = sf_float(*n, "rotation", 0);
-    const double cos_a = tessera::cos(angle), sin_a = tessera::sin(angle);
+    const auto [sin_a, cos_a] = tessera::sincos(angle);
     // The linear part S R takes Tc + T + C; then less C.
     const double a = ss * cos_a, b = -ss * sin_a, d = st * sin_a, e = st * cos_a;
     const double us = ts + cs, ut = tt + ct;

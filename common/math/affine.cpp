@@ -33,8 +33,9 @@ void sincos_degrees(double degrees, double& s, double& c) {
     s = -1, c = 0;
   } else {
     const double radians = r * (std::numbers::pi / 180);
-    s = tessera::sin(radians);
-    c = tessera::cos(radians);
+    const SinCos sc = tessera::sincos(radians);
+    s = sc.sin;
+    c = sc.cos;
   }
 }
 

@@ -14,5 +14,9 @@ double atan2(double y, double x) { return Sleef_cinz_atan2d1_u10purec(y, x); }
 double exp(double x) { return Sleef_cinz_expd1_u10purec(x); }
 double log(double x) { return Sleef_cinz_logd1_u10purec(x); }
 double pow(double x, double y) { return Sleef_cinz_powd1_u10purec(x, y); }
+SinCos sincos(double x) {
+  const Sleef_double_2 r = Sleef_cinz_sincosd1_u10purec(x);
+  return {r.x, r.y};
+}
 
 }  // namespace tessera

@@ -21,4 +21,10 @@ double exp(double x);
 double log(double x);
 double pow(double x, double y);
 
+// sin x and cos x from one argument reduction: half the cost of the two calls.
+struct SinCos {
+  double sin, cos;
+};
+SinCos sincos(double x);
+
 }  // namespace tessera
