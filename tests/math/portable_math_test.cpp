@@ -89,8 +89,8 @@ std::uint64_t digest(Function f) {
 }();
 
 std::map<std::string, std::uint64_t> child_digests(const std::string& environment) {
-  const std::string command = environment + " " + kChildVariable + "=1 " +
-                              std::filesystem::read_symlink("/proc/self/exe").string();
+  const std::string command = environment + " " + kChildVariable + "=1 '" +
+                              std::filesystem::read_symlink("/proc/self/exe").string() + "'";
   std::map<std::string, std::uint64_t> digests;
   std::FILE* child = popen(command.c_str(), "r");
   char line[256];
