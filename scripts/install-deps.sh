@@ -13,6 +13,7 @@ packages=(
   libssl-dev        # SHA-256, HMAC (libcrypto)
   libarchive-dev    # tar bundles
   libcli11-dev      # command lines
+  libsleef-dev      # elementary functions with the same bits on every CPU (common/math/portable_math.h)
   libsqlite3-dev    # the coordinator's job store
   libgtest-dev libgmock-dev libbenchmark-dev
   libembree-dev     # benchmark only: bench/embree_bench.cpp traces the same rays through Embree 3

@@ -10,6 +10,7 @@
 #include <numbers>
 #include <set>
 #include <vector>
+#include "common/math/portable_math.h"
 
 namespace tessera {
 namespace {
@@ -45,7 +46,8 @@ std::vector<Vec3> cube_corners(double s) {
 void add_ring(std::vector<Vec3>& points, int count, double r, double z) {
   for (int k = 0; k < count; ++k) {
     const double angle = 2 * std::numbers::pi * k / count;
-    points.push_back({r * std::cos(angle), r * std::sin(angle), z});
+    const SinCos sc = tessera::sincos(angle);
+    points.push_back({r * sc.cos, r * sc.sin, z});
   }
 }
 
@@ -129,7 +131,7 @@ std::vector<std::vector<std::uint32_t>> hull_faces(const std::vector<Vec3>& poin
         const Vec3 v = cross(normal, u);
         auto angle = [&](std::uint32_t m) {
           const Vec3 d = points[m] - centre;
-          return std::atan2(dot(d, v), dot(d, u));
+          return tessera::atan2(dot(d, v), dot(d, u));
         };
         std::sort(on_plane.begin(), on_plane.end(),
                   [&](std::uint32_t a, std::uint32_t b) { return angle(a) < angle(b); });

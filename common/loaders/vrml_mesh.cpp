@@ -5,6 +5,7 @@
 #include <numbers>
 
 #include "common/loaders/vrml_fields.h"
+#include "common/math/portable_math.h"
 
 namespace tessera::vrml {
 namespace {
@@ -272,9 +273,9 @@ NodePtr extrusion_face_set(const Node& extrusion) {
   for (std::size_t i = 0; i < n; ++i) {
     Vec3& z = zs[i];
     if (bent == zs.end()) {
-      if (const auto r =
-              Affine::rotation(std::acos(std::clamp(ys[i].y, -1.0, 1.0)) * 180 / std::numbers::pi,
-                               cross({0, 1, 0}, ys[i])))
+      if (const auto r = Affine::rotation(
+              tessera::acos(std::clamp(ys[i].y, -1.0, 1.0)) * 180 / std::numbers::pi,
+              cross({0, 1, 0}, ys[i])))
         z = r->apply_vector({0, 0, 1});
       else
         z = last_z;
@@ -473,7 +474,7 @@ FaceSetMesh face_set_mesh(const Node& face_set, CornerAttributes wanted) {
       face_normals.push_back(newell_normal(corners));
       for (const std::uint32_t v : polygons[f].positions) faces_at[v].push_back(f);
     }
-    const double cos_crease = std::cos(std::min(crease, std::numbers::pi));
+    const double cos_crease = tessera::cos(std::min(crease, std::numbers::pi));
     for (std::uint32_t f = 0; f < polygons.size(); ++f) {
       const Vec3 own = unit_or_zero(face_normals[f]);
       for (const std::uint32_t v : polygons[f].positions) {

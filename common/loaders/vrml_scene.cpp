@@ -19,6 +19,7 @@
 #include "common/loaders/vrml_loader.h"
 #include "common/loaders/vrml_mesh.h"
 #include "common/loaders/vrml_parser.h"
+#include "common/math/portable_math.h"
 
 namespace tessera {
 namespace vrml {
@@ -402,7 +403,7 @@ class Converter : public ProtoFiles {
     const auto [ss, st] = sf_vec2(*n, "scale", {1, 1});
     const auto [ts, tt] = sf_vec2(*n, "translation", {0, 0});
     const double angle = sf_float(*n, "rotation", 0);
-    const double cos_a = std::cos(angle), sin_a = std::sin(angle);
+    const auto [sin_a, cos_a] = tessera::sincos(angle);
     // The linear part S R takes Tc + T + C; then less C.
     const double a = ss * cos_a, b = -ss * sin_a, d = st * sin_a, e = st * cos_a;
     const double us = ts + cs, ut = tt + ct;
@@ -482,8 +483,8 @@ class Converter : public ProtoFiles {
       // Full intensity inside beamWidth falling linearly to zero at cutOffAngle, approximated
       // by cos^e with half intensity halfway between them (docs/VRML.md).
       if (beam < cutoff) {
-        const double halfway = std::cos((beam + cutoff) / 2);
-        out.spot.exponent = std::log(0.5) / std::log(halfway);
+        const double halfway = tessera::cos((beam + cutoff) / 2);
+        out.spot.exponent = tessera::log(0.5) / tessera::log(halfway);
       }
     }
     scene_.lights.push_back(out);
@@ -652,7 +653,7 @@ class Converter : public ProtoFiles {
     const Vec3 z = Vec3{0, 0, 1} - axis * axis.z;  // +z and the eye, across the axis
     const Vec3 towards = eye - axis * dot(eye, axis);
     if (unit_or_zero(z) == Vec3{} || unit_or_zero(towards) == Vec3{}) return Affine::identity();
-    const double angle = std::atan2(dot(axis, cross(z, towards)), dot(z, towards));
+    const double angle = tessera::atan2(dot(axis, cross(z, towards)), dot(z, towards));
     return Affine::rotation(degrees(angle), axis).value_or(Affine::identity());
   }
 
@@ -677,7 +678,7 @@ class Converter : public ProtoFiles {
     for (const BoundingSphere& s : spheres)
       radius = std::max(radius, length(s.centre - centre) + s.radius);
     if (!(radius > 0)) radius = 1;
-    const double distance = radius / std::sin(camera.view_angle * std::numbers::pi / 360);
+    const double distance = radius / tessera::sin(camera.view_angle * std::numbers::pi / 360);
     camera.look_at = centre;
     camera.eye = centre + Vec3{0, 0, distance};
     return camera;

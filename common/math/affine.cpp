@@ -4,6 +4,7 @@
 #include <numbers>
 
 #include "common/math/float_error.h"
+#include "common/math/portable_math.h"
 
 namespace tessera {
 
@@ -32,8 +33,9 @@ void sincos_degrees(double degrees, double& s, double& c) {
     s = -1, c = 0;
   } else {
     const double radians = r * (std::numbers::pi / 180);
-    s = std::sin(radians);
-    c = std::cos(radians);
+    const SinCos sc = tessera::sincos(radians);
+    s = sc.sin;
+    c = sc.cos;
   }
 }
 

@@ -11,11 +11,12 @@
 // as that factor is used, so x^n is within (n - 1) roundings, (n - 1) * 2^-53 relative, of the
 // exact value (pow: within about 0.52 ulp). For the exponents scenes use (4 to 120) that is
 // at most 1.2 * 10^-14 (98 ulps at n = 120), far below a pixel's float32 step (6 * 10^-8).
-// Exponents that are not whole, or above kMaxWholeExponent, still go to std::pow (and keep its
-// dependence on the host's libm).
+// Exponents that are not whole, or above kMaxWholeExponent, go to pow (portable_math.h's, which
+// gives the same bits on every host too).
 #pragma once
 
 #include <cmath>
+#include "common/math/portable_math.h"
 
 namespace tessera {
 
@@ -37,13 +38,13 @@ inline double whole_power(double x, unsigned n) {
 }
 
 // x^exponent: by whole_power where the exponent is a whole number in [0, kMaxWholeExponent],
-// else (fractions, NaN, larger exponents) by std::pow.
+// else (fractions, NaN, larger exponents) by tessera::pow.
 inline double shading_power(double x, double exponent) {
   if (exponent >= 0 && exponent <= kMaxWholeExponent) {
     const auto n = static_cast<unsigned>(exponent);
     if (static_cast<double>(n) == exponent) return whole_power(x, n);
   }
-  return std::pow(x, exponent);
+  return tessera::pow(x, exponent);
 }
 
 }  // namespace tessera

@@ -4,13 +4,33 @@
 // value is the plain mean of its rays' values.
 #pragma once
 
+#include <array>
 #include <cmath>
 #include <numbers>
 
+#include "common/math/portable_math.h"
 #include "common/math/vec3.h"
 #include "common/render/sampler.h"
 
 namespace tessera {
+
+// The angle around the axis of rim ray k (1 <= k < count) of a cone of `count` rays.
+inline double rim_angle(int k, int count) { return 2 * std::numbers::pi * (k - 1) / (count - 1); }
+
+// Its sine and cosine. Cones are traced at every glossy or translucent hit and soft shadow, at
+// the same few angles each time, and sincos costs some 180 instructions, so for counts up to
+// kTabledConeRays (the command line's limit) they are computed once, the same values.
+inline constexpr int kTabledConeRays = 64;
+inline SinCos rim_sincos(int k, int count) {
+  if (count > kTabledConeRays) return tessera::sincos(rim_angle(k, count));
+  static const auto table = [] {
+    std::array<std::array<SinCos, kTabledConeRays>, kTabledConeRays + 1> rows{};
+    for (int n = 2; n <= kTabledConeRays; ++n)
+      for (int j = 1; j < n; ++j) rows[n][j] = tessera::sincos(rim_angle(j, n));
+    return rows;
+  }();
+  return table[count][k];
+}
 
 class Cone {
  public:
@@ -31,10 +51,10 @@ class Cone {
   // The unit direction of rim ray k (1 <= k < count) of a cone of `count` rays; draws two
   // numbers from `rng`.
   Vec3 rim_direction(int k, int count, SampleStream& rng) const {
-    const double angle = 2 * std::numbers::pi * (k - 1) / (count - 1);
     const double jitter = radius_ / 4;
-    const double du = radius_ * std::cos(angle) + (rng.next() - 0.5) * jitter;
-    const double dv = radius_ * std::sin(angle) + (rng.next() - 0.5) * jitter;
+    const SinCos rim = rim_sincos(k, count);
+    const double du = radius_ * rim.cos + (rng.next() - 0.5) * jitter;
+    const double dv = radius_ * rim.sin + (rng.next() - 0.5) * jitter;
     return normalize_or(axis_ + u_ * du + v_ * dv, axis_);
   }
 

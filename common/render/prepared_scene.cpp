@@ -7,6 +7,7 @@
 #include "common/geometry/csg.h"
 #include "common/geometry/motion.h"
 #include "common/image/decoded_texture.h"
+#include "common/math/portable_math.h"
 #include "common/texture/image_texture.h"
 
 namespace tessera {
@@ -26,7 +27,7 @@ CameraFrame make_camera_frame(const Camera& camera) {
   frame.up = cross(frame.right, frame.forward);
   if (!(camera.view_angle > 0 && camera.view_angle < 180))
     throw SceneError(nowhere, "viewAngle must lie strictly between 0 and 180 degrees");
-  frame.tan_half_height = std::tan(camera.view_angle * std::numbers::pi / 360);
+  frame.tan_half_height = tessera::tan(camera.view_angle * std::numbers::pi / 360);
   frame.angle_on_smaller_side = camera.view_angle_on_smaller_side;
   return frame;
 }

@@ -9,6 +9,7 @@
 
 #include "common/accel/bvh_traverse.h"
 #include "common/math/float_error.h"
+#include "common/math/portable_math.h"
 #include "common/math/whole_power.h"
 #include "common/render/cone.h"
 #include "common/render/optics.h"
@@ -80,7 +81,7 @@ Tracer::Tracer(const PreparedScene& scene, const RenderSettings& settings, Rende
       illuminate_(lighting_for(effects_)),
       interrupt_(interrupt) {
   for (const Light& light : scene.scene().lights)
-    cos_cutoff_.push_back(std::cos(light.spot.cutoff_degrees * std::numbers::pi / 180));
+    cos_cutoff_.push_back(tessera::cos(light.spot.cutoff_degrees * std::numbers::pi / 180));
 }
 
 void Tracer::check_interrupt() {
@@ -478,9 +479,10 @@ Rgb Tracer::apply_atmosphere(const Rgb& color, double distance) const {
   }
   if (const auto& fog = g.fog; fog && fog->start != fog->end) {
     // Eq. 4.22-4.23, f clipped to [0, 1]; or VRML's exponential fog.
-    const double f = fog->exponential
-                         ? (distance < fog->end ? std::exp(-distance / (fog->end - distance)) : 0.0)
-                         : std::clamp((fog->end - distance) / (fog->end - fog->start), 0.0, 1.0);
+    const double f =
+        fog->exponential
+            ? (distance < fog->end ? tessera::exp(-distance / (fog->end - distance)) : 0.0)
+            : std::clamp((fog->end - distance) / (fog->end - fog->start), 0.0, 1.0);
     out = out * f + fog->color * (1 - f);
   }
   return out;

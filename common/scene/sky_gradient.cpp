@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <numbers>
+#include "common/math/portable_math.h"
 
 namespace tessera {
 namespace {
@@ -22,7 +23,7 @@ Rgb along(const std::vector<double>& angles, const std::vector<Rgb>& colours, do
 }  // namespace
 
 Rgb SkyGradient::colour(const Vec3& d) const {
-  const double from_up = std::acos(std::clamp(dot(d, up), -1.0, 1.0));
+  const double from_up = tessera::acos(std::clamp(dot(d, up), -1.0, 1.0));
   const double from_down = std::numbers::pi - from_up;
   if (!ground_angles.empty() && from_down <= ground_angles.back())
     return along(ground_angles, ground_colours, from_down);

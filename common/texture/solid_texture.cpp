@@ -3,6 +3,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "common/math/portable_math.h"
 #include "common/texture/perlin_noise.h"
 
 namespace tessera {
@@ -23,7 +24,7 @@ bool is_even_cell(double v) { return std::fmod(std::floor(v), 2.0) == 0; }
 Rgb grey(double v) { return {v, v, v}; }
 
 // White on the contour lines (d an integer), black half-way between them.
-double contour(double d) { return (1 + std::cos(kTwoPi * d)) / 2; }
+double contour(double d) { return (1 + tessera::cos(kTwoPi * d)) / 2; }
 
 double distance2(DistanceMeasure measure, double u, double v) {
   switch (measure) {
@@ -32,9 +33,9 @@ double distance2(DistanceMeasure measure, double u, double v) {
     case DistanceMeasure::Manhattan:
       return std::fabs(u) + std::fabs(v);
     case DistanceMeasure::SinSin:
-      return std::sin(kTwoPi * u) * std::sin(kTwoPi * v);
+      return tessera::sin(kTwoPi * u) * tessera::sin(kTwoPi * v);
     case DistanceMeasure::SinCos:
-      return std::sin(kTwoPi * u) * std::cos(kTwoPi * v);
+      return tessera::sin(kTwoPi * u) * tessera::cos(kTwoPi * v);
   }
   return 0;
 }
@@ -74,16 +75,17 @@ struct Evaluate {
   }
   Rgb operator()(const WoodGrain& w) const {
     const double r = std::hypot(p.x, p.y);
-    const double theta = std::atan2(p.y, p.x);
+    const double theta = tessera::atan2(p.y, p.x);
     const double q = scaled(r, w.ring_thickness) +
-                     w.wobble_strength * std::sin(w.wobbles * theta + w.twist * p.z);
+                     w.wobble_strength * tessera::sin(w.wobbles * theta + w.twist * p.z);
     if (!w.smooth) return is_even_cell(q) ? w.first : w.second;
-    const double f = (1 - std::cos(std::numbers::pi * q)) / 2;  // first at even q, second at odd
+    const double f =
+        (1 - tessera::cos(std::numbers::pi * q)) / 2;  // first at even q, second at odd
     return w.first * (1 - f) + w.second * f;
   }
   Rgb operator()(const Marble& m) const {
     const double phase = kTwoPi * p[m.axis] + m.turbulence * turbulence(p, kMarbleOctaves);
-    return m.weights * ((1 + std::sin(phase)) / 2);
+    return m.weights * ((1 + tessera::sin(phase)) / 2);
   }
   Rgb operator()(const CowSpots& c) const {
     const double n = (1 + perlin_noise(p * kCowSpotFrequency)) / 2;

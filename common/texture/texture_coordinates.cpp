@@ -4,6 +4,7 @@
 #include <cmath>
 #include <numbers>
 
+#include "common/math/portable_math.h"
 #include "common/texture/mesh_corners.h"
 
 namespace tessera {
@@ -14,7 +15,7 @@ constexpr double kPi = std::numbers::pi;
 
 // atan(y / x) / 2pi over the whole turn, in [0, 1]: 0 along +x, 1/4 along +y.
 double turn_fraction(double y, double x) {
-  const double a = std::atan2(y, x) / (2 * kPi);
+  const double a = tessera::atan2(y, x) / (2 * kPi);
   return a < 0 ? a + 1 : a;
 }
 
@@ -22,7 +23,7 @@ double turn_fraction(double y, double x) {
 double polar_fraction(const Vec3& p) {
   const double r = length(p);
   if (!(r > 0)) return 0;
-  return std::acos(std::clamp(p.z / r, -1.0, 1.0)) / kPi;
+  return tessera::acos(std::clamp(p.z / r, -1.0, 1.0)) / kPi;
 }
 
 TexCoord cap_coordinates(double x, double y, double r, bool distort) {
@@ -113,7 +114,7 @@ TexCoord torus_texture_coordinates(const Torus& shape, const Vec3& p) {
   if (cos_phi > 1)
     t = 0;
   else if (cos_phi >= -1)
-    t = std::acos(cos_phi) / (2 * kPi);
+    t = tessera::acos(cos_phi) / (2 * kPi);
   if (p.z > 0) t = 1 - t;
   return {turn_fraction(p.y, p.x), t};
 }

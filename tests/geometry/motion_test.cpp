@@ -1,6 +1,7 @@
 // Moving instances (geometry/motion.h): the pose at a time, and swept bounds that hold every
 // pose and every hit over the shutter, also for fast rotations and scalings.
 #include "common/geometry/motion.h"
+#include "common/math/portable_math.h"
 
 #include <gtest/gtest.h>
 
@@ -51,6 +52,22 @@ TEST(Motion, ScaleThenRotateInTheObjectFrameThenTranslateInTheWorld) {
   EXPECT_NEAR(before.x, 5 + h - 0.5, 1e-12);
   EXPECT_NEAR(before.y, -h - 1, 1e-12);
   EXPECT_NEAR(before.z, -1.5, 1e-12);
+}
+
+// transform_at skips pow for a scale of 1 and reuses an axis's power for an equal scale; each
+// axis must still get pow(its scale, time), bit for bit.
+TEST(Motion, EachAxisScalesByThePowerOfItsOwnScale) {
+  for (const Vec3 scale : {Vec3{1, 1, 1}, Vec3{2, 2, 2}, Vec3{1, 2, 2}, Vec3{2, 1, 2},
+                           Vec3{2, 2, 1}, Vec3{2, 3, 2}, Vec3{3, 2, 2}, Vec3{2, 3, 5}}) {
+    ObjectMotion m;
+    m.scale = scale;
+    for (const double time : {-0.5, -0.123, 0.3, 1.0}) {
+      const Affine expected = Affine::scaling(
+          {tessera::pow(scale.x, time), tessera::pow(scale.y, time), tessera::pow(scale.z, time)});
+      EXPECT_EQ(transform_at(Affine::identity(), m, time), expected)
+          << scale.x << " " << scale.y << " " << scale.z << " at " << time;
+    }
+  }
 }
 
 TEST(Motion, SweptBoundsHoldEveryPoseOfFastObjects) {

@@ -83,7 +83,7 @@ TEST(ShadingPower, WholeExponentsMultiplyOthersCallPow) {
     EXPECT_EQ(bits(shading_power(x, e)), bits(whole_power(x, static_cast<unsigned>(e)))) << e;
   for (const double e : {0.5, 2.5, 25.6, 40.000000000000007, 1e-9, kMaxWholeExponent + 1, 1e6,
                          std::numeric_limits<double>::quiet_NaN()})
-    EXPECT_EQ(bits(shading_power(x, e)), bits(std::pow(x, e))) << e;
+    EXPECT_EQ(bits(shading_power(x, e)), bits(tessera::pow(x, e))) << e;
 }
 
 }  // namespace

@@ -10,6 +10,19 @@
 namespace tessera::test {
 namespace {
 
+// The table of rim sines and cosines holds exactly what computing them would give, and counts
+// past it are computed.
+TEST(Cone, RimSinCosAreTheSinCosOfTheRimAngle) {
+  for (int count = 2; count <= kTabledConeRays + 3; ++count) {
+    for (int k = 1; k < count; ++k) {
+      const SinCos expected = tessera::sincos(rim_angle(k, count));
+      const SinCos rim = rim_sincos(k, count);
+      ASSERT_EQ(rim.sin, expected.sin) << k << " of " << count;
+      ASSERT_EQ(rim.cos, expected.cos) << k << " of " << count;
+    }
+  }
+}
+
 TEST(Cone, RimRaysLieAtTheJitteredRadiusAroundTheAxis) {
   const double r_c = 0.25;
   const double lo = std::atan(r_c * (1 - std::sqrt(2.0) / 8));
