@@ -61,6 +61,35 @@ TEST(QuarticMissProof, NeverWhereTheSearchFindsARoot) {
   EXPECT_GT(check.proven, 20000);
 }
 
+// A grazing miss: the quartic dips to a small positive least value inside the interval, where its
+// Bernstein coefficients over the whole interval go negative; over its halves, and theirs, they
+// do not.
+TEST(QuarticMissProof, GrazingMissesAreProvenByHalves) {
+  for (const double least : {1e-2, 1e-3}) {
+    for (const double at : {0.3, 0.55, 0.71}) {
+      const Polynomial p = quadratic_about(at, least) * quadratic_about(2, 1);
+      Checker check;
+      check(p, 0, 1);
+      if (HasFatalFailure()) return;
+      EXPECT_EQ(check.proven, 1) << "least " << least << " at " << at;
+    }
+  }
+}
+
+// A touching root (the search reports one where the value is within rounding of zero) or a
+// near-miss just above zero at the points where the proof halves the interval: each piece's value
+// there is not zero but within the margin, and must not pass.
+TEST(QuarticMissProof, NearTouchingRootsAtTheHalvingPointsAreNotProvenAway) {
+  std::mt19937_64 rng(17);
+  std::uniform_real_distribution<double> unit(0, 1);
+  Checker check;
+  for (int i = 0; i < 20000; ++i) {
+    const double at = std::floor(1 + 15 * unit(rng)) / 16, least = std::pow(10.0, -18 * unit(rng));
+    check(quadratic_about(at, least) * quadratic_about(3 * unit(rng) - 1, random_gap(rng)), 0, 1);
+    if (HasFatalFailure()) return;
+  }
+}
+
 // A ray leaving the surface: a simple root just before lo (rejected as the surface left) or just
 // after it (the search reports it); the proof must tell them apart from lo's value and the slope.
 TEST(QuarticMissProof, RootsJustAfterTheStartAreNotProvenAway) {
