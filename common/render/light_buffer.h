@@ -41,6 +41,8 @@ class LightBuffer {
     bool blocked = false;
     int count = 0;
     std::uint32_t ids[2] = {};
+    // dot(origin - light, origin - light), set unless `walk` or `blocked`.
+    double squared = 0;
   };
 
   // The buffer of the light at `light` over objects with world bounds `bounds`, identified by
@@ -120,6 +122,7 @@ class LightBuffer {
     return out;
   }
   out.walk = false;
+  out.squared = squared;
   out.count = squared < c.reach[0] ? 0 : squared < c.reach[1] ? 1 : 2;
   out.ids[0] = c.ids[0];
   out.ids[1] = c.ids[1];

@@ -201,7 +201,8 @@ double Tracer::shadow_factor(const Feeler& feeler) {
 
 // Forced inline into point_shadow, its one caller: as a call it cost the demo's render 0.65 % of
 // its instructions (the call, and the candidates spilled around it).
-[[gnu::always_inline]] inline bool Tracer::leaves_own_hull(const Hit& hit, const Vec3& d) const {
+[[gnu::always_inline]] inline bool Tracer::leaves_own_hull(const Hit& hit, const Vec3& d,
+                                                           double d_squared) const {
   // A convex solid cannot block a feeler that leaves it outward: the feeler starts on the outer
   // side of the plane that touches the solid there (the offset put it beyond the hit's
   // rounding) and moves away from it; the margin on the angle covers the normal's rounding.
@@ -209,7 +210,7 @@ double Tracer::shadow_factor(const Feeler& feeler) {
   // normal: a feeler leaving it outward leaves the hull.
   constexpr double kLeastCosine = 1e-6;
   const double along = dot(hit.world.normal, d);
-  if (!(along > 0 && along * along > kLeastCosine * kLeastCosine * dot(d, d))) return false;
+  if (!(along > 0 && along * along > kLeastCosine * kLeastCosine * d_squared)) return false;
   if (scene_.convex(hit.instance)) return true;
   const auto* torus = std::get_if<Torus>(&scene_.instances()[hit.instance].geometry);
   if (!torus) return false;
@@ -229,16 +230,26 @@ double Tracer::point_shadow(const Feeler& feeler, const Hit& hit, std::size_t li
   if (candidates.blocked) return 0;
   // No other object can block the feeler: each candidate's own test is all the walk would
   // have found, and with at most two factors their product does not depend on their order.
-  double factor = 1;
-  for (int k = 0; k < candidates.count && factor > 0; ++k) {
-    const std::uint32_t index = candidates.ids[k];
-    if (index == hit.instance && leaves_own_hull(hit, feeler.ray.direction)) continue;
+  // The two are tested one after the other, not in a loop over `candidates.ids`: the loop kept
+  // the candidates in memory and cost its own counter and bound. Forced inline: as a call of its
+  // own it cost more than the loop.
+  const auto factor_of = [&](std::uint32_t index) __attribute__((always_inline)) {
+    // The lookup's squared distance is dot(d, d) bit for bit: the buffer's light is the
+    // feeler's target, Light::position, and d = light - origin is the exact negation of the
+    // lookup's origin - light.
+    if (index == hit.instance && leaves_own_hull(hit, feeler.ray.direction, candidates.squared))
+      return 1.0;
     std::uint32_t object = 0;
-    if (occluded_instance(scene_.instances()[index], feeler.ray, feeler.t_max, object,
-                          stats_.intersections))
-      factor *= scene_.scene().objects[object].material.transparency;
-  }
-  return factor;
+    if (!occluded_instance(scene_.instances()[index], feeler.ray, feeler.t_max, object,
+                           stats_.intersections))
+      return 1.0;
+    return scene_.scene().objects[object].material.transparency;
+  };
+  if (candidates.count == 0) return 1;
+  // 1 * first is first, so the walk's product from 1 is first, then first * second.
+  const double first = factor_of(candidates.ids[0]);
+  if (candidates.count == 1 || !(first > 0)) return first;
+  return first * factor_of(candidates.ids[1]);
 }
 
 Vec3 Tracer::spawn_offset(const Hit& hit, double epsilon) const {

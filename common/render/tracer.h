@@ -115,10 +115,10 @@ class Tracer {
   // own object's not even that when leaves_own_hull. The answer is shadow_factor's, bit for
   // bit; only the counts of BVH nodes and shape tests fall.
   double point_shadow(const Feeler& feeler, const Hit& hit, std::size_t light);
-  // Whether the feeler along `d` from `hit` leaves the hit's object outward, beyond a margin
-  // on the angle, where the object's surface is that of its convex hull (a convex solid
-  // anywhere, a torus on its outer half): then that object cannot block it.
-  bool leaves_own_hull(const Hit& hit, const Vec3& d) const;
+  // Whether the feeler along `d` (`d_squared` = dot(d, d)) from `hit` leaves the hit's object
+  // outward, beyond a margin on the angle, where the object's surface is that of its convex hull
+  // (a convex solid anywhere, a torus on its outer half): then that object cannot block it.
+  bool leaves_own_hull(const Hit& hit, const Vec3& d, double d_squared) const;
   // Eq. 4.25-4.26: the share of `light` (unit direction `l`, `distance` away, infinite for a
   // directional light) that reaches the hit under soft shadows: the mean over a cone of feelers.
   // `offset` as for feeler().
