@@ -328,11 +328,9 @@ double core_cylinder_root(const Vec3& f, double big_r, double P, double Q) {
 // one for the stretch from the span's start to where the ray crosses the torus' plane or, failing
 // that, first crosses its core cylinder: for a ray that enters the tube from outside, usually
 // points deep inside it.
-std::optional<double> first_root_bracket(const Torus& torus, const TorusLine& line,
-                                         const Polynomial& quartic) {
-  const Vec3 f = line.f, u = line.u;
-  const double s_lo = line.s_lo, s_hi = line.s_hi, P = line.P, Q = line.Q;
-  const double big_r = torus.torus_radius;
+std::optional<double> first_root_bracket(const Polynomial& quartic, double s_lo, double s_hi,
+                                         const Vec3& f, const Vec3& u, double big_r, double P,
+                                         double Q) {
   const auto bracket_to = [&](double m) {
     return m > s_lo && m < s_hi ? quartic_first_root_bracket(quartic, s_lo, m) : std::nullopt;
   };
@@ -486,13 +484,13 @@ enum class FrameAnswer { kMiss, kBlocked, kFormed };
 }
 
 // The roots of the frame's quartic with t in (0, t_max), ascending, as in visit_torus_hits.
-// first_root_end() is first_root_bracket's answer for the frame (asked at most once, and only when
-// the search needs it).
-template <class FirstRootEnd, class Take>
+// known_end, when not null, is first_root_bracket's answer for the frame, already found (the
+// packet path's); else it is found here when the search needs it.
+template <class Take>
 [[gnu::always_inline]] inline bool visit_frame_hits(const Torus& torus, const TorusLine& line,
                                                     const Polynomial& quartic, double t_max,
                                                     HitSearch search,
-                                                    const FirstRootEnd& first_root_end,
+                                                    const std::optional<double>* known_end,
                                                     const Take& take) {
   const double big_r = torus.torus_radius, r = torus.tube_radius;
   const Vec3 u = line.u, f = line.f;
@@ -521,7 +519,8 @@ template <class FirstRootEnd, class Take>
   // when take ended the search there.
   bool first_root_taken = false;
   const auto take_bracketed_first_root = [&] {
-    const std::optional<double> end = first_root_end();
+    const std::optional<double> end =
+        known_end ? *known_end : first_root_bracket(quartic, s_lo, s_hi, f, u, big_r, P, Q);
     if (!end) return true;
     const std::optional<LocalHit> hit = hit_at(polished_root(quartic, s_lo, *end));
     if (!hit) return true;  // to the search, which may take its own polish of the root
@@ -582,9 +581,7 @@ bool visit_torus_hits(const Torus& torus, const Ray& ray, double t_max, HitSearc
     case FrameAnswer::kFormed:
       break;
   }
-  const Polynomial quartic = line_quartic(torus, line);
-  const auto first_root_end = [&] { return first_root_bracket(torus, line, quartic); };
-  return visit_frame_hits(torus, line, quartic, t_max, search, first_root_end, take);
+  return visit_frame_hits(torus, line, line_quartic(torus, line), t_max, search, nullptr, take);
 }
 
 }  // namespace
@@ -599,16 +596,17 @@ bool torus_frame(const Torus& torus, const Vec3& origin, const Vec3& direction, 
       FrameAnswer::kFormed)
     return false;
   frame.quartic = line_quartic(torus, frame.line);
-  frame.first_root_end = first_root_bracket(torus, frame.line, frame.quartic);
+  const TorusLine& line = frame.line;
+  frame.first_root_end = first_root_bracket(frame.quartic, line.s_lo, line.s_hi, line.f, line.u,
+                                            torus.torus_radius, line.P, line.Q);
   return true;
 }
 
 bool nearest_torus_hit(const Torus& torus, const TorusFrame& frame, double t_max, LocalHit& hit) {
-  const auto first_root_end = [&] { return frame.first_root_end; };
   return nearest_ordered_hit(
       [&](const auto& take) {
         visit_frame_hits(torus, frame.line, frame.quartic, t_max, HitSearch::kInOrder,
-                         first_root_end, take);
+                         &frame.first_root_end, take);
       },
       hit);
 }
