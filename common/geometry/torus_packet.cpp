@@ -1,11 +1,11 @@
-// Four rays' torus frames at once (torus_packet.h). Each step is torus.cpp's form_line and
-// line_quartic for kInOrder, lane by lane: the same operations on the same operands in the same
-// order. The scalar code's early returns become a mask: a lane is formed when it passes every
-// test, which is when the scalar code passes them all; the values of lanes that fail one are
-// computed and dropped. Where std::max / std::min / std::clamp pick an operand, the choice is made
-// as they make it, NaN and signed zeros included: std::max(a, b) is (a < b ? b : a), which is
-// _mm256_max_pd(b, a) (its second operand when the compare is false or unordered), and
-// std::min(a, b), (b < a ? b : a), is _mm256_min_pd(b, a).
+// Four rays' torus frames at once (torus_packet.h). Each step is torus.cpp's form_line,
+// line_quartic and first_root_bracket (with quartic_first_root_bracket) for kInOrder, lane by
+// lane: the same operations on the same operands in the same order. The scalar code's early returns
+// become a mask: a lane is formed when it passes every test, which is when the scalar code passes
+// them all; the values of lanes that fail one are computed and dropped. Where std::max / std::min /
+// std::clamp pick an operand, the choice is made as they make it, NaN and signed zeros included:
+// std::max(a, b) is (a < b ? b : a), which is _mm256_max_pd(b, a) (its second operand when the
+// compare is false or unordered), and std::min(a, b), (b < a ? b : a), is _mm256_min_pd(b, a).
 #include "common/geometry/torus_packet.h"
 
 #include <bit>
