@@ -484,10 +484,14 @@ enum class FrameAnswer { kMiss, kBlocked, kFormed };
 }
 
 // The roots of the frame's quartic with t in (0, t_max), ascending, as in visit_torus_hits.
+// known_end, when not null, is first_root_bracket's answer for the frame, already found (the
+// packet path's); else it is found here when the search needs it.
 template <class Take>
 [[gnu::always_inline]] inline bool visit_frame_hits(const Torus& torus, const TorusLine& line,
                                                     const Polynomial& quartic, double t_max,
-                                                    HitSearch search, const Take& take) {
+                                                    HitSearch search,
+                                                    const std::optional<double>* known_end,
+                                                    const Take& take) {
   const double big_r = torus.torus_radius, r = torus.tube_radius;
   const Vec3 u = line.u, f = line.f;
   const double len = line.len, t0 = line.t0, s_lo = line.s_lo, s_hi = line.s_hi;
@@ -515,7 +519,8 @@ template <class Take>
   // when take ended the search there.
   bool first_root_taken = false;
   const auto take_bracketed_first_root = [&] {
-    const std::optional<double> end = first_root_bracket(quartic, s_lo, s_hi, f, u, big_r, P, Q);
+    const std::optional<double> end =
+        known_end ? *known_end : first_root_bracket(quartic, s_lo, s_hi, f, u, big_r, P, Q);
     if (!end) return true;
     const std::optional<LocalHit> hit = hit_at(polished_root(quartic, s_lo, *end));
     if (!hit) return true;  // to the search, which may take its own polish of the root
@@ -576,7 +581,7 @@ bool visit_torus_hits(const Torus& torus, const Ray& ray, double t_max, HitSearc
     case FrameAnswer::kFormed:
       break;
   }
-  return visit_frame_hits(torus, line, line_quartic(torus, line), t_max, search, take);
+  return visit_frame_hits(torus, line, line_quartic(torus, line), t_max, search, nullptr, take);
 }
 
 }  // namespace
@@ -591,13 +596,17 @@ bool torus_frame(const Torus& torus, const Vec3& origin, const Vec3& direction, 
       FrameAnswer::kFormed)
     return false;
   frame.quartic = line_quartic(torus, frame.line);
+  const TorusLine& line = frame.line;
+  frame.first_root_end = first_root_bracket(frame.quartic, line.s_lo, line.s_hi, line.f, line.u,
+                                            torus.torus_radius, line.P, line.Q);
   return true;
 }
 
 bool nearest_torus_hit(const Torus& torus, const TorusFrame& frame, double t_max, LocalHit& hit) {
   return nearest_ordered_hit(
       [&](const auto& take) {
-        visit_frame_hits(torus, frame.line, frame.quartic, t_max, HitSearch::kInOrder, take);
+        visit_frame_hits(torus, frame.line, frame.quartic, t_max, HitSearch::kInOrder,
+                         &frame.first_root_end, take);
       },
       hit);
 }

@@ -1,6 +1,8 @@
 // Parts of the ray / torus intersection (torus.cpp) that its tests reach directly.
 #pragma once
 
+#include <optional>
+
 #include "common/geometry/local_hit.h"
 #include "common/math/polynomial.h"
 #include "common/math/ray.h"
@@ -33,7 +35,9 @@ inline constexpr double kTorusBoxPad = 1 + 1e-9;
 // A ray's frame for its quartic, as the nearest-hit query forms it: origin f at the line's point
 // nearest the centre, unit direction u, s = (t - t0) len with len = |d|; [s_lo, s_hi] the span
 // through the padded box and (0, t_max); P and Q as in F(f + s u) = (A s^2 + B s + C)^2 -
-// 4 R^2 (P s^2 + 2 Q s + S); the quartic in s.
+// 4 R^2 (P s^2 + 2 Q s + S); the quartic in s; and the end of the bracket [s_lo, end] of the
+// search's first root that the nearest-hit query polishes it in (first_root_bracket in torus.cpp),
+// nullopt when none is shown.
 struct TorusLine {
   Vec3 u, f;
   double len, t0, s_lo, s_hi, P, Q;
@@ -41,10 +45,11 @@ struct TorusLine {
 struct TorusFrame {
   TorusLine line;
   Polynomial quartic;
+  std::optional<double> first_root_end;
 };
 
-// The frame of the ray from `origin` along `direction` for intersect_torus with t_max; false when
-// the ray is shown to miss before the quartic is formed.
+// The frame of the ray from `origin` along `direction` for intersect_torus with t_max, its
+// first-root bracket included; false when the ray is shown to miss before the quartic is formed.
 bool torus_frame(const Torus& torus, const Vec3& origin, const Vec3& direction, double t_max,
                  TorusFrame& frame);
 // intersect_torus from the ray's frame.

@@ -1,15 +1,17 @@
-// Four rays' torus frames at once (torus_packet.h). Each step is torus.cpp's form_line and
-// line_quartic for kInOrder, lane by lane: the same operations on the same operands in the same
-// order. The scalar code's early returns become a mask: a lane is formed when it passes every
-// test, which is when the scalar code passes them all; the values of lanes that fail one are
-// computed and dropped. Where std::max / std::min / std::clamp pick an operand, the choice is made
-// as they make it, NaN and signed zeros included: std::max(a, b) is (a < b ? b : a), which is
-// _mm256_max_pd(b, a) (its second operand when the compare is false or unordered), and
-// std::min(a, b), (b < a ? b : a), is _mm256_min_pd(b, a).
+// Four rays' torus frames at once (torus_packet.h). Each step is torus.cpp's form_line,
+// line_quartic and first_root_bracket (with quartic_first_root_bracket) for kInOrder, lane by
+// lane: the same operations on the same operands in the same order. The scalar code's early returns
+// become a mask: a lane is formed when it passes every test, which is when the scalar code passes
+// them all; the values of lanes that fail one are computed and dropped. Where std::max / std::min /
+// std::clamp pick an operand, the choice is made as they make it, NaN and signed zeros included:
+// std::max(a, b) is (a < b ? b : a), which is _mm256_max_pd(b, a) (its second operand when the
+// compare is false or unordered), and std::min(a, b), (b < a ? b : a), is _mm256_min_pd(b, a).
 #include "common/geometry/torus_packet.h"
 
 #include <bit>
 #include <cmath>
+#include <limits>
+#include <optional>
 
 #include "common/math/float_error.h"
 
@@ -114,6 +116,98 @@ struct Lanes {
   t_exit = select(zero, t_exit, std_min(t_exit, t_far));
 }
 
+// next_up (float_error.h) per lane, for lanes that are positive or +infinity (NaN lanes stay NaN;
+// others are not asked for): the bit pattern one step up, unless infinite.
+[[gnu::target("avx2"), gnu::always_inline]] inline V next_up_positive(V x) {
+  const V stepped =
+      _mm256_castsi256_pd(_mm256_add_epi64(_mm256_castpd_si256(x), _mm256_set1_epi64x(1)));
+  return select(_mm256_cmp_pd(x, splat(kInfinity), _CMP_LT_OQ), stepped, x);
+}
+
+// keep_left_half (quartic_first_root.cpp) per lane.
+[[gnu::target("avx2"), gnu::always_inline]] inline void keep_left_half(V b[5]) {
+  const V half = splat(0.5);
+  const V b01 = mul(half, add(b[0], b[1])), b12 = mul(half, add(b[1], b[2])),
+          b23 = mul(half, add(b[2], b[3])), b34 = mul(half, add(b[3], b[4]));
+  const V b012 = mul(half, add(b01, b12)), b123 = mul(half, add(b12, b23)),
+          b234 = mul(half, add(b23, b34));
+  const V b0123 = mul(half, add(b012, b123)), b1234 = mul(half, add(b123, b234));
+  b[1] = b01;
+  b[2] = b012;
+  b[3] = b0123;
+  b[4] = mul(half, add(b0123, b1234));
+}
+
+// quartic_first_root_bracket(p, lo, m) (quartic_first_root.cpp) for the lanes in `asked` (a
+// compare's mask), c the quartics' coefficients: the answer's lanes where it shows a bracket,
+// whose ends are written into `end` (its other lanes kept). The scalar code's early returns are
+// masks; its halvings stop when no lane is left open.
+[[gnu::target("avx2"), gnu::always_inline]] inline V quartic_first_root_bracket_lanes(const V c[5],
+                                                                                      V lo, V m,
+                                                                                      V asked,
+                                                                                      V& end) {
+  const V zero = _mm256_setzero_pd();
+  V open = _mm256_and_pd(asked, _mm256_cmp_pd(c[4], zero, _CMP_NEQ_UQ));
+  open = _mm256_and_pd(open, _mm256_cmp_pd(lo, m, _CMP_LT_OQ));
+  // quartic_value_pass and (f1).
+  V q[5];
+  q[4] = c[4];
+  q[3] = add(c[3], mul(lo, q[4]));
+  q[2] = add(c[2], mul(lo, q[3]));
+  q[1] = add(c[1], mul(lo, q[2]));
+  q[0] = add(c[0], mul(lo, q[1]));
+  open = _mm256_and_pd(open, _mm256_cmp_pd(q[0], zero, _CMP_GT_OQ));
+  // finish_taylor_shift.
+  q[3] = add(q[3], mul(lo, q[4]));
+  q[2] = add(q[2], mul(lo, q[3]));
+  q[1] = add(q[1], mul(lo, q[2]));
+  q[3] = add(q[3], mul(lo, q[4]));
+  q[2] = add(q[2], mul(lo, q[3]));
+  q[3] = add(q[3], mul(lo, q[4]));
+  const V width = sub(m, lo);
+  const V largest = add(magnitude(lo), next_up_positive(width));
+  // quartic_error_scale.
+  const V s = add(mul(add(mul(add(mul(add(mul(magnitude(c[4]), largest), magnitude(c[3])), largest),
+                                  magnitude(c[2])),
+                              largest),
+                          magnitude(c[1])),
+                      largest),
+                  magnitude(c[0]));
+  open = _mm256_and_pd(open, _mm256_and_pd(_mm256_cmp_pd(s, splat(1e-100), _CMP_GT_OQ),
+                                           _mm256_cmp_pd(s, splat(1e100), _CMP_LT_OQ)));
+  open = _mm256_and_pd(open, _mm256_cmp_pd(magnitude(largest), splat(kInfinity), _CMP_LT_OQ));
+  V found = zero;
+  if (_mm256_movemask_pd(open) == 0) return found;
+  const V low = negate(mul(splat(gamma_bound(128)), s));  // -margin
+  // bernstein_over.
+  V w = width;
+  const V w2 = mul(w, w);
+  const V a1 = mul(q[1], w), a2 = mul(q[2], w2), a3 = mul(q[3], mul(w2, w)),
+          a4 = mul(q[4], mul(w2, w2));
+  V b[5] = {q[0], add(q[0], mul(a1, splat(0.25))),
+            add(add(q[0], mul(a1, splat(0.5))), mul(a2, splat(1.0 / 6))),
+            add(add(add(q[0], mul(a1, splat(0.75))), mul(a2, splat(0.5))), mul(a3, splat(0.25))),
+            add(add(add(add(q[0], a1), a2), a3), a4)};
+  for (int halvings = 0;; ++halvings) {
+    open = _mm256_and_pd(open, _mm256_cmp_pd(b[4], low, _CMP_LT_OQ));  // (f3)
+    V falls = _mm256_cmp_pd(sub(b[1], b[0]), low, _CMP_LT_OQ);         // (f2)
+    for (int i = 1; i < 4; ++i)
+      falls = _mm256_and_pd(falls, _mm256_cmp_pd(sub(b[i + 1], b[i]), low, _CMP_LT_OQ));
+    const V shown = _mm256_and_pd(open, falls);
+    end = select(shown, halvings == 0 ? m : add(lo, w), end);
+    found = _mm256_or_pd(found, shown);
+    open = _mm256_andnot_pd(shown, open);
+    if (halvings == 3 || _mm256_movemask_pd(open) == 0) return found;
+    keep_left_half(b);
+    w = mul(w, splat(0.5));
+  }
+}
+
+// The lanes where m lies in (s_lo, s_hi) (first_root_bracket's bracket_to).
+[[gnu::target("avx2"), gnu::always_inline]] inline V in_span(V m, V s_lo, V s_hi) {
+  return _mm256_and_pd(_mm256_cmp_pd(m, s_lo, _CMP_GT_OQ), _mm256_cmp_pd(m, s_hi, _CMP_LT_OQ));
+}
+
 }  // namespace
 
 [[gnu::target("avx2")]] unsigned torus_frames_avx2(const Torus& torus, const Vec3& o,
@@ -185,12 +279,40 @@ struct Lanes {
   const V two_a = mul(splat(2.0), A);
   const V fz2 = mul(fz, fz);
   const V rho_minus = sub(rho, splat(big_r)), rho_plus = add(rho, splat(big_r));
-  const Lanes c4 = lanes_of(mul(A, A));
-  const Lanes c3 = lanes_of(mul(two_a, B));
-  const Lanes c2 = lanes_of(sub(add(mul(B, B), mul(two_a, C)), mul(splat(4 * big_r2), P)));
-  const Lanes c1 = lanes_of(sub(mul(mul(splat(2.0), B), C), mul(splat(8 * big_r2), Q)));
-  const Lanes c0 = lanes_of(mul(sub(add(mul(rho_minus, rho_minus), fz2), splat(r * r)),
-                                sub(add(mul(rho_plus, rho_plus), fz2), splat(r * r))));
+  const V c[5] = {mul(sub(add(mul(rho_minus, rho_minus), fz2), splat(r * r)),
+                      sub(add(mul(rho_plus, rho_plus), fz2), splat(r * r))),
+                  sub(mul(mul(splat(2.0), B), C), mul(splat(8 * big_r2), Q)),
+                  sub(add(mul(B, B), mul(two_a, C)), mul(splat(4 * big_r2), P)), mul(two_a, B),
+                  mul(A, A)};
+
+  // first_root_bracket (torus.cpp): from the span's start to where the ray crosses the torus's
+  // plane, or failing that, first crosses its core cylinder (core_cylinder_root), when in the span.
+  const V zero = _mm256_setzero_pd();
+  V end = zero;
+  const V plane = divide(negate(fz), uz);
+  V bracketed = quartic_first_root_bracket_lanes(
+      c, s_lo, plane,
+      _mm256_and_pd(_mm256_and_pd(formed, _mm256_cmp_pd(uz, zero, _CMP_NEQ_UQ)),
+                    in_span(plane, s_lo, s_hi)),
+      end);
+  const V rest = _mm256_andnot_pd(bracketed, formed);
+  if (_mm256_movemask_pd(rest) != 0) {
+    const V k = sub(add(mul(fx, fx), mul(fy, fy)), splat(big_r2));
+    const V disc = sub(mul(Q, Q), mul(P, k));
+    const V crosses =
+        _mm256_and_pd(_mm256_cmp_pd(P, zero, _CMP_GT_OQ), _mm256_cmp_pd(disc, zero, _CMP_GE_OQ));
+    const V root =
+        select(crosses, _mm256_sqrt_pd(disc), splat(std::numeric_limits<double>::quiet_NaN()));
+    const V cylinder = divide(sub(negate(Q), root), P);
+    bracketed = _mm256_or_pd(
+        bracketed, quartic_first_root_bracket_lanes(
+                       c, s_lo, cylinder, _mm256_and_pd(rest, in_span(cylinder, s_lo, s_hi)), end));
+  }
+  const unsigned bracketed_lanes = static_cast<unsigned>(_mm256_movemask_pd(bracketed));
+  const Lanes ends = lanes_of(end);
+
+  const Lanes c0 = lanes_of(c[0]), c1 = lanes_of(c[1]), c2 = lanes_of(c[2]), c3 = lanes_of(c[3]),
+              c4 = lanes_of(c[4]);
   const Lanes ux_ = lanes_of(ux), uy_ = lanes_of(uy), uz_ = lanes_of(uz);
   const Lanes fx_ = lanes_of(fx), fy_ = lanes_of(fy), fz_ = lanes_of(fz);
   const Lanes len_ = lanes_of(len), t0_ = lanes_of(t0), s_lo_ = lanes_of(s_lo),
@@ -207,6 +329,8 @@ struct Lanes {
                   P_.v[l],
                   Q_.v[l]};
     frame.quartic = Polynomial{{c0.v[l], c1.v[l], c2.v[l], c3.v[l], c4.v[l]}, 4};
+    frame.first_root_end =
+        (bracketed_lanes >> l) & 1u ? std::optional<double>(ends.v[l]) : std::nullopt;
   }
   return formed_lanes;
 }

@@ -1,8 +1,8 @@
 // The nearest hits of up to four rays from one origin on a torus (camera rays of neighbouring
-// pixels reaching the same torus instance together): each ray's frame and quartic (torus.h) are
-// formed four lanes at once with AVX2, with per lane the IEEE operations of torus_frame in the
-// same order (no FMA: the build has -ffp-contract=off), so the same bits; each ray then searches
-// its quartic's roots alone.
+// pixels reaching the same torus instance together): each ray's frame, quartic and first-root
+// bracket (torus.h) are formed four lanes at once with AVX2, with per lane the IEEE operations of
+// torus_frame in the same order (no FMA: the build has -ffp-contract=off), so the same bits; each
+// ray then searches its quartic's roots alone.
 #pragma once
 
 #include "common/geometry/local_hit.h"

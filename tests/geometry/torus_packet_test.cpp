@@ -1,6 +1,7 @@
 // Four rays' torus frames formed together with AVX2 (torus_packet.h) must be torus_frame's, bit
-// for bit, and the instance's packet test (intersect_instance_packet) intersect_instance's, with
-// every box kernel (the scalar path stays for machines without AVX2).
+// for bit (their first-root brackets included), and the instance's packet test
+// (intersect_instance_packet) intersect_instance's, with every box kernel (the scalar path stays
+// for machines without AVX2).
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -31,7 +32,8 @@ bool same_frame(const TorusFrame& a, const TorusFrame& b) {
               same_value(p.P, q.P) && same_value(p.Q, q.Q) && a.quartic.degree == b.quartic.degree;
   for (int i = 0; i <= kMaxPolynomialDegree; ++i)
     same = same && same_value(a.quartic.c[i], b.quartic.c[i]);
-  return same;
+  return same && a.first_root_end.has_value() == b.first_root_end.has_value() &&
+         (!a.first_root_end || same_value(*a.first_root_end, *b.first_root_end));
 }
 
 bool same_hit(const WorldHit& a, const WorldHit& b) {
@@ -67,7 +69,7 @@ TEST(TorusPacket, FramesAreTorusFramesBitForBit) {
   if (!wide_box_kernel_supported(WideBoxKernel::Avx2)) GTEST_SKIP() << "no AVX2";
   std::mt19937_64 rng(11);
   std::uniform_real_distribution<double> unit(-1, 1);
-  int formed = 0, compared = 0;
+  int formed = 0, compared = 0, bracketed = 0, halved = 0;
   for (const Torus& torus : kTori) {
     for (int i = 0; i < 40000; ++i) {
       // Mostly an eye outside the box with rays towards the torus, as a camera's; some of
@@ -93,11 +95,19 @@ TEST(TorusPacket, FramesAreTorusFramesBitForBit) {
         ++formed;
         ASSERT_TRUE(same_frame(together[l], alone)) << i << " lane " << l;
         ++compared;
+        if (!alone.first_root_end) continue;
+        ++bracketed;
+        // Not the plane's crossing: the cylinder's, or a halving's end.
+        const TorusLine& line = alone.line;
+        if (*alone.first_root_end != -line.f.z / line.u.z) ++halved;
       }
     }
   }
   EXPECT_GT(formed, 100000);
   EXPECT_EQ(compared, formed);
+  // The first-root brackets, both of first_root_bracket's points and the halvings among them.
+  EXPECT_GT(bracketed, 100000);
+  EXPECT_GT(halved, 50000);
 }
 
 // Whole packet tests of tori, turned (full products) and diagonal, against each lane alone, with
