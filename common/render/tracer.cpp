@@ -207,16 +207,17 @@ double Tracer::shadow_factor(const Feeler& feeler) {
   // side of the plane that touches the solid there (the offset put it beyond the hit's
   // rounding) and moves away from it; the margin on the angle covers the normal's rounding.
   // A torus's outer half (rho >= R) lies on the boundary of its convex hull, with the same
-  // normal: a feeler leaving it outward leaves the hull.
+  // normal: a feeler leaving it outward leaves the hull. Which of these the object is comes from
+  // the prepared scene: deciding it here (a bit of a vector<bool>, then the shape's variant)
+  // cost the tori's render 0.24 % of its instructions.
   constexpr double kLeastCosine = 1e-6;
   const double along = dot(hit.world.normal, d);
   if (!(along > 0 && along * along > kLeastCosine * kLeastCosine * d_squared)) return false;
-  if (scene_.convex(hit.instance)) return true;
-  const auto* torus = std::get_if<Torus>(&scene_.instances()[hit.instance].geometry);
-  if (!torus) return false;
+  const OwnHull& hull = scene_.own_hull(hit.instance);
+  if (hull.kind == OwnHull::Kind::Convex) return true;
+  if (hull.kind != OwnHull::Kind::TorusOuterHalf) return false;
   const Vec3& p = hit.world.object_point;
-  const double big = torus->torus_radius;
-  return p.x * p.x + p.y * p.y > big * big * (1 + kLeastCosine);
+  return p.x * p.x + p.y * p.y > hull.torus_radius_squared * (1 + kLeastCosine);
 }
 
 double Tracer::point_shadow(const Feeler& feeler, const Hit& hit, std::size_t light) {
