@@ -229,9 +229,6 @@ double Tracer::shadow_factor(const Feeler& feeler) {
   const LightBuffer::Candidates candidates = buffer->candidates(feeler.ray.origin);
   if (candidates.walk) return shadow_factor(feeler);
   ++stats_.shadow_rays;
-  poll_interrupt();
-  // An opaque object blocks it: the walk's product would hold a factor 0.
-  if (candidates.blocked) return 0;
   // No other object can block the feeler: each candidate's own test is all the walk would
   // have found, and with at most two factors their product does not depend on their order.
   // The two are tested one after the other, not in a loop over `candidates.ids`: the loop kept
@@ -249,11 +246,16 @@ double Tracer::shadow_factor(const Feeler& feeler) {
       return 1.0;
     return scene_.scene().objects[object].material.transparency;
   };
-  if (candidates.count == 0) return 1;
-  // 1 * first is first, so the walk's product from 1 is first, then first * second.
-  const double first = factor_of(candidates.ids[0]);
-  if (candidates.count == 1 || !(first > 0)) return first;
-  return first * factor_of(candidates.ids[1]);
+  // An opaque object blocks it: the walk's product would hold a factor 0.
+  double factor = 0;
+  if (!candidates.blocked) {
+    // 1 * first is first, so the walk's product from 1 is first, then first * second.
+    factor = candidates.count == 0 ? 1 : factor_of(candidates.ids[0]);
+    if (candidates.count == 2 && factor > 0) factor *= factor_of(candidates.ids[1]);
+  }
+  // Polled last: before the tests, the candidates stayed in memory across its rare call.
+  poll_interrupt();
+  return factor;
 }
 
 Vec3 Tracer::spawn_offset(const Hit& hit, double epsilon) const {
