@@ -220,17 +220,23 @@ Bvh build_scene_bvh(const std::vector<Bounds3>& bounds, const std::vector<bool>&
   return bvh;
 }
 
-bool convex_solid(const ShapeGeometry& geometry) {
+OwnHull own_hull(const ShapeGeometry& geometry) {
   if (std::holds_alternative<Sphere>(geometry) || std::holds_alternative<Cube>(geometry))
-    return true;
-  const auto* cylinder = std::get_if<TaperedCylinder>(&geometry);
-  return cylinder && cylinder->wall && cylinder->base_cap && cylinder->top_cap;
+    return {OwnHull::Kind::Convex};
+  if (const auto* cylinder = std::get_if<TaperedCylinder>(&geometry)) {
+    if (cylinder->wall && cylinder->base_cap && cylinder->top_cap) return {OwnHull::Kind::Convex};
+  } else if (const auto* torus = std::get_if<Torus>(&geometry)) {
+    // The outer half (rho >= R) lies on the boundary of the torus's convex hull, with the same
+    // normal.
+    return {OwnHull::Kind::TorusOuterHalf, torus->torus_radius * torus->torus_radius};
+  }
+  return {};
 }
 
-std::vector<bool> find_convex(const std::vector<Instance>& instances) {
-  std::vector<bool> out;
+std::vector<OwnHull> find_own_hulls(const std::vector<Instance>& instances) {
+  std::vector<OwnHull> out;
   out.reserve(instances.size());
-  for (const Instance& instance : instances) out.push_back(convex_solid(instance.geometry));
+  for (const Instance& instance : instances) out.push_back(own_hull(instance.geometry));
   return out;
 }
 
@@ -313,7 +319,7 @@ PreparedScene::PreparedScene(const Scene& scene, BvhMode mode, int build_threads
   }
   bvh_ = build_scene_bvh(bounds, csg_children, mode);
   transparent_neighbours_ = find_transparent_neighbours(*scene_, effects_, bounds, csg_children);
-  convex_ = find_convex(instances_);
+  own_hulls_ = find_own_hulls(instances_);
   if (mode != BvhMode::None)
     light_buffers_ = build_light_buffers(*scene_, bvh_, bounds, instances_);
   light_buffers_.resize(scene_->lights.size());

@@ -56,6 +56,20 @@ class ImageRays {
   double tan_half_;  // of the vertical angle
 };
 
+// Where a ray leaving an instance's surface outward cannot meet that instance again, the
+// surface there being that of its convex hull (Tracer::leaves_own_hull): decided once for each
+// instance, not again for every shadow feeler.
+struct OwnHull {
+  enum class Kind : std::uint8_t {
+    None,            // nowhere known
+    Convex,          // anywhere: a closed convex solid under an affine map (sphere, cube, closed
+                     // tapered cylinder)
+    TorusOuterHalf,  // where rho^2 = x^2 + y^2 (object space) exceeds torus_radius_squared
+  };
+  Kind kind = Kind::None;
+  double torus_radius_squared = 0;  // R^2, for TorusOuterHalf
+};
+
 class PreparedScene {
  public:
   // Throws SceneError for what cannot be traced (degenerate camera, an image texture that
@@ -88,9 +102,7 @@ class PreparedScene {
     return light_buffers_[light] && !light_buffers_[light]->empty() ? &*light_buffers_[light]
                                                                     : nullptr;
   }
-  // Whether the instance is a closed convex solid under an affine map (sphere, cube, closed
-  // tapered cylinder): a ray leaving its surface outward cannot meet it again.
-  bool convex(std::uint32_t instance) const { return convex_[instance]; }
+  const OwnHull& own_hull(std::uint32_t instance) const { return own_hulls_[instance]; }
   // What the scene asks for that this renderer does not simulate, or that changes nothing
   // here, one line each.
   const std::vector<std::string>& unsupported() const { return unsupported_; }
@@ -107,7 +119,7 @@ class PreparedScene {
   Bvh bvh_;
   std::vector<std::vector<std::uint32_t>> transparent_neighbours_;
   std::vector<std::optional<LightBuffer>> light_buffers_;  // per Scene::lights
-  std::vector<bool> convex_;                               // per instance
+  std::vector<OwnHull> own_hulls_;                         // per instance
   std::vector<std::string> unsupported_;
 };
 

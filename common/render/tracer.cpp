@@ -207,27 +207,28 @@ double Tracer::shadow_factor(const Feeler& feeler) {
   // side of the plane that touches the solid there (the offset put it beyond the hit's
   // rounding) and moves away from it; the margin on the angle covers the normal's rounding.
   // A torus's outer half (rho >= R) lies on the boundary of its convex hull, with the same
-  // normal: a feeler leaving it outward leaves the hull.
+  // normal: a feeler leaving it outward leaves the hull. Which of these the object is comes from
+  // the prepared scene: deciding it here (a bit of a vector<bool>, then the shape's variant)
+  // cost the tori's render 0.24 % of its instructions.
   constexpr double kLeastCosine = 1e-6;
   const double along = dot(hit.world.normal, d);
   if (!(along > 0 && along * along > kLeastCosine * kLeastCosine * d_squared)) return false;
-  if (scene_.convex(hit.instance)) return true;
-  const auto* torus = std::get_if<Torus>(&scene_.instances()[hit.instance].geometry);
-  if (!torus) return false;
+  const OwnHull& hull = scene_.own_hull(hit.instance);
+  if (hull.kind == OwnHull::Kind::Convex) return true;
+  if (hull.kind != OwnHull::Kind::TorusOuterHalf) return false;
   const Vec3& p = hit.world.object_point;
-  const double big = torus->torus_radius;
-  return p.x * p.x + p.y * p.y > big * big * (1 + kLeastCosine);
+  return p.x * p.x + p.y * p.y > hull.torus_radius_squared * (1 + kLeastCosine);
 }
 
-double Tracer::point_shadow(const Feeler& feeler, const Hit& hit, std::size_t light) {
+// Forced inline into local_illumination, its one caller: as a call it cost its saved registers
+// and arguments on every feeler.
+[[gnu::always_inline]] inline double Tracer::point_shadow(const Feeler& feeler, const Hit& hit,
+                                                          std::size_t light) {
   const LightBuffer* buffer = scene_.light_buffer(light);
   if (!buffer) return shadow_factor(feeler);
   const LightBuffer::Candidates candidates = buffer->candidates(feeler.ray.origin);
   if (candidates.walk) return shadow_factor(feeler);
   ++stats_.shadow_rays;
-  poll_interrupt();
-  // An opaque object blocks it: the walk's product would hold a factor 0.
-  if (candidates.blocked) return 0;
   // No other object can block the feeler: each candidate's own test is all the walk would
   // have found, and with at most two factors their product does not depend on their order.
   // The two are tested one after the other, not in a loop over `candidates.ids`: the loop kept
@@ -245,11 +246,16 @@ double Tracer::point_shadow(const Feeler& feeler, const Hit& hit, std::size_t li
       return 1.0;
     return scene_.scene().objects[object].material.transparency;
   };
-  if (candidates.count == 0) return 1;
-  // 1 * first is first, so the walk's product from 1 is first, then first * second.
-  const double first = factor_of(candidates.ids[0]);
-  if (candidates.count == 1 || !(first > 0)) return first;
-  return first * factor_of(candidates.ids[1]);
+  // An opaque object blocks it: the walk's product would hold a factor 0.
+  double factor = 0;
+  if (!candidates.blocked) {
+    // 1 * first is first, so the walk's product from 1 is first, then first * second.
+    factor = candidates.count == 0 ? 1 : factor_of(candidates.ids[0]);
+    if (candidates.count == 2 && factor > 0) factor *= factor_of(candidates.ids[1]);
+  }
+  // Polled last: before the tests, the candidates stayed in memory across its rare call.
+  poll_interrupt();
+  return factor;
 }
 
 Vec3 Tracer::spawn_offset(const Hit& hit, double epsilon) const {

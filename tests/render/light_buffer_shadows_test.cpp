@@ -61,6 +61,43 @@ TEST(LightBufferShadows, TheInnerSideOfATorusIsShadowedByItself) {
   EXPECT_NEAR(trace_ray(prepared, {{-3, 0, 0}, {1, 0, 0}, 0}, hard_shadows()).g, 0.5, 1e-9);
 }
 
+// Which instances a feeler leaving them outward may skip, decided once per instance: closed
+// convex solids anywhere, a torus where rho^2 exceeds R^2, nothing else.
+TEST(LightBufferShadows, OwnHullsByShape) {
+  Scene scene;
+  scene.camera = camera_on_z();
+  TaperedCylinder open;
+  open.top_cap = false;
+  for (const ShapeGeometry& shape :
+       {ShapeGeometry{Sphere{}}, ShapeGeometry{Cube{}}, ShapeGeometry{TaperedCylinder{}},
+        ShapeGeometry{open}, ShapeGeometry{Torus{0.4, 2}}})
+    scene.objects.push_back(object(shape, Affine::identity(), kMatte));
+  const PreparedScene prepared(scene, BvhMode::Sah);
+  for (std::uint32_t k = 0; k < 3; ++k)
+    EXPECT_EQ(prepared.own_hull(k).kind, OwnHull::Kind::Convex) << k;
+  EXPECT_EQ(prepared.own_hull(3).kind, OwnHull::Kind::None);
+  EXPECT_EQ(prepared.own_hull(4).kind, OwnHull::Kind::TorusOuterHalf);
+  EXPECT_EQ(prepared.own_hull(4).torus_radius_squared, 4.0);
+}
+
+// A feeler that leaves a sphere, a cube or a torus's outer half outward, towards a light with
+// nothing else near, tests no shape at all: its own object is its only candidate, and skipped.
+TEST(LightBufferShadows, AFeelerLeavingItsOwnHullTestsNothing) {
+  const ShapeGeometry shapes[] = {Sphere{}, Cube{}, Torus{0.4, 1}};
+  for (const ShapeGeometry& shape : shapes) {
+    Scene scene;
+    scene.camera = camera_on_z();
+    scene.objects.push_back(object(shape, Affine::identity(), kMatte));
+    scene.lights.push_back(point_light({-5, 0.5, 0.1}, {1, 1, 1}));
+    const PreparedScene prepared(scene, BvhMode::Sah);
+    ASSERT_NE(prepared.light_buffer(0), nullptr);
+    double value = 0;
+    EXPECT_EQ(feeler_work(prepared, {{-3, 0, 0}, {1, 0, 0}, 0}, value).shape_tests, 0u)
+        << shape.index();
+    EXPECT_GT(value, 0.0);
+  }
+}
+
 // Transparent slabs between a floor and the light straight above it: one or two are each
 // tested alone (the buffer's candidates; the floor, 0.01 below the feeler's origin in its
 // direction, is not one), three make the feeler walk the BVH. The factor is their product
