@@ -58,7 +58,7 @@ inline double horner_error(const double* c, int n, double x) {
 // Error-free transformations (Ogita, Rump and Oishi, "Accurate sum and dot product", SIAM J. Sci.
 // Comput. 26(6), 2005): a + b = sum + error and a * b = product + error exactly, in plain
 // additions and multiplications (no FMA: the build has none to rely on). Dekker's splitting
-// overflows above about 2^996, making the error NaN, which every caller's bracket test rejects.
+// overflows above about 2^996, making the error, and so the compensated value, NaN.
 inline double two_sum(double a, double b, double& error) {
   const double sum = a + b, b_part = sum - a;
   error = (a - (sum - b_part)) + (b - b_part);
@@ -114,13 +114,16 @@ double bracketed_root(const double* c, const double* dc, double a, double b, dou
   const double lo = a, hi = b;
   // x polished: one Newton step on the compensated value, kept in the whole bracket (a and b
   // come from plain values, whose signs may be wrong within their rounding of the root); a step
-  // to or past an end of it means the root rounds to that end, so the double next to it.
-  const auto polished = [&](double x, double dfx) {
+  // to or past an end of it means the root rounds to that end, so the double next to it. Where
+  // Dekker's splitting overflows (coefficients or values above about 2^996) the compensated
+  // value is NaN, and the step is main's, on the plain value.
+  const auto polished = [&](double x, double fx, double dfx) {
     if (dfx == 0) return x;
-    const double next = x - compensated_horner(c, N, x) / dfx;
+    const double compensated = compensated_horner(c, N, x);
+    const double next = x - (compensated == compensated ? compensated : fx) / dfx;
     if (next <= lo) return std::nextafter(lo, hi);
     if (next >= hi) return std::nextafter(hi, lo);
-    return next == next ? next : x;  // NaN: Dekker's splitting overflowed
+    return next == next ? next : x;  // NaN from an infinite fx or dfx
   };
   // The sign at the bracket's left end, which stays the same as the end moves.
   const bool positive_at_a = fa > 0;
@@ -128,18 +131,18 @@ double bracketed_root(const double* c, const double* dc, double a, double b, dou
   for (int iteration = 0; iteration < 200; ++iteration) {
     const double fx = estrin(c, N, x);
     const double dfx = estrin(dc, N - 1, x);
-    if (fx == 0) return polished(x, dfx);
+    if (fx == 0) return polished(x, fx, dfx);
     if (positive_at_a ? fx > 0 : fx < 0)
       a = x;
     else
       b = x;
     // Converged: Newton's step is below the rounding of x (|fx / dfx| <= 2 eps |x|, multiplied
     // out: no division besides Halley's).
-    if (std::fabs(fx) <= 2 * kMachineEpsilon * std::fabs(x * dfx)) return polished(x, dfx);
+    if (std::fabs(fx) <= 2 * kMachineEpsilon * std::fabs(x * dfx)) return polished(x, fx, dfx);
     const double ddfx = estrin(ddc, N - 2, x);
     double next = x - 2 * fx * dfx / (2 * dfx * dfx - fx * ddfx);
     if (!(next > a && next < b)) next = a + (b - a) / 2;
-    if (!(next > a && next < b)) return polished(x, dfx);  // no double between the ends
+    if (!(next > a && next < b)) return polished(x, fx, dfx);  // no double between the ends
     x = next;
   }
   return x;
