@@ -116,7 +116,7 @@ double bracketed_root(const double* c, const double* dc, double a, double b, dou
   // come from plain values, whose signs may be wrong within their rounding of the root); a step
   // to or past an end of it means the root rounds to that end, so the double next to it. Where
   // Dekker's splitting overflows (coefficients or values above about 2^996) the compensated
-  // value is NaN, and the step is main's, on the plain value.
+  // value is NaN, and the step is taken on the plain value fx instead, a few ulps less exact.
   const auto polished = [&](double x, double fx, double dfx) {
     if (dfx == 0) return x;
     const double compensated = compensated_horner(c, N, x);
@@ -137,7 +137,9 @@ double bracketed_root(const double* c, const double* dc, double a, double b, dou
     else
       b = x;
     // Converged: Newton's step is below the rounding of x (|fx / dfx| <= 2 eps |x|, multiplied
-    // out: no division besides Halley's).
+    // out: no division besides Halley's). Tested before the step is kept in the bracket: x may
+    // have just become an end of it, and a step smaller than its ulp, taken for leaving the
+    // bracket, would otherwise restart a bisection that crawls back to x.
     if (std::fabs(fx) <= 2 * kMachineEpsilon * std::fabs(x * dfx)) return polished(x, fx, dfx);
     const double ddfx = estrin(ddc, N - 2, x);
     double next = x - 2 * fx * dfx / (2 * dfx * dfx - fx * ddfx);
