@@ -299,5 +299,44 @@ TEST(Polynomial, RandomQuartics) {
   }
 }
 
+// Each simple root is the exact root of p's (double) coefficients correctly rounded, the
+// reference found by Newton's method in quadruple precision: the polish ends with a Newton step
+// on the compensated value of p. Roots far from double ones (condition below about 1/eps), so
+// that every one can be. Main's polish, a last Newton step on the plain value, missed 6,511 of the
+// 13,320.
+TEST(Polynomial, SimpleRootsAreCorrectlyRounded) {
+  __extension__ using Quad = __float128;
+  std::mt19937_64 rng(18);
+  std::uniform_real_distribution<double> unit(-10, 10);
+  PolynomialRoot roots[kMaxPolynomialDegree];
+  int checked = 0;
+  for (int i = 0; i < 4000; ++i) {
+    const int degree = 3 + i % 2;
+    double r[4] = {unit(rng), unit(rng), unit(rng), unit(rng)};
+    std::sort(r, r + degree);
+    bool separate = true;
+    for (int k = 1; k < degree; ++k) separate &= r[k] - r[k - 1] > 0.1;
+    if (!separate) continue;
+    const Polynomial p =
+        std::pow(10, unit(rng) / 2) *
+        (degree == 3 ? from_roots({r[0], r[1], r[2]}) : from_roots({r[0], r[1], r[2], r[3]}));
+    ASSERT_EQ(real_roots(p, -11, 11, roots), degree) << i;
+    for (int k = 0; k < degree; ++k) {
+      Quad x = roots[k].x;
+      for (int step = 0; step < 4; ++step) {
+        Quad v = p.c[p.degree], dv = 0;
+        for (int j = p.degree - 1; j >= 0; --j) {
+          dv = dv * x + v;
+          v = v * x + p.c[j];
+        }
+        x -= v / dv;
+      }
+      EXPECT_EQ(roots[k].x, static_cast<double>(x)) << i << " root " << k;
+      ++checked;
+    }
+  }
+  EXPECT_GT(checked, 4000);
+}
+
 }  // namespace
 }  // namespace tessera
