@@ -98,7 +98,38 @@ inline double compensated_horner(const double* c, int n, double x) {
 }
 
 // The root in (a, b), where the degree-N polynomial c is monotone and c(a) = fa, c(b) have
-// opposite signs, neither zero (dc: its derivative): Halley steps (cubic convergence, one
+// opposite signs, neither zero (dc: its derivative): Newton steps that stay inside the bracket,
+// bisection otherwise. The bracket shrinks every step, so it ends within an ulp or two of the
+// root, or at a point where the polynomial rounds to zero.
+template <int N>
+double bracketed_root(const double* c, const double* dc, double a, double b, double fa) {
+  // The sign at the bracket's left end, which stays the same as the end moves.
+  const bool positive_at_a = fa > 0;
+  double x = a + (b - a) / 2;
+  for (int iteration = 0; iteration < 200; ++iteration) {
+    const double fx = horner(c, N, x);
+    if (fx == 0) return x;
+    if (positive_at_a ? fx > 0 : fx < 0)
+      a = x;
+    else
+      b = x;
+    const double dfx = horner(dc, N - 1, x);
+    // Converged: Newton's step is below the rounding of x. Tested before the step is kept in
+    // the bracket: x may have just become an end of it, and a step smaller than its ulp, taken
+    // for leaving the bracket, would otherwise restart a bisection that crawls back to x.
+    if (dfx != 0 && std::fabs(fx / dfx) <= 2 * kMachineEpsilon * std::fabs(x)) {
+      const double next = x - fx / dfx;
+      return next > a && next < b ? next : x;
+    }
+    double next = dfx != 0 ? x - fx / dfx : a + (b - a) / 2;
+    if (!(next > a && next < b)) next = a + (b - a) / 2;
+    if (!(next > a && next < b)) return x;  // the bracket holds no double between its ends
+    x = next;
+  }
+  return x;
+}
+
+// bracketed_root's root correctly rounded, for polished_root: Halley steps (cubic convergence, one
 // division each like Newton's; about 4 evaluations from the bracket's midpoint where Newton's
 // took 6) that stay inside the bracket, bisection otherwise, until Newton's step is below the
 // rounding of x (or the polynomial rounds to zero there, or the bracket holds no double between
@@ -108,7 +139,7 @@ inline double compensated_horner(const double* c, int n, double x) {
 // the start and path: so the steps before it may use Estrin's faster evaluation, and a different
 // bracket no longer moves the root.
 template <int N>
-double bracketed_root(const double* c, const double* dc, double a, double b, double fa) {
+double correctly_rounded_root(const double* c, const double* dc, double a, double b, double fa) {
   double ddc[N - 1];
   for (int i = 1; i < N; ++i) ddc[i - 1] = i * dc[i];
   const double lo = a, hi = b;
@@ -310,8 +341,8 @@ double polished_root(const Polynomial& p, double a, double b) {
   double dc[kMaxPolynomialDegree];
   for (int i = 1; i <= p.degree; ++i) dc[i - 1] = i * p.c[i];
   const double fa = horner(p.c, p.degree, a);
-  return p.degree == 3 ? bracketed_root<3>(p.c, dc, a, b, fa)
-                       : bracketed_root<4>(p.c, dc, a, b, fa);
+  return p.degree == 3 ? correctly_rounded_root<3>(p.c, dc, a, b, fa)
+                       : correctly_rounded_root<4>(p.c, dc, a, b, fa);
 }
 
 int real_roots(const Polynomial& p, double lo, double hi,

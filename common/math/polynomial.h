@@ -78,7 +78,9 @@ bool visit_real_roots(const Polynomial& p, double lo, double hi, RootVisitor vis
                       BracketTest ends_search);
 
 // The root in (a, b) of p (degree 3 or 4), monotone on [a, b] with values of opposite signs at a
-// and b, polished as visit_real_roots polishes the root of each piece it brackets.
+// and b: the exact root of p's coefficients correctly rounded (a last Newton step on p's
+// compensated value), where visit_real_roots's own polish, whose last step the quartic proofs
+// bound by an ulp, may be a few ulps off (more where the root is ill-conditioned).
 double polished_root(const Polynomial& p, double a, double b);
 
 // Every real root of p in (lo, hi), ascending, as visit_real_roots finds them; returns how many

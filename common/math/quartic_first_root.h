@@ -16,7 +16,7 @@ namespace tessera {
 // its first root the one root of p in (lo, b): p's value at lo, as the search computes it, is
 // positive, and p falls clearly all the way from there to a clearly negative value at b, so that
 // the search finds no critical point before b and brackets the root by lo and a split point at
-// or after b. Then polished_root(p, lo, b) is that root up to the rounding of its polish. b is m
+// or after b. Then polished_root(p, lo, b) is that root, correctly rounded. b is m
 // or, where p has passed its least value before m, lo + (m - lo) / 2, / 4 or / 8; nullopt when
 // none of them shows it. Tries only quartics (p.degree == 4 with c[4] != 0) and lo < m.
 std::optional<double> quartic_first_root_bracket(const Polynomial& p, double lo, double m);
