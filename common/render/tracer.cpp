@@ -252,9 +252,7 @@ double Tracer::point_shadow(const Feeler& feeler, const Hit& hit, std::size_t li
   return first * factor_of(candidates.ids[1]);
 }
 
-// Forced inline: local_illumination takes it once a hit, and as a call it cost that hit some 14
-// instructions of call, frame and result passed through memory.
-[[gnu::always_inline]] inline Vec3 Tracer::spawn_offset(const Hit& hit, double epsilon) const {
+Vec3 Tracer::spawn_offset(const Hit& hit, double epsilon) const {
   const SceneGlobals& g = scene_.scene().globals;
   if (std::holds_alternative<MeshShape>(scene_.instances()[hit.world.object].geometry))
     epsilon = std::max(epsilon, g.mesh_epsilon);
