@@ -42,26 +42,19 @@ inline Vec3 surface_offset(const Vec3& p_error, const Vec3& n, double min_offset
   return n * std::max(dot(abs(n), p_error), min_offset);
 }
 
-// Moves `p` by `offset`, already turned to the side of the surface a ray leaves on, and rounds
-// the result away from the surface so that it is strictly on that side.
+// Moves `p` by its surface's `offset` (surface_offset) to the side of the surface, with
+// geometric normal `n`, that `direction` points into. The result is rounded away from the
+// surface so that it is strictly on that side.
 // Each component is built whole (not written into a Vec3 by index): the spawned ray is read back
 // two components at a time, and a load that spans separately stored components waits for them
 // to reach the cache (a store-forwarding stall, some 13 % of the lighting loop's time).
-// Forced inline, as it was when part of offset_ray_origin_by: GCC otherwise stopped inlining
-// Tracer::spawn_origin into the reflection.
-[[gnu::always_inline]] inline Vec3 moved_off_surface(const Vec3& p, const Vec3& offset) {
+inline Vec3 offset_ray_origin_by(const Vec3& p, Vec3 offset, const Vec3& n, const Vec3& direction) {
+  if (dot(direction, n) < 0) offset = -offset;
   const Vec3 po = p + offset;
   const auto away = [](double moved, double by) {
     return by > 0 ? next_up(moved) : (by < 0 ? next_down(moved) : moved);
   };
   return {away(po.x, offset.x), away(po.y, offset.y), away(po.z, offset.z)};
-}
-
-// Moves `p` by its surface's `offset` (surface_offset) to the side of the surface, with
-// geometric normal `n`, that `direction` points into (moved_off_surface).
-inline Vec3 offset_ray_origin_by(const Vec3& p, Vec3 offset, const Vec3& n, const Vec3& direction) {
-  if (dot(direction, n) < 0) offset = -offset;
-  return moved_off_surface(p, offset);
 }
 
 // Moves `p` (with per-component error bound `p_error`) off the surface with geometric normal

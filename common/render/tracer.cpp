@@ -328,22 +328,21 @@ Tracer::Crossing Tracer::cross_interface(const Ray& ray, Hit& hit, const MediumS
   return crossing;
 }
 
-[[gnu::always_inline]] inline Tracer::Feeler Tracer::feeler(const Hit& hit,
-                                                            const FeelerOrigins& origins,
+[[gnu::always_inline]] inline Tracer::Feeler Tracer::feeler(const Hit& hit, const Vec3& offset,
                                                             bool directional, const Vec3& d,
                                                             const Vec3& target) const {
-  const Vec3 origin = origins.along(d);
+  const Vec3 origin = offset_ray_origin_by(hit.world.point, offset, hit.world.normal, d);
   // A point light's feeler ends at t = 1, on the light; a directional light's never ends.
   if (directional) return {Ray{origin, d, hit.time}, kInfinity};
   return {Ray{origin, target - origin, hit.time}, 1.0};
 }
 
-double Tracer::soft_visibility(const Hit& hit, const FeelerOrigins& origins, const Light& light,
+double Tracer::soft_visibility(const Hit& hit, const Vec3& offset, const Light& light,
                                const Vec3& l, double distance, SampleStream& rng) {
   const int count = cones_within_budget() ? cone_samples_ : 1;
   return Cone(l, shadow_cone_radius_).mean<double>(count, rng, [&](const Vec3& d) {
     return shadow_factor(
-        feeler(hit, origins, light.is_directional, d, hit.world.point + d * distance));
+        feeler(hit, offset, light.is_directional, d, hit.world.point + d * distance));
   });
 }
 
@@ -360,9 +359,9 @@ Rgb Tracer::local_illumination(const Hit& hit, const Material& m, const SurfaceC
   color += ambient;
   if (!colours.lit) return color;
   // Every feeler leaves the hit by the same offset; only its side depends on the light.
-  FeelerOrigins origins(hit.world, kShadows == ShadowMode::None
-                                       ? Vec3{}
-                                       : spawn_offset(hit, g.shadow_feeler_epsilon));
+  Vec3 feeler_offset;
+  if constexpr (kShadows != ShadowMode::None)
+    feeler_offset = spawn_offset(hit, g.shadow_feeler_epsilon);
 
   const double diffuse_scale = m.retain_diffuse_color ? 1 : opacity;
   const double specular_scale = m.retain_specular_reflection ? 1 : opacity;
@@ -404,11 +403,12 @@ Rgb Tracer::local_illumination(const Hit& hit, const Material& m, const SurfaceC
     double shadow = 1;  // eq. 4.24-4.26: the share of the light that reaches the hit
     if constexpr (kShadows == ShadowMode::Hard) {
       if (light.casts_shadows)
-        shadow = directional
-                     ? shadow_factor(feeler(hit, origins, true, l, light.position))
-                     : point_shadow(feeler(hit, origins, false, l, light.position), hit, index);
+        shadow = directional ? shadow_factor(feeler(hit, feeler_offset, true, l, light.position))
+                             : point_shadow(feeler(hit, feeler_offset, false, l, light.position),
+                                            hit, index);
     } else if constexpr (kShadows == ShadowMode::Soft) {
-      if (light.casts_shadows) shadow = soft_visibility(hit, origins, light, l, distance, rng);
+      if (light.casts_shadows)
+        shadow = soft_visibility(hit, feeler_offset, light, l, distance, rng);
     }
     if (shadow <= 0) continue;
     const double cone = light.is_spot && light.spot.exponent != 0

@@ -5,7 +5,6 @@
 #include <vector>
 
 #include "common/accel/bvh_packet_traverse.h"
-#include "common/render/feeler_origins.h"
 #include "common/render/interrupt.h"
 #include "common/render/media.h"
 #include "common/render/prepared_scene.h"
@@ -103,10 +102,10 @@ class Tracer {
     Ray ray;
     double t_max;
   };
-  // The feeler from the hit (at its time, from its origin in `origins`, made with the hit's
+  // The feeler from the hit (at its time, pushed off its surface by `offset`, the hit's
   // spawn_offset for feelers) along unit `d` towards a light, directional or with `target` the
   // point on it the feeler aims at.
-  Feeler feeler(const Hit& hit, const FeelerOrigins& origins, bool directional, const Vec3& d,
+  Feeler feeler(const Hit& hit, const Vec3& offset, bool directional, const Vec3& d,
                 const Vec3& target) const;
   // Eq. 4.24: the product of the transparencies of everything along the feeler.
   double shadow_factor(const Feeler& feeler);
@@ -122,9 +121,9 @@ class Tracer {
   bool leaves_own_hull(const Hit& hit, const Vec3& d, double d_squared) const;
   // Eq. 4.25-4.26: the share of `light` (unit direction `l`, `distance` away, infinite for a
   // directional light) that reaches the hit under soft shadows: the mean over a cone of feelers.
-  // The feelers start from `origins`.
-  double soft_visibility(const Hit& hit, const FeelerOrigins& origins, const Light& light,
-                         const Vec3& l, double distance, SampleStream& rng);
+  // `offset` as for feeler().
+  double soft_visibility(const Hit& hit, const Vec3& offset, const Light& light, const Vec3& l,
+                         double distance, SampleStream& rng);
   // Eq. 4.4-4.12 and 4.24 at a hit: emissive, ambient, and every light's diffuse and specular.
   // `colours` are the material's after texturing (§4.3). Compiled for each shadow mode, and
   // for scenes with and without directional lights, so that the loop over the lights holds
