@@ -32,14 +32,29 @@ static_assert(offsetof(WorldHit, point) == kBlock &&
               offsetof(WorldHit, normal) == kBlock + 6 * sizeof(double) &&
               offsetof(WorldHit, shading_normal) == kBlock + 9 * sizeof(double));
 
-// Vectors r[0..3] (a lane's four values each) become four vectors of one value for every lane.
-[[gnu::target("avx2"), gnu::always_inline]] inline void transpose(V r[4]) {
-  const V t0 = _mm256_unpacklo_pd(r[0], r[1]), t1 = _mm256_unpackhi_pd(r[0], r[1]);
-  const V t2 = _mm256_unpacklo_pd(r[2], r[3]), t3 = _mm256_unpackhi_pd(r[2], r[3]);
-  r[0] = _mm256_permute2f128_pd(t0, t2, 0x20);
-  r[1] = _mm256_permute2f128_pd(t1, t3, 0x20);
-  r[2] = _mm256_permute2f128_pd(t0, t2, 0x31);
-  r[3] = _mm256_permute2f128_pd(t1, t3, 0x31);
+// Four vectors, each of four doubles.
+struct Quad {
+  V v0, v1, v2, v3;
+};
+
+// Vectors r0..r3 of a lane's four values each become four vectors of one value for every lane,
+// and back. (Vectors in named variables, not arrays: GCC kept arrays of them on the stack.)
+[[gnu::target("avx2"), gnu::always_inline]] inline Quad transpose(V r0, V r1, V r2, V r3) {
+  const V t0 = _mm256_unpacklo_pd(r0, r1), t1 = _mm256_unpackhi_pd(r0, r1);
+  const V t2 = _mm256_unpacklo_pd(r2, r3), t3 = _mm256_unpackhi_pd(r2, r3);
+  return {_mm256_permute2f128_pd(t0, t2, 0x20), _mm256_permute2f128_pd(t1, t3, 0x20),
+          _mm256_permute2f128_pd(t0, t2, 0x31), _mm256_permute2f128_pd(t1, t3, 0x31)};
+}
+
+// The k-th four of the twelve doubles from kBlock on.
+[[gnu::target("avx2"), gnu::always_inline]] inline V load_block(const LocalHit& local, int k) {
+  return _mm256_loadu_pd(
+      reinterpret_cast<const double*>(reinterpret_cast<const std::byte*>(&local) + kBlock) + 4 * k);
+}
+[[gnu::target("avx2"), gnu::always_inline]] inline Quad load_blocks(const LocalHit* const from[4],
+                                                                    int k) {
+  return transpose(load_block(*from[0], k), load_block(*from[1], k), load_block(*from[2], k),
+                   load_block(*from[3], k));
 }
 
 [[gnu::target("avx2"), gnu::always_inline]] inline V splat(double x) { return _mm256_set1_pd(x); }
@@ -97,6 +112,26 @@ struct Vec3Lanes {
   return _mm256_blendv_pd(splat(fallback), _mm256_div_pd(c, length), usable);
 }
 
+// A lane's hit from its twelve doubles, as to_world_hit writes it; a hit whose shading normal is
+// not its normal takes to_world_hit itself.
+[[gnu::target("avx2"), gnu::always_inline]] inline void store_lane(const Instance& instance,
+                                                                   const LocalHit& local,
+                                                                   WorldHit& hit, V v0, V v1,
+                                                                   V v2) {
+  if (!same_bits(local.shading_normal, local.normal)) [[unlikely]] {
+    to_world_hit(instance, local, hit);
+    return;
+  }
+  auto* to = reinterpret_cast<double*>(reinterpret_cast<std::byte*>(&hit) + kBlock);
+  _mm256_storeu_pd(to, v0);
+  _mm256_storeu_pd(to + 4, v1);
+  _mm256_storeu_pd(to + 8, v2);
+  hit.t = local.t;
+  hit.object_point = local.point;
+  hit.part = local.part;
+  hit.object = instance.object;
+}
+
 }  // namespace
 
 [[gnu::target("avx2")]] void to_world_hits_avx2(const Instance& instance, const LocalHit locals[4],
@@ -104,16 +139,12 @@ struct Vec3Lanes {
   // Lanes outside `lanes` repeat the first one's hit (computed, not used): an unhit lane's
   // LocalHit was never written.
   const int first = std::countr_zero(lanes);
-  V block[3][4];
-  for (int l = 0; l < 4; ++l) {
-    const auto* from = reinterpret_cast<const double*>(
-        reinterpret_cast<const std::byte*>(&locals[(lanes >> l) & 1u ? l : first]) + kBlock);
-    for (int k = 0; k < 3; ++k) block[k][l] = _mm256_loadu_pd(from + 4 * k);
-  }
-  for (V* rows : block) transpose(rows);
-  const Vec3Lanes point{block[0][0], block[0][1], block[0][2]};
-  const Vec3Lanes point_error{block[0][3], block[1][0], block[1][1]};
-  const Vec3Lanes normal{block[1][2], block[1][3], block[2][0]};
+  const auto local = [&](int l) { return &locals[(lanes >> l) & 1u ? l : first]; };
+  const LocalHit* const from[4] = {local(0), local(1), local(2), local(3)};
+  const Quad in0 = load_blocks(from, 0), in1 = load_blocks(from, 1), in2 = load_blocks(from, 2);
+  const Vec3Lanes point{in0.v0, in0.v1, in0.v2};
+  const Vec3Lanes point_error{in0.v3, in1.v0, in1.v1};
+  const Vec3Lanes normal{in1.v2, in1.v3, in2.v0};
 
   // FullTransforms::world_point.
   const Affine& w = instance.to_world;
@@ -144,25 +175,13 @@ struct Vec3Lanes {
                                unit_or(n.z, length, usable, 1)};
 
   // Back to each lane's twelve doubles; the shading normal is the normal.
-  V out[3][4] = {{world.x, world.y, world.z, world_error.x},
-                 {world_error.y, world_error.z, world_normal.x, world_normal.y},
-                 {world_normal.z, world_normal.x, world_normal.y, world_normal.z}};
-  for (V* rows : out) transpose(rows);
-  for (unsigned m = lanes; m != 0; m &= m - 1) {
-    const int l = std::countr_zero(m);
-    const LocalHit& local = locals[l];
-    WorldHit& hit = *hits[l];
-    if (!same_bits(local.shading_normal, local.normal)) [[unlikely]] {
-      to_world_hit(instance, local, hit);
-      continue;
-    }
-    auto* to = reinterpret_cast<double*>(reinterpret_cast<std::byte*>(&hit) + kBlock);
-    for (int k = 0; k < 3; ++k) _mm256_storeu_pd(to + 4 * k, out[k][l]);
-    hit.t = local.t;
-    hit.object_point = local.point;
-    hit.part = local.part;
-    hit.object = instance.object;
-  }
+  const Quad out0 = transpose(world.x, world.y, world.z, world_error.x);
+  const Quad out1 = transpose(world_error.y, world_error.z, world_normal.x, world_normal.y);
+  const Quad out2 = transpose(world_normal.z, world_normal.x, world_normal.y, world_normal.z);
+  if (lanes & 1u) store_lane(instance, locals[0], *hits[0], out0.v0, out1.v0, out2.v0);
+  if (lanes & 2u) store_lane(instance, locals[1], *hits[1], out0.v1, out1.v1, out2.v1);
+  if (lanes & 4u) store_lane(instance, locals[2], *hits[2], out0.v2, out1.v2, out2.v2);
+  if (lanes & 8u) store_lane(instance, locals[3], *hits[3], out0.v3, out1.v3, out2.v3);
 }
 
 }  // namespace tessera
