@@ -17,6 +17,7 @@
 
 #include <bit>
 #include <cmath>
+#include <type_traits>
 #include <variant>
 
 #include "common/accel/wide_box_kernel.h"
@@ -24,6 +25,7 @@
 #include "common/geometry/motion.h"
 #include "common/geometry/shapes.h"
 #include "common/geometry/torus_packet.h"
+#include "common/geometry/world_hits_avx2.h"
 #include "common/math/float_error.h"
 
 namespace tessera {
@@ -262,8 +264,8 @@ template <typename ObjectRayOf>
 
 #if defined(__SSE2__)
 // intersect_instance_packet's torus lanes: each lane's object direction as intersect_instance takes
-// it, the frames four at a time, each lane's hit back to world space as intersect_instance takes
-// it.
+// it, the frames four at a time, the hits back to world space as intersect_instance takes them,
+// four at a time under full transforms (world_hits_avx2.h), else a lane at a time.
 template <typename Transforms>
 unsigned intersect_torus_lanes(const Transforms& transforms, const Torus& torus, const Ray rays[4],
                                unsigned lanes, const Vec3& object_origin, const double t_max[4],
@@ -281,9 +283,14 @@ unsigned intersect_torus_lanes(const Transforms& transforms, const Torus& torus,
   LocalHit* locals = storage.hits();
   const unsigned hit_lanes =
       intersect_torus_packet_avx2(torus, object_origin, directions, lanes, t_max, locals);
-  for (unsigned m = hit_lanes; m != 0; m &= m - 1) {
-    const int l = std::countr_zero(m);
-    to_world_hit_with(transforms, locals[l], *hits[l]);
+  if constexpr (std::is_same_v<Transforms, FullTransforms>) {
+    // A torus has no face normals.
+    if (hit_lanes != 0) to_world_hits_avx2(transforms.instance, locals, hit_lanes, hits);
+  } else {
+    for (unsigned m = hit_lanes; m != 0; m &= m - 1) {
+      const int l = std::countr_zero(m);
+      to_world_hit_with(transforms, locals[l], *hits[l]);
+    }
   }
   return hit_lanes;
 }
