@@ -2,7 +2,10 @@
 #include "common/math/polynomial.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
+#include <type_traits>
+#include <utility>
 
 #include "common/math/float_error.h"
 
@@ -293,13 +296,49 @@ Polynomial operator*(double s, const Polynomial& p) {
   return r;
 }
 
-Polynomial operator*(const Polynomial& a, const Polynomial& b) {
+namespace {
+
+// a * b for a of degree A and b of degree B, each coefficient summed from zero in a register,
+// its products in ascending powers of a: the same additions in the same order as accumulating
+// a.c[i] * b.c[j] into r.c[i + j] for ascending i and j, so the same bits, but unrolled for the
+// degrees, without the loops' bounds and a load and store of r.c per product (forming an
+// algebraic surface's polynomial along a ray is mostly these products).
+template <int A, int B>
+Polynomial product(const Polynomial& a, const Polynomial& b) {
+  constexpr int kDegree = std::min(A + B, kMaxPolynomialDegree);
   Polynomial r;
-  r.degree = std::min(a.degree + b.degree, kMaxPolynomialDegree);
-  for (int i = 0; i <= a.degree; ++i)
-    for (int j = 0; j <= b.degree && i + j <= kMaxPolynomialDegree; ++j)
-      r.c[i + j] += a.c[i] * b.c[j];
+  r.degree = kDegree;
+#pragma GCC unroll 5
+  for (int k = 0; k <= kDegree; ++k) {
+    double sum = 0;
+#pragma GCC unroll 5
+    for (int i = 0; i <= A; ++i)
+      if (k - i >= 0 && k - i <= B) sum += a.c[i] * b.c[k - i];
+    r.c[k] = sum;
+  }
   return r;
+}
+
+using Product = Polynomial (*)(const Polynomial&, const Polynomial&);
+
+template <int... B>
+constexpr auto products_of_degree(auto a_degree, std::integer_sequence<int, B...>) {
+  return std::array<Product, sizeof...(B)>{product<decltype(a_degree)::value, B>...};
+}
+template <int... A>
+constexpr auto product_table(std::integer_sequence<int, A...>) {
+  return std::array{
+      products_of_degree(std::integral_constant<int, A>{},
+                         std::make_integer_sequence<int, kMaxPolynomialDegree + 1>{})...};
+}
+// kProducts[A][B]: product<A, B>.
+constexpr auto kProducts =
+    product_table(std::make_integer_sequence<int, kMaxPolynomialDegree + 1>{});
+
+}  // namespace
+
+Polynomial operator*(const Polynomial& a, const Polynomial& b) {
+  return kProducts[a.degree][b.degree](a, b);
 }
 
 Polynomial derivative(const Polynomial& p) {

@@ -23,7 +23,8 @@ struct Polynomial {
 
 Polynomial operator+(const Polynomial& a, const Polynomial& b);
 Polynomial operator*(double s, const Polynomial& p);
-// The product; its degree must not exceed kMaxPolynomialDegree.
+// The product; its degree must not exceed kMaxPolynomialDegree (nor a's or b's be negative: the
+// product is unrolled for each pair of degrees and looked up by them).
 Polynomial operator*(const Polynomial& a, const Polynomial& b);
 Polynomial derivative(const Polynomial& p);
 

@@ -5,6 +5,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
 #include <initializer_list>
 #include <random>
 #include <utility>
@@ -45,6 +47,36 @@ TEST(Polynomial, Arithmetic) {
   EXPECT_EQ(sum.c[1], 1);
   EXPECT_GT(evaluation_error(p, 3), 0);
   EXPECT_LT(evaluation_error(p, 3), 1e-13);
+}
+
+// The product's coefficients bit for bit as accumulating a.c[i] * b.c[j] into r.c[i + j] from
+// zero, for ascending i then j (the roots searched for depend on every bit), for each pair of
+// degrees, truncated above kMaxPolynomialDegree, with signed zeros and wide magnitudes.
+TEST(Polynomial, ProductSumsInTheOrderOfAscendingPowers) {
+  std::mt19937_64 rng(28);
+  std::uniform_real_distribution<double> unit(-1, 1);
+  const auto bits = [](double x) {
+    std::uint64_t b;
+    std::memcpy(&b, &x, sizeof b);
+    return b;
+  };
+  for (int trial = 0; trial < 2000; ++trial) {
+    Polynomial a, b;
+    a.degree = trial % (kMaxPolynomialDegree + 1);
+    b.degree = trial / (kMaxPolynomialDegree + 1) % (kMaxPolynomialDegree + 1);
+    for (Polynomial* p : {&a, &b})
+      for (int i = 0; i <= p->degree; ++i)
+        p->c[i] = trial % 7 == 0 && i % 2 ? -0.0 : unit(rng) * std::pow(10, 8 * unit(rng));
+    Polynomial expected;
+    expected.degree = std::min(a.degree + b.degree, kMaxPolynomialDegree);
+    for (int i = 0; i <= a.degree; ++i)
+      for (int j = 0; j <= b.degree && i + j <= kMaxPolynomialDegree; ++j)
+        expected.c[i + j] += a.c[i] * b.c[j];
+    const Polynomial r = a * b;
+    ASSERT_EQ(r.degree, expected.degree);
+    for (int k = 0; k <= kMaxPolynomialDegree; ++k)
+      ASSERT_EQ(bits(r.c[k]), bits(expected.c[k])) << trial << " c" << k;
+  }
 }
 
 TEST(Polynomial, SimpleRootsOfEachDegree) {
