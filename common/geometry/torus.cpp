@@ -401,8 +401,9 @@ enum class FrameAnswer { kMiss, kBlocked, kFormed };
                                                     TorusLine& line) {
   const double big_r = torus.torus_radius, r = torus.tube_radius;
   const double dd = dot(d, d);
-  if (!is_finite(o) || !is_finite(d) || !(dd > 0) || !std::isfinite(dd) || !(t_max > 0))
-    return FrameAnswer::kMiss;
+  // A finite positive |d|^2 shows d finite (an infinite or NaN component makes the sum of squares
+  // infinite or NaN), so d's components are not tested one by one.
+  if (!is_finite(o) || !(dd > 0) || !std::isfinite(dd) || !(t_max > 0)) return FrameAnswer::kMiss;
 
   // |d|, which the shadow rays' exit proofs need before the box; the other queries take it after
   // the box, which a sixth of their calls miss (features/torus.sdl).
