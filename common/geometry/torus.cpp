@@ -571,8 +571,9 @@ template <class Take>
 // only the first hit pays only for it. Returns false when the search was ended: by take, or
 // (kAnyHit) at a root proven to be a hit that take was not given.
 template <class Take>
-bool visit_torus_hits(const Torus& torus, const Ray& ray, double t_max, HitSearch search,
-                      const Take& take) {
+[[gnu::always_inline]] inline bool visit_torus_hits(const Torus& torus, const Ray& ray,
+                                                    double t_max, HitSearch search,
+                                                    const Take& take) {
   TorusLine line;
   switch (form_line(torus, ray.origin, ray.direction, t_max, search, line)) {
     case FrameAnswer::kMiss:
