@@ -401,8 +401,9 @@ enum class FrameAnswer { kMiss, kBlocked, kFormed };
                                                     TorusLine& line) {
   const double big_r = torus.torus_radius, r = torus.tube_radius;
   const double dd = dot(d, d);
-  if (!is_finite(o) || !is_finite(d) || !(dd > 0) || !std::isfinite(dd) || !(t_max > 0))
-    return FrameAnswer::kMiss;
+  // A finite positive |d|^2 shows d finite (an infinite or NaN component makes the sum of squares
+  // infinite or NaN), so d's components are not tested one by one.
+  if (!is_finite(o) || !(dd > 0) || !std::isfinite(dd) || !(t_max > 0)) return FrameAnswer::kMiss;
 
   // |d|, which the shadow rays' exit proofs need before the box; the other queries take it after
   // the box, which a sixth of their calls miss (features/torus.sdl).
@@ -570,8 +571,9 @@ template <class Take>
 // only the first hit pays only for it. Returns false when the search was ended: by take, or
 // (kAnyHit) at a root proven to be a hit that take was not given.
 template <class Take>
-bool visit_torus_hits(const Torus& torus, const Ray& ray, double t_max, HitSearch search,
-                      const Take& take) {
+[[gnu::always_inline]] inline bool visit_torus_hits(const Torus& torus, const Ray& ray,
+                                                    double t_max, HitSearch search,
+                                                    const Take& take) {
   TorusLine line;
   switch (form_line(torus, ray.origin, ray.direction, t_max, search, line)) {
     case FrameAnswer::kMiss:
