@@ -237,7 +237,8 @@ void render_pixels(const PreparedScene& scene, const RenderSettings& settings,
   const ImageRays camera(scene.camera(), settings.width, settings.height);
   const PassContext context{
       scene, settings, camera, tracer, pass, stats, regular_sample_offsets(settings.aa_samples)};
-  // Checked before each pixel starts (the tracer also looks during long pixels).
+  // Checked before each pixel starts, on the packet path before each packet (the tracer also
+  // looks during long pixels).
   const auto check_interrupt = [&] {
     if (interrupt.armed() && interrupt.requested()) throw RenderInterrupted();
   };
