@@ -21,6 +21,16 @@ ImageRays::ImageRays(const CameraFrame& frame, int width, int height)
       tan_half_(frame.tan_half_height) {
   if (frame.angle_on_smaller_side && width < height)
     tan_half_ *= static_cast<double>(height) / width;
+  const auto twice = [](double v) { return Twice{{v, v}}; };
+  width2_ = twice(width_);
+  height2_ = twice(height_);
+  aspect2_ = twice(aspect_);
+  tan_half2_ = twice(tan_half_);
+  for (int a = 0; a < 3; ++a) {
+    forward2_[a] = twice(frame_.forward[a]);
+    right2_[a] = twice(frame_.right[a]);
+    up2_[a] = twice(frame_.up[a]);
+  }
 }
 
 Ray ImageRays::through(double px, double py) const {
@@ -37,16 +47,15 @@ Vec3 ImageRays::direction_through(double px, double py) const {
 void ImageRays::directions_through(const double (&px)[4], const double (&py)[4],
                                    Vec3 (&out)[4]) const {
 #if defined(__SSE2__)
+  const auto load = [](const Twice& v) { return _mm_load_pd(v.lane); };
   const __m128d one = _mm_set1_pd(1), two = _mm_set1_pd(2);
-  const __m128d width = _mm_set1_pd(width_), height = _mm_set1_pd(height_);
-  const __m128d aspect = _mm_set1_pd(aspect_), tan_half = _mm_set1_pd(tan_half_);
+  const __m128d width = load(width2_), height = load(height2_);
+  const __m128d aspect = load(aspect2_), tan_half = load(tan_half2_);
   struct Lanes {
     __m128d x, y, z;
   };
-  const auto lanes = [](const Vec3& v) {
-    return Lanes{_mm_set1_pd(v.x), _mm_set1_pd(v.y), _mm_set1_pd(v.z)};
-  };
-  const Lanes forward = lanes(frame_.forward), right = lanes(frame_.right), up = lanes(frame_.up);
+  const auto lanes = [&](const Twice(&v)[3]) { return Lanes{load(v[0]), load(v[1]), load(v[2])}; };
+  const Lanes forward = lanes(forward2_), right = lanes(right2_), up = lanes(up2_);
   // Points k and k + 1; lane j is direction_through(px[k + j], py[k + j]), operation by
   // operation.
   const auto pair = [&](int k) {

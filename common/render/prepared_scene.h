@@ -50,10 +50,19 @@ class ImageRays {
   void directions_through(const double (&px)[4], const double (&py)[4], Vec3 (&out)[4]) const;
 
  private:
+  // A value in both lanes of an SSE2 register: directions_through loads it as one, without the
+  // shuffle of a broadcast at every call.
+  struct alignas(16) Twice {
+    double lane[2] = {};
+  };
+
   CameraFrame frame_;
   double width_, height_;
   double aspect_;    // width / height
   double tan_half_;  // of the vertical angle
+  // directions_through's operands: the ones above and the frame's axes, coordinate by coordinate.
+  Twice width2_, height2_, aspect2_, tan_half2_;
+  Twice forward2_[3], right2_[3], up2_[3];
 };
 
 // Where a ray leaving an instance's surface outward cannot meet that instance again, the

@@ -137,13 +137,21 @@ bool Tracer::closest_hit(const Ray& ray, Hit& hit) {
 void Tracer::find_packet_hits(const Vec3& eye, const Vec3* directions, int count) {
   const std::vector<Instance>& instances = scene_.instances();
   double t_max[kPacketLanes];
-  for (int l = 0; l < count; ++l) {
-    packet_rays_[l] = Ray{eye, directions[l], 0};
+  // All four lanes in straight-line code, not a loop over `count`; lanes past it repeat its
+  // last ray and are not walked.
+  for (int l = 0; l < kPacketLanes; ++l) {
+    packet_rays_[l].direction = directions[std::min(l, count - 1)];
     packet_found_[l] = false;
     packet_hits_[l].time = 0;
     t_max[l] = kInfinity;
   }
+  // The rays' origins and times, like the object origins, only when the eye moves: a render's
+  // packets share one.
   if (packet_object_origins_.empty() || !same_bits(eye, packet_eye_)) {
+    for (Ray& ray : packet_rays_) {
+      ray.origin = eye;
+      ray.time = 0;
+    }
     packet_eye_ = eye;
     packet_object_origins_.resize(instances.size());
     for (std::size_t i = 0; i < instances.size(); ++i)

@@ -55,6 +55,43 @@ void expect_lanes_as_alone(const ChildBoxes& boxes, const Ray* rays,
     expect_lanes_as_alone(boxes, rays, t_max, kernel);
 }
 
+// Each lane of a packet holds its ray's box constants as the scalar definition gives them (the
+// SSE2 set-up computes two lanes at once), lanes past `count` the first ray's; the edge cases'
+// zero, negative-zero and infinite components among them.
+TEST(BvhPacket, PacketRaysHoldEachLanesConstants) {
+  std::mt19937_64 rng(11);
+  std::uniform_real_distribution<double> u(-2, 2);
+  std::vector<Ray> pool = edge_case_rays();
+  for (int i = 0; i < 40; ++i)
+    pool.push_back(
+        {{u(rng), u(rng), u(rng)},
+         {direction_component(rng, u), direction_component(rng, u), direction_component(rng, u)}});
+  int uniform_packets = 0;
+  for (std::size_t first = 0; first + kPacketLanes <= pool.size(); ++first)
+    for (int count = 1; count <= kPacketLanes; ++count) {
+      const Ray* rays = &pool[first];
+      const PacketRays packet(rays, count);
+      EXPECT_EQ(packet.lanes, (1u << count) - 1);
+      bool same_sides = true;
+      for (int a = 0; a < 3; ++a)
+        for (int l = 0; l < kPacketLanes; ++l) {
+          const Ray& ray = rays[l < count ? l : 0];
+          const double inv = 1 / ray.direction[a];
+          EXPECT_EQ(std::bit_cast<std::uint64_t>(packet.origin[a][l]),
+                    std::bit_cast<std::uint64_t>(ray.origin[a]));
+          EXPECT_EQ(std::bit_cast<std::uint64_t>(packet.inv_dir[a][l]),
+                    std::bit_cast<std::uint64_t>(inv));
+          EXPECT_EQ(packet.backward[a][l], !(inv >= 0)) << "axis " << a << " lane " << l;
+          same_sides = same_sides && packet.backward[a][l] == packet.backward[a][0];
+        }
+      EXPECT_EQ(packet.same_sides, same_sides) << "rays from " << first << ", count " << count;
+      uniform_packets += same_sides;
+      if (HasFailure()) return;
+    }
+  EXPECT_GT(uniform_packets, 10);  // both answers of same_sides occur
+  EXPECT_LT(uniform_packets, 150);
+}
+
 TEST(BvhPacket, BoxTestMatchesEachRayAloneOnRandomRays) {
   std::mt19937_64 rng(11);
   std::uniform_real_distribution<double> u(-2, 2);
