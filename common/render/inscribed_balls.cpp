@@ -11,9 +11,9 @@ namespace tessera {
 
 namespace {
 
-// A torus gets this many balls, centred on its core circle: a cell of the light buffer is
-// settled by one ball that covers it alone, and more balls (128) settled 0.2 % more feelers
-// on features/torus.sdl.
+// A torus gets this many balls, centred on a circle about its axis (below): a cell of the light
+// buffer is settled by one ball that covers it alone, and more balls (128) settled 0.2 % more
+// feelers on features/torus.sdl.
 constexpr int kTorusBalls = 32;
 
 // A ball's radius, as a share of the largest that fits: the feeler's line passes within this
@@ -37,24 +37,29 @@ double longest_feeler(const ObjectSize& size, double size_limit) {
 }
 
 // A torus (shapes.h; solid where the torus function F = ((rho - R)^2 + z^2 - r^2)
-// ((rho + R)^2 + z^2 - r^2) < 0). Why a feeler through a ball is blocked: its object ray passes
-// through a point q within b = kInside m of the core circle, m = min(r, 2R - r), where
-// F <= -(r^2 - b^2)((2R - b)^2 - r^2) < 0 (the near factor at most b^2 - r^2; the far one, the
-// distance to the core circle's opposite point in the meridian plane, at least 2R - b). The ray
-// then goes on to the light, outside the torus's padded box (torus.cpp's `padded_box_span`,
+// ((rho + R)^2 + z^2 - r^2) < 0). Its balls are centred on the circle rho = c = max(R, r), z = 0,
+// of radius up to m = min(r, R): in a meridian half-plane, where a ball's points lie within its
+// radius of its centre's (rho is 1-Lipschitz), the disc of radius m about (c, 0) lies inside the
+// tube's disc about (R, 0) (|c - R| + m = r) and outside the far one about (-R, 0) (c + R - m =
+// max(R, r) >= r), whose overlap, a spindle's lemon, has F > 0. (A ring or horn torus has c = R,
+// m = r; a spindle's balls, about the core circle, could be no larger than 2R - r.)
+// Why a feeler through a ball is blocked: its object ray passes through a point q within
+// b = kInside m of the circle, where F <= -(r^2 - (|c - R| + b)^2)((c + R - b)^2 - r^2) < 0
+// (the near factor at most (|c - R| + b)^2 - r^2; the far one at least (c + R - b)^2 - r^2). The
+// ray then goes on to the light, outside the torus's padded box (torus.cpp's `padded_box_span`,
 // which "certainly holds the rounded surface": the quartic the search forms is positive beyond
 // the box). So the search's quartic, clearly negative at q (below the bound that
 // `crosses_into_tube` takes for its rounding, 2^15 eps (R + r)^3 (R + r + |o|_1 + |d|_1 t)), is
 // positive just past the span's end, which lies before the light (t < 1 = t_max): it has a root
 // between, at least |o - q| from the origin, so further than any hit's error bound; the search
 // reports it, or an earlier hit. Every proof that ends that search early (a miss, or an exit for
-// good) is of the exact ray, which meets the tube at q, or of a quartic without a root.
+// good) is of the exact ray, which meets the solid at q, or of a quartic without a root.
 void torus_balls(const Torus& torus, const Instance& instance, const Vec3& light,
                  const SingularValues& sv, const ObjectSize& size,
                  std::vector<InscribedBall>& out) {
   const double big_r = torus.torus_radius, r = torus.tube_radius, e = big_r + r;
-  const double m = std::min(r, 2 * big_r - r);
-  if (!(m > 0)) return;  // a spindle so fat that its core circle lies outside the solid
+  const double c = std::max(big_r, r), m = std::min(big_r, r);
+  if (!(m > 0)) return;
   const Vec3 l = instance.to_object.apply_point(light);
   constexpr double kLightMargin = 1 + 1e-6;  // the box is padded by 1e-9
   if (!(std::fabs(l.x) > e * kLightMargin || std::fabs(l.y) > e * kLightMargin ||
@@ -65,7 +70,8 @@ void torus_balls(const Torus& torus, const Instance& instance, const Vec3& light
   // least |o - q| >= world_radius / greatest from the origin is far beyond it.
   if (!(world_radius / sv.greatest > 1e-5 * e)) return;
   const double b = kInside * m;
-  const double inside = (r * r - b * b) * ((2 * big_r - b) * (2 * big_r - b) - r * r);
+  const double near = std::fabs(c - big_r) + b, far = c + big_r - b;
+  const double inside = (r * r - near * near) * (far * far - r * r);
   // The longest feeler for which (1) the quartic's rounding stays under half of `inside`, with
   // |o|_1 + |d|_1 t <= 6 size; (2) the object ray's rounding (16 eps size, generously) moves q
   // by under (kInside - kCovered) m and the light by under a tenth of its margin from the box.
@@ -77,7 +83,7 @@ void torus_balls(const Torus& torus, const Instance& instance, const Vec3& light
   if (!(longest > 0)) return;
   for (int k = 0; k < kTorusBalls; ++k) {
     const double angle = 2 * std::numbers::pi * k / kTorusBalls;
-    const Vec3 centre{big_r * std::cos(angle), big_r * std::sin(angle), 0};
+    const Vec3 centre{c * std::cos(angle), c * std::sin(angle), 0};
     out.push_back({instance.to_world.apply_point(centre), world_radius, longest});
   }
 }

@@ -25,7 +25,7 @@ namespace {
 
 struct Shape {
   Instance instance;
-  // A point inside the solid (the sphere's centre, a point of the torus's core circle) and one
+  // A point inside the solid (the sphere's centre, a point of the torus's balls' circle) and one
   // in the torus's hole, in object space.
   Vec3 inside, hole;
 };
@@ -46,12 +46,12 @@ Shape random_shape(std::mt19937_64& rng) {
   if (unit(rng) < 0.8) {
     const double big_r = 0.3 + 2 * unit(rng);
     const double kind = unit(rng);
-    // Ring (thin to fat), horn, spindle.
+    // Ring (thin to fat), horn, spindle (some with r >= 2R, whose core circle lies outside).
     const double r = kind < 0.6    ? big_r * (0.02 + 0.9 * unit(rng))
                      : kind < 0.75 ? big_r
-                                   : big_r * (1 + 0.9 * unit(rng));
+                                   : big_r * (1 + 2.5 * unit(rng));
     geometry = Torus{r, big_r};
-    shape.inside = {big_r, 0, 0};
+    shape.inside = {std::max(big_r, r), 0, 0};
     shape.hole = {0, 0, 0};
   }
   Affine transform = *Affine::rotation(360 * unit(rng), random_unit(rng));
@@ -211,6 +211,42 @@ TEST(LightBufferBlocked, NoBallsForLightsInsideTheBounds) {
   EXPECT_TRUE(inscribed_balls(sphere, {1.9, 0, 0}).empty());
   ASSERT_EQ(inscribed_balls(sphere, {0, 0, 5}).size(), 1u);
   EXPECT_NEAR(inscribed_balls(sphere, {0, 0, 5})[0].radius, 1.94, 1e-6);  // 0.97 of it
+}
+
+// A spindle torus's balls (about the circle rho = r, of radius 0.97 R) reach near its outer
+// equator, its dimples and the lemon that the tube's self-overlap leaves outside: feelers from
+// far beyond, aimed at a fine grid of directions across the torus from lights above, beside
+// and oblique, are settled as blocked only when the torus's own test blocks them.
+TEST(LightBufferBlocked, SpindleBallsStayInsideTheSolid) {
+  int settled = 0;
+  for (const double ratio : {1.2, 1.9, 2.5, 4.0}) {
+    const double big_r = 0.5, r = big_r * ratio, e = big_r + r;
+    const Shape shape{*make_instance(Torus{r, big_r}, Affine::identity(), nullptr), {}, {}};
+    for (const Vec3& light : {Vec3{0, 0, 2.5 * e}, Vec3{0, 3 * e, 0}, Vec3{1.5 * e, 0.7 * e, e}}) {
+      const std::vector<InscribedBall> balls = inscribed_balls(shape.instance, light);
+      ASSERT_FALSE(balls.empty());
+      const Bounds3 bounds[] = {shape.instance.world_bounds};
+      const std::uint32_t ids[] = {0};
+      const LightBuffer buffer(light, bounds, ids, balls);
+      // Directions towards the grid's points on the plane through the axis facing the light.
+      const Vec3 toward = -light / length(light);
+      Vec3 u = cross(toward, std::fabs(toward.z) < 0.9 ? Vec3{0, 0, 1} : Vec3{1, 0, 0});
+      u = u / length(u);
+      const Vec3 v = cross(toward, u);
+      constexpr int kGrid = 300;
+      for (int i = 0; i <= kGrid; ++i)
+        for (int j = 0; j <= kGrid; ++j) {
+          const Vec3 target = u * (e * (2.0 * i / kGrid - 1)) + v * (e * (2.0 * j / kGrid - 1));
+          const Vec3 origin = light + (target - light) * 3;
+          if (!buffer.candidates(origin).blocked) continue;
+          ++settled;
+          ASSERT_TRUE(walk_blocks({shape}, origin, light))
+              << "r/R " << ratio << ": settled as blocked, but the torus lets the feeler from "
+              << origin.x << ' ' << origin.y << ' ' << origin.z << " pass";
+        }
+    }
+  }
+  EXPECT_GT(settled, 400000);
 }
 
 TEST(LightBufferBlocked, SingularValues) {
