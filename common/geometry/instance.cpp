@@ -17,7 +17,6 @@
 
 #include <bit>
 #include <cmath>
-#include <type_traits>
 #include <variant>
 
 #include "common/accel/wide_box_kernel.h"
@@ -267,8 +266,7 @@ template <typename ObjectRayOf>
 // intersect_instance_packet's lanes through a shape's packet test (torus_packet.h,
 // cube_packet.h): each lane's object direction as intersect_instance takes it, the shape's test
 // packet_test(directions, locals) four lanes at once, the hits back to world space as
-// intersect_instance takes them, four at a time under full transforms without face normals
-// (world_hits_avx2.h), else a lane at a time.
+// intersect_instance takes them, four at a time (world_hits_avx2.h).
 template <typename Transforms, typename PacketTest>
 [[gnu::always_inline]] inline unsigned intersect_lanes(const Transforms& transforms,
                                                        const Ray rays[4], unsigned lanes,
@@ -286,17 +284,7 @@ template <typename Transforms, typename PacketTest>
   UnzeroedLocalHits<4> storage;
   LocalHit* locals = storage.hits();
   const unsigned hit_lanes = packet_test(directions, locals);
-  if (hit_lanes == 0) return 0;
-  if constexpr (std::is_same_v<Transforms, FullTransforms>) {
-    if (!transforms.instance.face_normals) {
-      to_world_hits_avx2(transforms.instance, locals, hit_lanes, hits);
-      return hit_lanes;
-    }
-  }
-  for (unsigned m = hit_lanes; m != 0; m &= m - 1) {
-    const int l = std::countr_zero(m);
-    to_world_hit_with(transforms, locals[l], *hits[l]);
-  }
+  if (hit_lanes != 0) to_world_hits_avx2(transforms.instance, locals, hit_lanes, hits);
   return hit_lanes;
 }
 

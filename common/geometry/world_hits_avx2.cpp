@@ -1,8 +1,10 @@
 // Four hits to world space at once (world_hits_avx2.h). Each step is instance.cpp's
-// FullTransforms::world_point (Affine::apply_point, Affine::point_error, round_trip_error) and
-// world_normals (Affine::apply_transpose of to_object, normalize_or) for four lanes, lane by lane
-// the same operations on the same operands in the same order. A hit whose shading normal is not
-// its normal (a smooth mesh's) takes to_world_hit alone.
+// FullTransforms::world_point (Affine::apply_point, Affine::point_error, round_trip_error) or
+// DiagonalTransforms::world_point (DiagonalAffine's, diagonal_round_trip_error) and world_normals
+// (to_object's transpose, normalize_or) or the instance's face normals, for four lanes, lane by
+// lane the same operations on the same operands in the same order. A lane whose diagonal products
+// are not the full ones (same_as_full), or whose shading normal is not its normal (a smooth
+// mesh's), takes to_world_hit alone.
 #include "common/geometry/world_hits_avx2.h"
 
 #if defined(__SSE2__)  // the whole file: x86-64's AVX2
@@ -14,12 +16,13 @@
 #include <cstddef>
 #include <limits>
 
+#include "common/geometry/avx2_lanes.h"
 #include "common/math/float_error.h"
 
 namespace tessera {
 namespace {
 
-using V = __m256d;
+using namespace avx2_lanes;
 
 // LocalHit's point, point_error, normal and shading_normal, and WorldHit's same four members,
 // are twelve doubles in a row at the same offset: each lane's block moves as three vectors.
@@ -55,13 +58,6 @@ struct Quad {
                                                                     int k) {
   return transpose(load_block(*from[0], k), load_block(*from[1], k), load_block(*from[2], k),
                    load_block(*from[3], k));
-}
-
-[[gnu::target("avx2"), gnu::always_inline]] inline V splat(double x) { return _mm256_set1_pd(x); }
-[[gnu::target("avx2"), gnu::always_inline]] inline V add(V a, V b) { return _mm256_add_pd(a, b); }
-[[gnu::target("avx2"), gnu::always_inline]] inline V mul(V a, V b) { return _mm256_mul_pd(a, b); }
-[[gnu::target("avx2"), gnu::always_inline]] inline V magnitude(V a) {
-  return _mm256_andnot_pd(splat(-0.0), a);
 }
 
 // A vector of lanes for each component.
@@ -112,20 +108,88 @@ struct Vec3Lanes {
   return _mm256_blendv_pd(splat(fallback), _mm256_div_pd(c, length), usable);
 }
 
-// A lane's hit from its twelve doubles, as to_world_hit writes it; a hit whose shading normal is
-// not its normal takes to_world_hit itself.
+// A lane's points (the world point and its error bound).
+struct PointLanes {
+  Vec3Lanes point, error;
+};
+
+// FullTransforms::world_point.
+[[gnu::target("avx2"), gnu::always_inline]] inline PointLanes full_world_points(
+    const Instance& instance, const Vec3Lanes& point, const Vec3Lanes& point_error) {
+  const Affine& w = instance.to_world;
+  const Vec3Lanes world{point_row(w, 0, point), point_row(w, 1, point), point_row(w, 2, point)};
+  const Vec3Lanes error{row_error(w, 0, point, point_error), row_error(w, 1, point, point_error),
+                        row_error(w, 2, point, point_error)};
+  // round_trip_error of |point| + error.
+  const Vec3Lanes object_terms = abs_affine(
+      instance.to_object, {add(magnitude(world.x), error.x), add(magnitude(world.y), error.y),
+                           add(magnitude(world.z), error.z)});
+  const Vec3Lanes terms = abs_affine(w, object_terms);
+  const V gamma11 = splat(gamma_bound(11));
+  return {world,
+          {add(error.x, mul(terms.x, gamma11)), add(error.y, mul(terms.y, gamma11)),
+           add(error.z, mul(terms.z, gamma11))}};
+}
+
+// One component of DiagonalTransforms::world_point: DiagonalAffine::apply_point and point_error
+// of to_world, then diagonal_round_trip_error (instance.cpp) of |point| + error; c the component.
+[[gnu::target("avx2"), gnu::always_inline]] inline void diagonal_world_component(
+    const Instance::Diagonal& diagonal, int c, V p, V p_error, V& world, V& error) {
+  const double scale = diagonal.to_world.scale[c], offset = diagonal.to_world.offset[c];
+  world = add(mul(splat(scale), p), splat(offset));
+  error = add(
+      mul(add(magnitude(mul(splat(scale), p)), splat(std::fabs(offset))), splat(gamma_bound(3))),
+      mul(mul(splat(std::fabs(scale)), p_error), splat(gamma_bound(3) + 1)));
+  const V object_term =
+      add(mul(splat(std::fabs(diagonal.to_object.scale[c])), add(magnitude(world), error)),
+          splat(std::fabs(diagonal.to_object.offset[c])));
+  const V term = add(mul(splat(std::fabs(scale)), object_term), splat(std::fabs(offset)));
+  error = add(error, mul(term, splat(gamma_bound(11))));
+}
+
+// The lanes where same_as_full(a, b) (diagonal_affine.h) fails, as a compare's mask: the
+// product of a's components times the product of b's, in the same order, not in (0, inf).
+[[gnu::target("avx2"), gnu::always_inline]] inline V not_same_as_full(const Vec3Lanes& a,
+                                                                      const Vec3Lanes& b) {
+  const V product = magnitude(mul(mul(mul(a.x, a.y), a.z), mul(mul(b.x, b.y), b.z)));
+  return _mm256_or_pd(
+      _mm256_cmp_pd(product, _mm256_setzero_pd(), _CMP_NGT_UQ),
+      _mm256_cmp_pd(product, splat(std::numeric_limits<double>::infinity()), _CMP_NLT_UQ));
+}
+
+// normalize_or(n, {}) with {0, 0, 1} for a normal without a usable length (zero, subnormal or
+// not finite; the ordered compares fail on NaN), as world_normals (instance.cpp) takes it.
+[[gnu::target("avx2"), gnu::always_inline]] inline Vec3Lanes unit_normals(const Vec3Lanes& n) {
+  const V length = _mm256_sqrt_pd(add(add(mul(n.x, n.x), mul(n.y, n.y)), mul(n.z, n.z)));
+  const V usable = _mm256_and_pd(
+      _mm256_cmp_pd(length, splat(1e-300), _CMP_GT_OQ),
+      _mm256_cmp_pd(length, splat(std::numeric_limits<double>::infinity()), _CMP_LT_OQ));
+  return {unit_or(n.x, length, usable, 0), unit_or(n.y, length, usable, 0),
+          unit_or(n.z, length, usable, 1)};
+}
+
+// A lane's hit from its twelve doubles (v0, v1, v2: point, point_error, normal, shading normal)
+// as to_world_hit writes it; with face normals only the first six are taken and the normals are
+// the face's. A lane `alone` (a diagonal product that is not the full one, or a smooth mesh's
+// shading normal) takes to_world_hit itself.
 [[gnu::target("avx2"), gnu::always_inline]] inline void store_lane(const Instance& instance,
                                                                    const LocalHit& local,
-                                                                   WorldHit& hit, V v0, V v1,
-                                                                   V v2) {
-  if (!same_bits(local.shading_normal, local.normal)) [[unlikely]] {
+                                                                   WorldHit& hit, bool alone, V v0,
+                                                                   V v1, V v2) {
+  if (alone || (!instance.face_normals && !same_bits(local.shading_normal, local.normal)))
+      [[unlikely]] {
     to_world_hit(instance, local, hit);
     return;
   }
   auto* to = reinterpret_cast<double*>(reinterpret_cast<std::byte*>(&hit) + kBlock);
   _mm256_storeu_pd(to, v0);
   _mm256_storeu_pd(to + 4, v1);
-  _mm256_storeu_pd(to + 8, v2);
+  if (instance.face_normals) {
+    hit.normal = (*instance.face_normals)[local.part];
+    hit.shading_normal = hit.normal;
+  } else {
+    _mm256_storeu_pd(to + 8, v2);
+  }
   hit.t = local.t;
   hit.object_point = local.point;
   hit.part = local.part;
@@ -146,42 +210,52 @@ struct Vec3Lanes {
   const Vec3Lanes point_error{in0.v3, in1.v0, in1.v1};
   const Vec3Lanes normal{in1.v2, in1.v3, in2.v0};
 
-  // FullTransforms::world_point.
-  const Affine& w = instance.to_world;
-  const Vec3Lanes world{point_row(w, 0, point), point_row(w, 1, point), point_row(w, 2, point)};
-  const Vec3Lanes error{row_error(w, 0, point, point_error), row_error(w, 1, point, point_error),
-                        row_error(w, 2, point, point_error)};
-  // round_trip_error of |point| + error.
-  const Vec3Lanes object_terms = abs_affine(
-      instance.to_object, {add(magnitude(world.x), error.x), add(magnitude(world.y), error.y),
-                           add(magnitude(world.z), error.z)});
-  const Vec3Lanes terms = abs_affine(w, object_terms);
-  const V gamma11 = splat(gamma_bound(11));
-  const Vec3Lanes world_error{add(error.x, mul(terms.x, gamma11)),
-                              add(error.y, mul(terms.y, gamma11)),
-                              add(error.z, mul(terms.z, gamma11))};
+  // The world points, and the lanes whose diagonal products are not the full ones.
+  PointLanes world;
+  V alone = _mm256_setzero_pd();
+  if (instance.diagonal) {
+    diagonal_world_component(*instance.diagonal, 0, point.x, point_error.x, world.point.x,
+                             world.error.x);
+    diagonal_world_component(*instance.diagonal, 1, point.y, point_error.y, world.point.y,
+                             world.error.y);
+    diagonal_world_component(*instance.diagonal, 2, point.z, point_error.z, world.point.z,
+                             world.error.z);
+    alone = not_same_as_full(world.point, world.error);
+  } else {
+    world = full_world_points(instance, point, point_error);
+  }
 
-  // world_normals: to_object's transpose, then normalize_or with {0, 0, 1} for a normal without
-  // a usable length (zero, subnormal or not finite; the ordered compares fail on NaN).
-  const Affine& o = instance.to_object;
-  const Vec3Lanes n{combine(o.m[0][0], o.m[1][0], o.m[2][0], normal),
-                    combine(o.m[0][1], o.m[1][1], o.m[2][1], normal),
-                    combine(o.m[0][2], o.m[1][2], o.m[2][2], normal)};
-  const V length = _mm256_sqrt_pd(add(add(mul(n.x, n.x), mul(n.y, n.y)), mul(n.z, n.z)));
-  const V usable = _mm256_and_pd(
-      _mm256_cmp_pd(length, splat(1e-300), _CMP_GT_OQ),
-      _mm256_cmp_pd(length, splat(std::numeric_limits<double>::infinity()), _CMP_LT_OQ));
-  const Vec3Lanes world_normal{unit_or(n.x, length, usable, 0), unit_or(n.y, length, usable, 0),
-                               unit_or(n.z, length, usable, 1)};
+  // world_normals: the local normal through to_object's transpose (a diagonal's is itself), then
+  // unit. Not needed with face normals.
+  Vec3Lanes world_normal{};
+  if (!instance.face_normals) {
+    if (instance.diagonal) {
+      const DiagonalAffine& o = instance.diagonal->to_object;
+      const Vec3Lanes n{mul(splat(o.scale.x), normal.x), mul(splat(o.scale.y), normal.y),
+                        mul(splat(o.scale.z), normal.z)};
+      alone = _mm256_or_pd(alone, not_same_as_full(n, {splat(1), splat(1), splat(1)}));
+      world_normal = unit_normals(n);
+    } else {
+      const Affine& o = instance.to_object;
+      world_normal = unit_normals({combine(o.m[0][0], o.m[1][0], o.m[2][0], normal),
+                                   combine(o.m[0][1], o.m[1][1], o.m[2][1], normal),
+                                   combine(o.m[0][2], o.m[1][2], o.m[2][2], normal)});
+    }
+  }
 
   // Back to each lane's twelve doubles; the shading normal is the normal.
-  const Quad out0 = transpose(world.x, world.y, world.z, world_error.x);
-  const Quad out1 = transpose(world_error.y, world_error.z, world_normal.x, world_normal.y);
+  const Quad out0 = transpose(world.point.x, world.point.y, world.point.z, world.error.x);
+  const Quad out1 = transpose(world.error.y, world.error.z, world_normal.x, world_normal.y);
   const Quad out2 = transpose(world_normal.z, world_normal.x, world_normal.y, world_normal.z);
-  if (lanes & 1u) store_lane(instance, locals[0], *hits[0], out0.v0, out1.v0, out2.v0);
-  if (lanes & 2u) store_lane(instance, locals[1], *hits[1], out0.v1, out1.v1, out2.v1);
-  if (lanes & 4u) store_lane(instance, locals[2], *hits[2], out0.v2, out1.v2, out2.v2);
-  if (lanes & 8u) store_lane(instance, locals[3], *hits[3], out0.v3, out1.v3, out2.v3);
+  const int alone_lanes = _mm256_movemask_pd(alone);
+  if (lanes & 1u)
+    store_lane(instance, locals[0], *hits[0], alone_lanes & 1, out0.v0, out1.v0, out2.v0);
+  if (lanes & 2u)
+    store_lane(instance, locals[1], *hits[1], alone_lanes & 2, out0.v1, out1.v1, out2.v1);
+  if (lanes & 4u)
+    store_lane(instance, locals[2], *hits[2], alone_lanes & 4, out0.v2, out1.v2, out2.v2);
+  if (lanes & 8u)
+    store_lane(instance, locals[3], *hits[3], alone_lanes & 8, out0.v3, out1.v3, out2.v3);
 }
 
 }  // namespace tessera
