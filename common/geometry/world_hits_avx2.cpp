@@ -172,19 +172,19 @@ struct PointLanes {
 // as to_world_hit writes it; with face normals only the first six are taken and the normals are
 // the face's. A lane `alone` (a diagonal product that is not the full one, or a smooth mesh's
 // shading normal) takes to_world_hit itself.
+template <bool kFaceNormals>
 [[gnu::target("avx2"), gnu::always_inline]] inline void store_lane(const Instance& instance,
                                                                    const LocalHit& local,
                                                                    WorldHit& hit, bool alone, V v0,
                                                                    V v1, V v2) {
-  if (alone || (!instance.face_normals && !same_bits(local.shading_normal, local.normal)))
-      [[unlikely]] {
+  if (alone || (!kFaceNormals && !same_bits(local.shading_normal, local.normal))) [[unlikely]] {
     to_world_hit(instance, local, hit);
     return;
   }
   auto* to = reinterpret_cast<double*>(reinterpret_cast<std::byte*>(&hit) + kBlock);
   _mm256_storeu_pd(to, v0);
   _mm256_storeu_pd(to + 4, v1);
-  if (instance.face_normals) {
+  if constexpr (kFaceNormals) {
     hit.normal = (*instance.face_normals)[local.part];
     hit.shading_normal = hit.normal;
   } else {
@@ -196,10 +196,14 @@ struct PointLanes {
   hit.object = instance.object;
 }
 
-}  // namespace
-
-[[gnu::target("avx2")]] void to_world_hits_avx2(const Instance& instance, const LocalHit locals[4],
-                                                unsigned lanes, WorldHit* const hits[4]) {
+// to_world_hits_avx2 for one kind of instance (its transforms diagonal or full, with face
+// normals or without), each kind its own code: tested in the loop, the kinds cost the tori's
+// calls some 50 instructions more.
+template <bool kDiagonal, bool kFaceNormals>
+[[gnu::target("avx2"), gnu::always_inline]] inline void world_hits(const Instance& instance,
+                                                                   const LocalHit locals[4],
+                                                                   unsigned lanes,
+                                                                   WorldHit* const hits[4]) {
   // Lanes outside `lanes` repeat the first one's hit (computed, not used): an unhit lane's
   // LocalHit was never written.
   const int first = std::countr_zero(lanes);
@@ -213,7 +217,7 @@ struct PointLanes {
   // The world points, and the lanes whose diagonal products are not the full ones.
   PointLanes world;
   V alone = _mm256_setzero_pd();
-  if (instance.diagonal) {
+  if constexpr (kDiagonal) {
     diagonal_world_component(*instance.diagonal, 0, point.x, point_error.x, world.point.x,
                              world.error.x);
     diagonal_world_component(*instance.diagonal, 1, point.y, point_error.y, world.point.y,
@@ -228,8 +232,8 @@ struct PointLanes {
   // world_normals: the local normal through to_object's transpose (a diagonal's is itself), then
   // unit. Not needed with face normals.
   Vec3Lanes world_normal{};
-  if (!instance.face_normals) {
-    if (instance.diagonal) {
+  if constexpr (!kFaceNormals) {
+    if constexpr (kDiagonal) {
       const DiagonalAffine& o = instance.diagonal->to_object;
       const Vec3Lanes n{mul(splat(o.scale.x), normal.x), mul(splat(o.scale.y), normal.y),
                         mul(splat(o.scale.z), normal.z)};
@@ -249,13 +253,29 @@ struct PointLanes {
   const Quad out2 = transpose(world_normal.z, world_normal.x, world_normal.y, world_normal.z);
   const int alone_lanes = _mm256_movemask_pd(alone);
   if (lanes & 1u)
-    store_lane(instance, locals[0], *hits[0], alone_lanes & 1, out0.v0, out1.v0, out2.v0);
+    store_lane<kFaceNormals>(instance, locals[0], *hits[0], alone_lanes & 1, out0.v0, out1.v0,
+                             out2.v0);
   if (lanes & 2u)
-    store_lane(instance, locals[1], *hits[1], alone_lanes & 2, out0.v1, out1.v1, out2.v1);
+    store_lane<kFaceNormals>(instance, locals[1], *hits[1], alone_lanes & 2, out0.v1, out1.v1,
+                             out2.v1);
   if (lanes & 4u)
-    store_lane(instance, locals[2], *hits[2], alone_lanes & 4, out0.v2, out1.v2, out2.v2);
+    store_lane<kFaceNormals>(instance, locals[2], *hits[2], alone_lanes & 4, out0.v2, out1.v2,
+                             out2.v2);
   if (lanes & 8u)
-    store_lane(instance, locals[3], *hits[3], alone_lanes & 8, out0.v3, out1.v3, out2.v3);
+    store_lane<kFaceNormals>(instance, locals[3], *hits[3], alone_lanes & 8, out0.v3, out1.v3,
+                             out2.v3);
+}
+
+}  // namespace
+
+[[gnu::target("avx2")]] void to_world_hits_avx2(const Instance& instance, const LocalHit locals[4],
+                                                unsigned lanes, WorldHit* const hits[4]) {
+  if (instance.diagonal) {
+    if (instance.face_normals) return world_hits<true, true>(instance, locals, lanes, hits);
+    return world_hits<true, false>(instance, locals, lanes, hits);
+  }
+  if (instance.face_normals) return world_hits<false, true>(instance, locals, lanes, hits);
+  world_hits<false, false>(instance, locals, lanes, hits);
 }
 
 }  // namespace tessera
