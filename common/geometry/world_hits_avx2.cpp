@@ -168,27 +168,40 @@ struct PointLanes {
           unit_or(n.z, length, usable, 1)};
 }
 
-// A lane's hit from its twelve doubles (v0, v1, v2: point, point_error, normal, shading normal)
-// as to_world_hit writes it; with face normals only the first six are taken and the normals are
-// the face's. A lane `alone` (a diagonal product that is not the full one, or a smooth mesh's
-// shading normal) takes to_world_hit itself.
-template <bool kFaceNormals>
-[[gnu::target("avx2"), gnu::always_inline]] inline void store_lane(const Instance& instance,
-                                                                   const LocalHit& local,
-                                                                   WorldHit& hit, bool alone, V v0,
-                                                                   V v1, V v2) {
-  if (alone || (!kFaceNormals && !same_bits(local.shading_normal, local.normal))) [[unlikely]] {
+// Lane L of a Quad's vectors.
+template <int L>
+[[gnu::target("avx2"), gnu::always_inline]] inline V lane(const Quad& q) {
+  if constexpr (L == 0) return q.v0;
+  if constexpr (L == 1) return q.v1;
+  if constexpr (L == 2) return q.v2;
+  return q.v3;
+}
+
+// Lane L's hit, when L is in `lanes`, from its twelve doubles (lane L of out0, out1, out2: point,
+// point_error, normal, shading normal) as to_world_hit writes it; with face normals only the
+// first six are taken and the normals are the face's. A lane in `alone_lanes` (a diagonal product
+// that is not the full one) or with a shading normal of its own (a smooth mesh's) takes
+// to_world_hit itself.
+template <bool kFaceNormals, int L>
+[[gnu::target("avx2"), gnu::always_inline]] inline void store_lane(
+    const Instance& instance, const LocalHit locals[4], WorldHit* const hits[4], unsigned lanes,
+    int alone_lanes, const Quad& out0, const Quad& out1, const Quad& out2) {
+  if (((lanes >> L) & 1u) == 0) return;
+  const LocalHit& local = locals[L];
+  WorldHit& hit = *hits[L];
+  if (((alone_lanes >> L) & 1) != 0 ||
+      (!kFaceNormals && !same_bits(local.shading_normal, local.normal))) [[unlikely]] {
     to_world_hit(instance, local, hit);
     return;
   }
   auto* to = reinterpret_cast<double*>(reinterpret_cast<std::byte*>(&hit) + kBlock);
-  _mm256_storeu_pd(to, v0);
-  _mm256_storeu_pd(to + 4, v1);
+  _mm256_storeu_pd(to, lane<L>(out0));
+  _mm256_storeu_pd(to + 4, lane<L>(out1));
   if constexpr (kFaceNormals) {
     hit.normal = (*instance.face_normals)[local.part];
     hit.shading_normal = hit.normal;
   } else {
-    _mm256_storeu_pd(to + 8, v2);
+    _mm256_storeu_pd(to + 8, lane<L>(out2));
   }
   hit.t = local.t;
   hit.object_point = local.point;
@@ -252,18 +265,10 @@ template <bool kDiagonal, bool kFaceNormals>
   const Quad out1 = transpose(world.error.y, world.error.z, world_normal.x, world_normal.y);
   const Quad out2 = transpose(world_normal.z, world_normal.x, world_normal.y, world_normal.z);
   const int alone_lanes = _mm256_movemask_pd(alone);
-  if (lanes & 1u)
-    store_lane<kFaceNormals>(instance, locals[0], *hits[0], alone_lanes & 1, out0.v0, out1.v0,
-                             out2.v0);
-  if (lanes & 2u)
-    store_lane<kFaceNormals>(instance, locals[1], *hits[1], alone_lanes & 2, out0.v1, out1.v1,
-                             out2.v1);
-  if (lanes & 4u)
-    store_lane<kFaceNormals>(instance, locals[2], *hits[2], alone_lanes & 4, out0.v2, out1.v2,
-                             out2.v2);
-  if (lanes & 8u)
-    store_lane<kFaceNormals>(instance, locals[3], *hits[3], alone_lanes & 8, out0.v3, out1.v3,
-                             out2.v3);
+  store_lane<kFaceNormals, 0>(instance, locals, hits, lanes, alone_lanes, out0, out1, out2);
+  store_lane<kFaceNormals, 1>(instance, locals, hits, lanes, alone_lanes, out0, out1, out2);
+  store_lane<kFaceNormals, 2>(instance, locals, hits, lanes, alone_lanes, out0, out1, out2);
+  store_lane<kFaceNormals, 3>(instance, locals, hits, lanes, alone_lanes, out0, out1, out2);
 }
 
 }  // namespace
