@@ -24,14 +24,10 @@ namespace {
 
 using namespace avx2_lanes;
 
-// LocalHit's point, point_error, normal and shading_normal, and WorldHit's same four members,
-// are twelve doubles in a row at the same offset: each lane's block moves as three vectors.
-constexpr std::size_t kBlock = offsetof(LocalHit, point);
-static_assert(offsetof(LocalHit, point_error) == kBlock + 3 * sizeof(double) &&
-              offsetof(LocalHit, normal) == kBlock + 6 * sizeof(double) &&
-              offsetof(LocalHit, shading_normal) == kBlock + 9 * sizeof(double));
-static_assert(offsetof(WorldHit, point) == kBlock &&
-              offsetof(WorldHit, point_error) == kBlock + 3 * sizeof(double) &&
+// WorldHit's point, point_error, normal and shading_normal are twelve doubles in a row: each
+// lane's block is stored as three vectors.
+constexpr std::size_t kBlock = offsetof(WorldHit, point);
+static_assert(offsetof(WorldHit, point_error) == kBlock + 3 * sizeof(double) &&
               offsetof(WorldHit, normal) == kBlock + 6 * sizeof(double) &&
               offsetof(WorldHit, shading_normal) == kBlock + 9 * sizeof(double));
 
@@ -40,24 +36,13 @@ struct Quad {
   V v0, v1, v2, v3;
 };
 
-// Vectors r0..r3 of a lane's four values each become four vectors of one value for every lane,
-// and back. (Vectors in named variables, not arrays: GCC kept arrays of them on the stack.)
+// Vectors r0..r3 of four values each become four vectors of the first, second, third and fourth
+// values of all. (Vectors in named variables, not arrays: GCC kept arrays of them on the stack.)
 [[gnu::target("avx2"), gnu::always_inline]] inline Quad transpose(V r0, V r1, V r2, V r3) {
   const V t0 = _mm256_unpacklo_pd(r0, r1), t1 = _mm256_unpackhi_pd(r0, r1);
   const V t2 = _mm256_unpacklo_pd(r2, r3), t3 = _mm256_unpackhi_pd(r2, r3);
   return {_mm256_permute2f128_pd(t0, t2, 0x20), _mm256_permute2f128_pd(t1, t3, 0x20),
           _mm256_permute2f128_pd(t0, t2, 0x31), _mm256_permute2f128_pd(t1, t3, 0x31)};
-}
-
-// The k-th four of the twelve doubles from kBlock on.
-[[gnu::target("avx2"), gnu::always_inline]] inline V load_block(const LocalHit& local, int k) {
-  return _mm256_loadu_pd(
-      reinterpret_cast<const double*>(reinterpret_cast<const std::byte*>(&local) + kBlock) + 4 * k);
-}
-[[gnu::target("avx2"), gnu::always_inline]] inline Quad load_blocks(const LocalHit* const from[4],
-                                                                    int k) {
-  return transpose(load_block(*from[0], k), load_block(*from[1], k), load_block(*from[2], k),
-                   load_block(*from[3], k));
 }
 
 // A vector of lanes for each component.
@@ -69,6 +54,19 @@ struct Vec3Lanes {
 [[gnu::target("avx2"), gnu::always_inline]] inline V combine(double a0, double a1, double a2,
                                                              const Vec3Lanes& v) {
   return add(add(mul(splat(a0), v.x), mul(splat(a1), v.y)), mul(splat(a2), v.z));
+}
+
+// The lanes' `member`s, a vector for each component, read a double at a time. Not as 32-byte
+// blocks transposed (`torworld`'s first form): the shapes write their LocalHits a member at a
+// time, just before, and a load that spans several of those stores cannot take its data from
+// them (store forwarding fails) and waits for them to reach the cache; so read, the floor's and
+// the tori's lanes took no less time than a lane at a time (docs/PERFORMANCE.md, `floorpkt`).
+[[gnu::target("avx2"), gnu::always_inline]] inline Vec3Lanes member_lanes(
+    const LocalHit* const from[4], Vec3 LocalHit::*member) {
+  const Vec3 &v0 = from[0]->*member, &v1 = from[1]->*member, &v2 = from[2]->*member,
+             &v3 = from[3]->*member;
+  return {_mm256_set_pd(v3.x, v2.x, v1.x, v0.x), _mm256_set_pd(v3.y, v2.y, v1.y, v0.y),
+          _mm256_set_pd(v3.z, v2.z, v1.z, v0.z)};
 }
 
 // Row r of |lin(a)| v + |t(a)|: instance.cpp's abs_linear plus abs_translation. (Functions, not
@@ -222,10 +220,8 @@ template <bool kDiagonal, bool kFaceNormals>
   const int first = std::countr_zero(lanes);
   const auto local = [&](int l) { return &locals[(lanes >> l) & 1u ? l : first]; };
   const LocalHit* const from[4] = {local(0), local(1), local(2), local(3)};
-  const Quad in0 = load_blocks(from, 0), in1 = load_blocks(from, 1), in2 = load_blocks(from, 2);
-  const Vec3Lanes point{in0.v0, in0.v1, in0.v2};
-  const Vec3Lanes point_error{in0.v3, in1.v0, in1.v1};
-  const Vec3Lanes normal{in1.v2, in1.v3, in2.v0};
+  const Vec3Lanes point = member_lanes(from, &LocalHit::point);
+  const Vec3Lanes point_error = member_lanes(from, &LocalHit::point_error);
 
   // The world points, and the lanes whose diagonal products are not the full ones.
   PointLanes world;
@@ -246,6 +242,7 @@ template <bool kDiagonal, bool kFaceNormals>
   // unit. Not needed with face normals.
   Vec3Lanes world_normal{};
   if constexpr (!kFaceNormals) {
+    const Vec3Lanes normal = member_lanes(from, &LocalHit::normal);
     if constexpr (kDiagonal) {
       const DiagonalAffine& o = instance.diagonal->to_object;
       const Vec3Lanes n{mul(splat(o.scale.x), normal.x), mul(splat(o.scale.y), normal.y),
