@@ -58,9 +58,10 @@ struct Vec3Lanes {
 
 // The lanes' `member`s, a vector for each component, read a double at a time. Not as 32-byte
 // blocks transposed (`torworld`'s first form): the shapes write their LocalHits a member at a
-// time, just before, and a load that spans several of those stores cannot take its data from
-// them (store forwarding fails) and waits for them to reach the cache; so read, the floor's and
-// the tori's lanes took no less time than a lane at a time (docs/PERFORMANCE.md, `floorpkt`).
+// time just before, and a load that spans several of those stores cannot take its data from them
+// (store forwarding fails) and waits for them to reach the cache. Read as blocks, the floor's
+// lanes took as long as a lane at a time; read so, the tori render in about 0.99 of that time
+// (docs/PERFORMANCE.md, `floorpkt`).
 [[gnu::target("avx2"), gnu::always_inline]] inline Vec3Lanes member_lanes(
     const LocalHit* const from[4], Vec3 LocalHit::*member) {
   const Vec3 &v0 = from[0]->*member, &v1 = from[1]->*member, &v2 = from[2]->*member,
