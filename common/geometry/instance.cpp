@@ -17,11 +17,11 @@
 
 #include <bit>
 #include <cmath>
-#include <type_traits>
 #include <variant>
 
 #include "common/accel/wide_box_kernel.h"
 #include "common/geometry/csg.h"
+#include "common/geometry/cube_packet.h"
 #include "common/geometry/motion.h"
 #include "common/geometry/shapes.h"
 #include "common/geometry/torus_packet.h"
@@ -263,36 +263,40 @@ template <typename ObjectRayOf>
 }
 
 #if defined(__SSE2__)
-// intersect_instance_packet's torus lanes: each lane's object direction as intersect_instance takes
-// it, the frames four at a time, the hits back to world space as intersect_instance takes them,
-// four at a time under full transforms (world_hits_avx2.h), else a lane at a time.
-template <typename Transforms>
-unsigned intersect_torus_lanes(const Transforms& transforms, const Torus& torus, const Ray rays[4],
-                               unsigned lanes, const Vec3& object_origin, const double t_max[4],
-                               WorldHit* const hits[4], IntersectionCounters& counters) {
+// intersect_instance_packet's lanes through a shape's packet test (torus_packet.h,
+// cube_packet.h): each lane's object direction as intersect_instance takes it, the shape's test
+// packet_test(directions, locals) four lanes at once, the hits back to world space as
+// intersect_instance takes them, four at a time (world_hits_avx2.h).
+template <typename Transforms, typename PacketTest>
+[[gnu::always_inline]] inline unsigned intersect_lanes(const Transforms& transforms,
+                                                       const Ray rays[4], unsigned lanes,
+                                                       WorldHit* const hits[4],
+                                                       IntersectionCounters& counters,
+                                                       const PacketTest& packet_test) {
   // Lanes outside `lanes` repeat the first one's ray (computed, not used). Built whole: an array
   // of Vec3 declared first is zeroed (a `rep stos`).
   const int first = std::countr_zero(lanes);
   const auto direction = [&](int l) {
     return transforms.object_vector(rays[(lanes >> l) & 1u ? l : first].direction);
   };
-  const Vec3 directions[kTorusPacketLanes] = {direction(0), direction(1), direction(2),
-                                              direction(3)};
+  const Vec3 directions[4] = {direction(0), direction(1), direction(2), direction(3)};
   counters.shape_tests += static_cast<std::uint64_t>(std::popcount(lanes));
-  UnzeroedLocalHits<kTorusPacketLanes> storage;
+  UnzeroedLocalHits<4> storage;
   LocalHit* locals = storage.hits();
-  const unsigned hit_lanes =
-      intersect_torus_packet_avx2(torus, object_origin, directions, lanes, t_max, locals);
-  if constexpr (std::is_same_v<Transforms, FullTransforms>) {
-    // A torus has no face normals.
-    if (hit_lanes != 0) to_world_hits_avx2(transforms.instance, locals, hit_lanes, hits);
-  } else {
-    for (unsigned m = hit_lanes; m != 0; m &= m - 1) {
-      const int l = std::countr_zero(m);
-      to_world_hit_with(transforms, locals[l], *hits[l]);
-    }
-  }
+  const unsigned hit_lanes = packet_test(directions, locals);
+  if (hit_lanes != 0) to_world_hits_avx2(transforms.instance, locals, hit_lanes, hits);
   return hit_lanes;
+}
+
+// intersect_lanes for the instance's kind of transforms.
+template <typename PacketTest>
+unsigned intersect_placed_lanes(const Instance& instance, const Ray rays[4], unsigned lanes,
+                                WorldHit* const hits[4], IntersectionCounters& counters,
+                                const PacketTest& packet_test) {
+  if (instance.diagonal)
+    return intersect_lanes(DiagonalTransforms{instance, *instance.diagonal}, rays, lanes, hits,
+                           counters, packet_test);
+  return intersect_lanes(FullTransforms{instance}, rays, lanes, hits, counters, packet_test);
 }
 #endif
 
@@ -428,15 +432,19 @@ unsigned intersect_instance_packet(const Instance& instance, const Ray rays[4], 
                                    const Vec3& object_origin, const double t_max[4],
                                    WorldHit* const hits[4], IntersectionCounters& counters) {
 #if defined(__SSE2__)
-  // A moving torus takes the lanes one at a time (posed at each ray's time).
-  const Torus* torus = std::get_if<Torus>(&instance.geometry);
-  if (torus && !instance.motion && !std::has_single_bit(lanes) &&
-      wide_box_kernel() == WideBoxKernel::Avx2) {
-    if (instance.diagonal)
-      return intersect_torus_lanes(DiagonalTransforms{instance, *instance.diagonal}, *torus, rays,
-                                   lanes, object_origin, t_max, hits, counters);
-    return intersect_torus_lanes(FullTransforms{instance}, *torus, rays, lanes, object_origin,
-                                 t_max, hits, counters);
+  // A moving shape takes the lanes one at a time (posed at each ray's time).
+  if (!instance.motion && !std::has_single_bit(lanes) && wide_box_kernel() == WideBoxKernel::Avx2) {
+    if (const Torus* torus = std::get_if<Torus>(&instance.geometry))
+      return intersect_placed_lanes(instance, rays, lanes, hits, counters,
+                                    [&](const Vec3 directions[4], LocalHit* locals) {
+                                      return intersect_torus_packet_avx2(
+                                          *torus, object_origin, directions, lanes, t_max, locals);
+                                    });
+    if (std::holds_alternative<Cube>(instance.geometry))
+      return intersect_placed_lanes(
+          instance, rays, lanes, hits, counters, [&](const Vec3 directions[4], LocalHit* locals) {
+            return intersect_cube_packet_avx2(object_origin, directions, lanes, t_max, locals);
+          });
   }
 #endif
   unsigned hit_lanes = 0;

@@ -13,17 +13,13 @@
 #include "common/accel/wide_box_kernel.h"
 #include "common/geometry/instance.h"
 #include "common/geometry/torus_packet.h"
+#include "tests/geometry/packet_checks.h"
 
 namespace tessera {
 namespace {
 
-// The same bits, or NaN in both (a NaN's sign depends on the compiler's operand order).
-bool same_value(double a, double b) {
-  return std::memcmp(&a, &b, sizeof a) == 0 || (std::isnan(a) && std::isnan(b));
-}
-bool same_value(const Vec3& a, const Vec3& b) {
-  return same_value(a.x, b.x) && same_value(a.y, b.y) && same_value(a.z, b.z);
-}
+using test::component;
+using test::same_value;
 
 bool same_frame(const TorusFrame& a, const TorusFrame& b) {
   const TorusLine &p = a.line, &q = b.line;
@@ -34,32 +30,6 @@ bool same_frame(const TorusFrame& a, const TorusFrame& b) {
     same = same && same_value(a.quartic.c[i], b.quartic.c[i]);
   return same && a.first_root_end.has_value() == b.first_root_end.has_value() &&
          (!a.first_root_end || same_value(*a.first_root_end, *b.first_root_end));
-}
-
-bool same_hit(const WorldHit& a, const WorldHit& b) {
-  return same_value(a.t, b.t) && same_value(a.point, b.point) &&
-         same_value(a.point_error, b.point_error) && same_value(a.normal, b.normal) &&
-         same_value(a.shading_normal, b.shading_normal) &&
-         same_value(a.object_point, b.object_point) && a.part == b.part && a.object == b.object;
-}
-
-// A component: often a special value (zeros of both signs, values beyond hypot_inline's ranges,
-// infinity, NaN), else uniform in [-spread, spread].
-double component(std::mt19937_64& rng, double spread) {
-  static const double kSpecial[] = {0.0,
-                                    -0.0,
-                                    1.0,
-                                    -1.0,
-                                    1e-300,
-                                    1e300,
-                                    1e-160,
-                                    1e-170,
-                                    1e-320,
-                                    std::numeric_limits<double>::infinity(),
-                                    std::numeric_limits<double>::quiet_NaN()};
-  const int i = std::uniform_int_distribution<int>(0, 40)(rng);
-  if (i < 11) return kSpecial[i];
-  return std::uniform_real_distribution<double>(-spread, spread)(rng);
 }
 
 // Ring, horn, spindle, a thin tube and a degenerate one (no tube).
@@ -114,7 +84,6 @@ TEST(TorusPacket, FramesAreTorusFramesBitForBit) {
 // every box kernel; lanes left out of the mask are not written.
 TEST(TorusPacket, InstancePacketsAreEachRayAlone) {
   std::mt19937_64 rng(12);
-  std::uniform_real_distribution<double> unit(-1, 1);
   std::vector<Instance> instances;
   for (const Torus& torus : kTori)
     for (const Affine& m : {Affine::translation({-3.6, 0, 0}) * *Affine::rotation(-60, {1, 0, 0}),
@@ -123,48 +92,8 @@ TEST(TorusPacket, InstancePacketsAreEachRayAlone) {
       ASSERT_TRUE(made.has_value());
       instances.push_back(*made);
     }
-  const Vec3 eye{0, 3, 12};
-  int hits = 0;
-  for (const WideBoxKernel kernel :
-       {WideBoxKernel::Scalar, WideBoxKernel::Sse2, WideBoxKernel::Avx2}) {
-    if (!wide_box_kernel_supported(kernel)) continue;
-    force_wide_box_kernel(kernel);
-    for (const Instance& instance : instances) {
-      const Vec3 origin = object_origin(instance, eye);
-      const Vec3 centre{instance.to_world.m[0][3], instance.to_world.m[1][3],
-                        instance.to_world.m[2][3]};
-      for (int i = 0; i < 3000; ++i) {
-        Ray rays[kTorusPacketLanes];
-        double t_max[kTorusPacketLanes];
-        for (int l = 0; l < kTorusPacketLanes; ++l) {
-          const Vec3 target = centre + Vec3{unit(rng) * 2.5, unit(rng) * 2.5, unit(rng) * 2.5};
-          rays[l] = Ray{eye, target - eye, 0};
-          t_max[l] = l == 2 ? 0.7 + unit(rng) * 0.1 : kInfinity;
-        }
-        const unsigned lanes = 1 + static_cast<unsigned>(i % 15);
-        WorldHit together[kTorusPacketLanes], alone[kTorusPacketLanes];
-        WorldHit* const together_hits[kTorusPacketLanes] = {&together[0], &together[1],
-                                                            &together[2], &together[3]};
-        IntersectionCounters together_counts, alone_counts;
-        const unsigned hit_lanes = intersect_instance_packet(instance, rays, lanes, origin, t_max,
-                                                             together_hits, together_counts);
-        for (int l = 0; l < kTorusPacketLanes; ++l) {
-          const bool in = (lanes >> l) & 1u;
-          const bool hit =
-              in && intersect_instance(instance, rays[l], t_max[l], alone[l], alone_counts);
-          ASSERT_EQ((hit_lanes >> l) & 1u, hit ? 1u : 0u) << i << " lane " << l;
-          if (hit) {
-            ++hits;
-            EXPECT_TRUE(same_hit(together[l], alone[l])) << i << " lane " << l;
-          } else {
-            EXPECT_TRUE(same_hit(together[l], WorldHit{})) << i << " lane " << l;
-          }
-        }
-        EXPECT_EQ(together_counts.shape_tests, alone_counts.shape_tests);
-      }
-    }
-  }
-  force_wide_box_kernel(std::nullopt);
+  const int hits =
+      test::compare_instance_packets(instances, {0, 3, 12}, {2.5, 2.5, 2.5}, 0.7, 3000, rng);
   EXPECT_GT(hits, 10000);
 }
 

@@ -1,5 +1,6 @@
 // Four hits back in world space at once with AVX2 (world_hits_avx2.h) must be to_world_hit's,
-// bit for bit, for any full transforms and any local hit, special values included.
+// bit for bit, for any full or diagonal transforms, with face normals (a cube's) or without, and
+// any local hit, special values included.
 #include <gtest/gtest.h>
 
 #include <bit>
@@ -10,6 +11,7 @@
 #include <random>
 
 #include "common/accel/wide_box_kernel.h"
+#include "common/geometry/shapes.h"
 #include "common/geometry/world_hits_avx2.h"
 
 namespace tessera {
@@ -47,33 +49,46 @@ Vec3 vector(std::mt19937_64& rng, double spread) {
   return {component(rng, spread), component(rng, spread), component(rng, spread)};
 }
 
-// Mostly a rotation, scale and translation with its inverse, as scenes make them; else any two
-// matrices (the lanes need not know that one inverts the other).
-Instance random_instance(std::mt19937_64& rng) {
+// The kinds of instance to_world_hit tells apart: full or diagonal transforms, a cube (face
+// normals) or another shape.
+struct Kind {
+  bool diagonal, cube;
+};
+
+// Mostly a rotation (none when diagonal), scale and translation with its inverse, as scenes make
+// them; else any two matrices (the lanes need not know that one inverts the other), diagonal ones
+// with special values on the diagonal.
+Instance random_instance(std::mt19937_64& rng, Kind kind) {
   std::uniform_real_distribution<double> unit(-1, 1);
   Instance instance;
+  if (kind.cube) instance.geometry = Cube{};
   instance.object = static_cast<std::uint32_t>(rng());
   for (;;) {
     Affine to_world, to_object;
     if (rng() % 4 != 0) {
-      const Affine m = Affine::translation(vector(rng, 10)) *
-                       *Affine::rotation(unit(rng) * 180, {unit(rng), unit(rng), 1}) *
-                       Affine::scaling({1 + unit(rng) * 0.9, 1 + unit(rng) * 0.9, 1});
+      const Affine turn = kind.diagonal
+                              ? Affine::identity()
+                              : *Affine::rotation(unit(rng) * 180, {unit(rng), unit(rng), 1});
+      const Affine m = Affine::translation(vector(rng, 10)) * turn *
+                       Affine::scaling({1 + unit(rng) * 0.9, 1 + unit(rng) * 0.9, 10 * unit(rng)});
       const std::optional<Affine> inverse = m.inverse();
       if (!inverse) continue;
       to_world = m;
       to_object = *inverse;
+    } else if (kind.diagonal) {
+      to_world = Affine::translation(vector(rng, 10)) * Affine::scaling(vector(rng, 3));
+      to_object = Affine::translation(vector(rng, 10)) * Affine::scaling(vector(rng, 3));
     } else {
       for (Affine* a : {&to_world, &to_object})
         for (auto& row : a->m)
           for (double& entry : row) entry = component(rng, 3);
     }
     place_instance(instance, to_world, to_object);
-    if (!instance.diagonal) return instance;
+    if (instance.diagonal.has_value() == kind.diagonal) return instance;
   }
 }
 
-LocalHit random_local_hit(std::mt19937_64& rng) {
+LocalHit random_local_hit(std::mt19937_64& rng, Kind kind) {
   LocalHit local;
   local.t = component(rng, 10);
   local.point = vector(rng, 2);
@@ -81,39 +96,73 @@ LocalHit random_local_hit(std::mt19937_64& rng) {
   local.normal = vector(rng, 1);
   // A smooth mesh's shading normal now and then; else the normal itself, as every other shape's.
   local.shading_normal = rng() % 8 == 0 ? vector(rng, 1) : local.normal;
-  local.part = static_cast<std::uint32_t>(rng() % 7);
+  // A cube's part names one of its six faces.
+  local.part = static_cast<std::uint32_t>(rng() % (kind.cube ? 6 : 7));
   return local;
 }
 
-TEST(WorldHitsAvx2, LanesAreToWorldHitBitForBit) {
-  if (!wide_box_kernel_supported(WideBoxKernel::Avx2)) GTEST_SKIP() << "no AVX2";
-  std::mt19937_64 rng(21);
-  int compared = 0, unusable_normals = 0;
+// Each kind's lanes against to_world_hit; how many lanes were compared, how many fell back to
+// normalize_or's {0, 0, 1} and how many had a local point whose diagonal products cannot be the
+// full ones (a zero or non-finite component: those lanes take to_world_hit alone).
+struct Compared {
+  int lanes = 0, unusable_normals = 0, not_same_as_full = 0;
+};
+
+Compared compare_lanes(Kind kind, std::uint64_t seed) {
+  std::mt19937_64 rng(seed);
+  Compared compared;
   for (int i = 0; i < 4000; ++i) {
-    const Instance instance = random_instance(rng);
+    const Instance instance = random_instance(rng, kind);
     for (int j = 0; j < 50; ++j) {
       LocalHit locals[4];
-      for (LocalHit& local : locals) local = random_local_hit(rng);
+      for (LocalHit& local : locals) local = random_local_hit(rng, kind);
       const unsigned lanes = 1 + static_cast<unsigned>(rng() % 15);
       WorldHit together[4], alone;
       WorldHit* const hits[4] = {&together[0], &together[1], &together[2], &together[3]};
       to_world_hits_avx2(instance, locals, lanes, hits);
       for (int l = 0; l < 4; ++l) {
         if (((lanes >> l) & 1u) == 0) {
-          ASSERT_TRUE(same_hit(together[l], WorldHit{})) << i << " lane " << l;
+          EXPECT_TRUE(same_hit(together[l], WorldHit{})) << i << " lane " << l;
           continue;
         }
         to_world_hit(instance, locals[l], alone);
-        ASSERT_TRUE(same_hit(together[l], alone)) << i << " lane " << l;
-        ++compared;
+        if (!same_hit(together[l], alone)) {
+          ADD_FAILURE() << i << " lane " << l;
+          return compared;
+        }
+        ++compared.lanes;
         if (alone.normal == Vec3{0, 0, 1} && !(locals[l].normal == Vec3{0, 0, 1}))
-          ++unusable_normals;
+          ++compared.unusable_normals;
+        if (!same_as_full(locals[l].point)) ++compared.not_same_as_full;
       }
     }
   }
-  EXPECT_GT(compared, 300000);
+  return compared;
+}
+
+TEST(WorldHitsAvx2, LanesAreToWorldHitBitForBit) {
+  if (!wide_box_kernel_supported(WideBoxKernel::Avx2)) GTEST_SKIP() << "no AVX2";
+  const Compared compared = compare_lanes({.diagonal = false, .cube = false}, 21);
+  EXPECT_GT(compared.lanes, 300000);
   // normalize_or's fallback is taken (a normal of zero, subnormal or non-finite length).
-  EXPECT_GT(unusable_normals, 10000);
+  EXPECT_GT(compared.unusable_normals, 10000);
+}
+
+TEST(WorldHitsAvx2, DiagonalLanesAreToWorldHitBitForBit) {
+  if (!wide_box_kernel_supported(WideBoxKernel::Avx2)) GTEST_SKIP() << "no AVX2";
+  const Compared compared = compare_lanes({.diagonal = true, .cube = false}, 22);
+  EXPECT_GT(compared.lanes, 300000);
+  EXPECT_GT(compared.unusable_normals, 10000);
+  EXPECT_GT(compared.not_same_as_full, 10000);
+}
+
+TEST(WorldHitsAvx2, FaceNormalLanesAreToWorldHitBitForBit) {
+  if (!wide_box_kernel_supported(WideBoxKernel::Avx2)) GTEST_SKIP() << "no AVX2";
+  for (const bool diagonal : {false, true}) {
+    const Compared compared = compare_lanes({.diagonal = diagonal, .cube = true}, 23);
+    EXPECT_GT(compared.lanes, 300000) << diagonal;
+    EXPECT_GT(compared.not_same_as_full, 10000) << diagonal;
+  }
 }
 
 }  // namespace
