@@ -21,7 +21,10 @@ namespace {
 
 using namespace avx2_lanes;
 
-[[gnu::target("avx2"), gnu::always_inline]] inline V compare(V a, V b, int predicate) {
+// The predicate is a template argument: _mm256_cmp_pd needs it as an immediate, which an
+// ordinary argument is only once inlined (not in unoptimized builds).
+template <int predicate>
+[[gnu::target("avx2"), gnu::always_inline]] inline V compare(V a, V b) {
   return _mm256_cmp_pd(a, b, predicate);
 }
 [[gnu::target("avx2"), gnu::always_inline]] inline V all_of(V a, V b) {
@@ -37,27 +40,27 @@ struct SlabSpans {
 // narrow_to_slab for the lanes' direction components d along `axis`, the origin's component o.
 [[gnu::target("avx2"), gnu::always_inline]] inline void narrow_to_slabs(double o, V d, int axis,
                                                                         SlabSpans& span) {
-  const V parallel = compare(d, splat(0), _CMP_EQ_OQ);
+  const V parallel = compare<_CMP_EQ_OQ>(d, splat(0));
   // A parallel lane's answer: whether the origin is inside the slab; the span stays.
   const V inside = (o >= -1 && o <= 1) ? parallel : splat(0);
   const V t_lo = divide(splat(-1 - o), d);
   const V t_hi = divide(splat(1 - o), d);
-  const V rising = compare(d, splat(0), _CMP_GT_OQ);
+  const V rising = compare<_CMP_GT_OQ>(d, splat(0));
   const V t_near = select(rising, t_lo, t_hi);
   const V t_far = select(rising, t_hi, t_lo);
-  const V crossing = _mm256_andnot_pd(parallel, compare(t_far, splat(0), _CMP_GT_OQ));
+  const V crossing = _mm256_andnot_pd(parallel, compare<_CMP_GT_OQ>(t_far, splat(0)));
   const V low_face = splat(2 * axis), high_face = splat(2 * axis + 1);
-  const V enters = _mm256_andnot_pd(parallel, compare(t_near, span.t_enter, _CMP_GT_OQ));
+  const V enters = _mm256_andnot_pd(parallel, compare<_CMP_GT_OQ>(t_near, span.t_enter));
   span.t_enter = select(enters, t_near, span.t_enter);
   span.enter_face = select(enters, select(rising, low_face, high_face), span.enter_face);
-  const V exits = _mm256_andnot_pd(parallel, compare(t_far, span.t_exit, _CMP_LT_OQ));
+  const V exits = _mm256_andnot_pd(parallel, compare<_CMP_LT_OQ>(t_far, span.t_exit));
   span.t_exit = select(exits, t_far, span.t_exit);
   span.exit_face = select(exits, select(rising, high_face, low_face), span.exit_face);
   span.live = all_of(span.live, _mm256_or_pd(inside, crossing));
 }
 
 [[gnu::target("avx2"), gnu::always_inline]] inline V finite(V a) {
-  return compare(magnitude(a), splat(kInfinity), _CMP_LT_OQ);
+  return compare<_CMP_LT_OQ>(magnitude(a), splat(kInfinity));
 }
 
 }  // namespace
@@ -75,17 +78,17 @@ struct SlabSpans {
   narrow_to_slabs(origin.x, dx, 0, span);
   narrow_to_slabs(origin.y, dy, 1, span);
   narrow_to_slabs(origin.z, dz, 2, span);
-  span.live = all_of(span.live, compare(span.t_enter, span.t_exit, _CMP_LE_OQ));
+  span.live = all_of(span.live, compare<_CMP_LE_OQ>(span.t_enter, span.t_exit));
   // nearest_face: the entry when it is ahead and a slab bounds it, else the exit.
   const V zero = splat(0);
   const V enter_ahead =
-      all_of(compare(span.t_enter, zero, _CMP_GT_OQ), compare(span.enter_face, zero, _CMP_GE_OQ));
+      all_of(compare<_CMP_GT_OQ>(span.t_enter, zero), compare<_CMP_GE_OQ>(span.enter_face, zero));
   const V exit_ahead =
-      all_of(compare(span.t_exit, zero, _CMP_GT_OQ), compare(span.exit_face, zero, _CMP_GE_OQ));
+      all_of(compare<_CMP_GT_OQ>(span.t_exit, zero), compare<_CMP_GE_OQ>(span.exit_face, zero));
   const V t = select(enter_ahead, span.t_enter, span.t_exit);
   const V face = select(enter_ahead, span.enter_face, span.exit_face);
   const V hit = all_of(all_of(span.live, _mm256_or_pd(enter_ahead, exit_ahead)),
-                       compare(t, _mm256_loadu_pd(t_max), _CMP_LT_OQ));
+                       compare<_CMP_LT_OQ>(t, _mm256_loadu_pd(t_max)));
   alignas(32) double ts[4], faces[4];
   _mm256_store_pd(ts, t);
   _mm256_store_pd(faces, face);
