@@ -484,33 +484,46 @@ enum class FrameAnswer { kMiss, kBlocked, kFormed };
   return quartic;
 }
 
-// The roots of the frame's quartic with t in (0, t_max), ascending, as in visit_torus_hits.
-// known_end, when not null, is first_root_bracket's answer for the frame, already found (the
-// packet path's); else it is found here when the search needs it.
-template <class Take>
+// Whether a hit at t with error bound point_error lies beyond a few error bounds of the line's
+// origin: else it is the surface the ray is leaving.
+[[gnu::always_inline]] inline bool leaves_the_origin(const TorusLine& line, double t,
+                                                     const Vec3& point_error) {
+  return t * line.len > 4 * length(point_error);
+}
+
+// The hit at the root s of the line's quartic, at t: re-projected onto the surface, or nullopt
+// when it is the surface the ray is leaving.
+[[gnu::always_inline]] inline std::optional<LocalHit> reprojected_hit(const Torus& torus,
+                                                                      const TorusLine& line,
+                                                                      double s, double t) {
+  LocalHit hit = surface_hit(torus.torus_radius, torus.tube_radius, line.f + line.u * s, line.u);
+  if (!leaves_the_origin(line, t, hit.point_error)) return std::nullopt;
+  hit.t = t;
+  return hit;
+}
+
+// The roots of the frame's quartic with t in (0, t_max), ascending, as in visit_torus_hits, each
+// handed to take as reproject(s, t) makes it (reprojected_hit, or the packet path's TorusRoot);
+// a root it answers with nullopt is not a hit. known_end, when not null, is first_root_bracket's
+// answer for the frame, already found (the packet path's); else it is found here when the search
+// needs it.
+template <class Reproject, class Take>
 [[gnu::always_inline]] inline bool visit_frame_hits(const Torus& torus, const TorusLine& line,
                                                     const Polynomial& quartic, double t_max,
                                                     HitSearch search,
                                                     const std::optional<double>* known_end,
-                                                    const Take& take) {
+                                                    const Reproject& reproject, const Take& take) {
   const double big_r = torus.torus_radius, r = torus.tube_radius;
   const Vec3 u = line.u, f = line.f;
   const double len = line.len, t0 = line.t0, s_lo = line.s_lo, s_hi = line.s_hi;
   const double P = line.P, Q = line.Q;
   const auto t_at = [&](double s) { return t0 + s / len; };
-  // Within a few error bounds of the origin: the surface the ray is leaving.
-  const auto leaves_the_origin = [&](double t, const Vec3& point_error) {
-    return t * len > 4 * length(point_error);
-  };
-  // The hit at the root s, or nullopt when it is not one: outside (0, t_max), or the surface the
-  // ray is leaving.
-  const auto hit_at = [&](double s) -> std::optional<LocalHit> {
+  // The hit at the root s, or nullopt when it is not one: outside (0, t_max), or as reproject
+  // answers.
+  const auto hit_at = [&](double s) -> decltype(reproject(s, s)) {
     const double t = t_at(s);
     if (!(t > 0 && t < t_max)) return std::nullopt;
-    LocalHit hit = surface_hit(big_r, r, f + u * s, u);
-    if (!leaves_the_origin(t, hit.point_error)) return std::nullopt;
-    hit.t = t;
-    return hit;
+    return reproject(s, t);
   };
   // Most rays that form the quartic and hit enter the tube from outside, where the search's first
   // root is usually bracketed without its critical points (first_root_bracket) and polished in
@@ -523,14 +536,14 @@ template <class Take>
     const std::optional<double> end =
         known_end ? *known_end : first_root_bracket(quartic, s_lo, s_hi, f, u, big_r, P, Q);
     if (!end) return true;
-    const std::optional<LocalHit> hit = hit_at(polished_root(quartic, s_lo, *end));
+    const auto hit = hit_at(polished_root(quartic, s_lo, *end));
     if (!hit) return true;  // to the search, which may take its own polish of the root
     first_root_taken = true;
     return take(*hit, false);
   };
   const auto at_root = [&](const PolynomialRoot& root) {
     if (std::exchange(first_root_taken, false)) return true;
-    const std::optional<LocalHit> hit = hit_at(root.x);
+    const auto hit = hit_at(root.x);
     return !hit || take(*hit, root.touching);
   };
   if (search == HitSearch::kInOrder) {
@@ -545,7 +558,7 @@ template <class Take>
   const Vec3 largest_point_error{e, e, e};
   const auto is_hit_bracket = [&](double a, double b) {
     const double t_a = t_at(a);
-    return t_a > 0 && t_at(b) < t_max && leaves_the_origin(t_a, largest_point_error);
+    return t_a > 0 && t_at(b) < t_max && leaves_the_origin(line, t_a, largest_point_error);
   };
 
   // Shown here when it is easy, each for less than half the cost of the search: a miss (with its
@@ -583,7 +596,9 @@ template <class Take>
     case FrameAnswer::kFormed:
       break;
   }
-  return visit_frame_hits(torus, line, line_quartic(torus, line), t_max, search, nullptr, take);
+  return visit_frame_hits(
+      torus, line, line_quartic(torus, line), t_max, search, nullptr,
+      [&](double s, double t) { return reprojected_hit(torus, line, s, t); }, take);
 }
 
 }  // namespace
@@ -604,13 +619,44 @@ bool torus_frame(const Torus& torus, const Vec3& origin, const Vec3& direction, 
   return true;
 }
 
-bool nearest_torus_hit(const Torus& torus, const TorusFrame& frame, double t_max, LocalHit& hit) {
-  return nearest_ordered_hit(
-      [&](const auto& take) {
-        visit_frame_hits(torus, frame.line, frame.quartic, t_max, HitSearch::kInOrder,
-                         &frame.first_root_end, take);
+bool nearest_torus_root(const Torus& torus, const TorusFrame& frame, double t_max,
+                        TorusRoot& root) {
+  const TorusLine& line = frame.line;
+  // A root this far from the origin is taken without its re-projection: hit_point_error is at
+  // most the larger of the two bounds, and every rounded operation of leaves_the_origin being
+  // monotone, its hit leaves the origin whatever its own bound. Nearer ones are re-projected here
+  // to be tested (and again by torus_root_hit).
+  const double e = std::max(off_axis_point_error(torus.torus_radius, torus.tube_radius),
+                            on_axis_point_error(torus.torus_radius, torus.tube_radius));
+  const Vec3 largest_point_error{e, e, e};
+  bool found = false;
+  visit_frame_hits(
+      torus, line, frame.quartic, t_max, HitSearch::kInOrder, &frame.first_root_end,
+      [&](double s, double t) -> std::optional<TorusRoot> {
+        if (!leaves_the_origin(line, t, largest_point_error) && !reprojected_hit(torus, line, s, t))
+          return std::nullopt;
+        return TorusRoot{s, t};
       },
-      hit);
+      [&](const TorusRoot& nearest, bool) {
+        root = nearest;
+        found = true;
+        return false;
+      });
+  return found;
+}
+
+LocalHit torus_root_hit(const Torus& torus, const TorusLine& line, const TorusRoot& root) {
+  LocalHit hit =
+      surface_hit(torus.torus_radius, torus.tube_radius, line.f + line.u * root.s, line.u);
+  hit.t = root.t;
+  return hit;
+}
+
+bool nearest_torus_hit(const Torus& torus, const TorusFrame& frame, double t_max, LocalHit& hit) {
+  TorusRoot root;
+  if (!nearest_torus_root(torus, frame, t_max, root)) return false;
+  hit = torus_root_hit(torus, frame.line, root);
+  return true;
 }
 
 bool intersect_torus(const Torus& torus, const Ray& ray, double t_max, LocalHit& hit) {

@@ -54,5 +54,12 @@ bool torus_frame(const Torus& torus, const Vec3& origin, const Vec3& direction, 
                  TorusFrame& frame);
 // intersect_torus from the ray's frame.
 bool nearest_torus_hit(const Torus& torus, const TorusFrame& frame, double t_max, LocalHit& hit);
+// nearest_torus_hit in two steps, so that a packet's hits can be re-projected together: the
+// nearest hit's root s of the frame's quartic and its t, then the hit itself.
+struct TorusRoot {
+  double s, t;
+};
+bool nearest_torus_root(const Torus& torus, const TorusFrame& frame, double t_max, TorusRoot& root);
+LocalHit torus_root_hit(const Torus& torus, const TorusLine& line, const TorusRoot& root);
 
 }  // namespace tessera

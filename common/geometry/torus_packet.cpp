@@ -295,11 +295,18 @@ unsigned intersect_torus_packet_avx2(const Torus& torus, const Vec3& origin,
                                      const Vec3 directions[4], unsigned lanes,
                                      const double t_max[4], LocalHit hits[4]) {
   TorusFrame frames[kTorusPacketLanes];
+  TorusRoot roots[kTorusPacketLanes];
   unsigned hit_lanes = 0;
   for (unsigned m = torus_frames_avx2(torus, origin, directions, t_max, frames) & lanes; m != 0;
        m &= m - 1) {
     const int l = std::countr_zero(m);
-    if (nearest_torus_hit(torus, frames[l], t_max[l], hits[l])) hit_lanes |= 1u << l;
+    if (nearest_torus_root(torus, frames[l], t_max[l], roots[l])) hit_lanes |= 1u << l;
+  }
+  // The hits after all the searches: their re-projections, chains of square roots and divisions
+  // that a lane's search does not wait on, overlap.
+  for (unsigned m = hit_lanes; m != 0; m &= m - 1) {
+    const int l = std::countr_zero(m);
+    hits[l] = torus_root_hit(torus, frames[l].line, roots[l]);
   }
   return hit_lanes;
 }
