@@ -81,13 +81,6 @@ namespace {
   return box_span(o, d, (big_r + r) * kTorusBoxPad, r * kTorusBoxPad, t_enter, t_exit);
 }
 
-// surface_hit's error bounds on the hit point, per coordinate: a few roundings of quantities of
-// size R + r; on the axis, the square root of the rounding (see there).
-double off_axis_point_error(double big_r, double r) { return gamma_bound(12) * (big_r + r); }
-double on_axis_point_error(double big_r, double r) {
-  return 4 * std::sqrt(kMachineEpsilon) * (big_r + r);
-}
-
 // The bound a hit off the axis reports, at distance rho from it: the point's own error, or, when
 // larger, the width of the band about the surface where the quartic the search forms may vanish,
 // so that a ray spawned from the hit (offset_ray_origin, beyond the bound) starts outside that

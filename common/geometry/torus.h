@@ -1,9 +1,11 @@
 // Parts of the ray / torus intersection (torus.cpp) that its tests reach directly.
 #pragma once
 
+#include <cmath>
 #include <optional>
 
 #include "common/geometry/local_hit.h"
+#include "common/math/float_error.h"
 #include "common/math/polynomial.h"
 #include "common/math/ray.h"
 #include "common/scene/shape.h"
@@ -31,6 +33,13 @@ bool crosses_into_the_tube(const Torus& torus, const Ray& ray, double t_max);
 // The padding of the torus's bounding box (|x|, |y| <= R + r, |z| <= r), by which the ray's span
 // through it certainly holds the rounded surface.
 inline constexpr double kTorusBoxPad = 1 + 1e-9;
+
+// surface_hit's (torus.cpp) error bounds on the hit point, per coordinate: a few roundings of
+// quantities of size R + r; on the axis, the square root of the rounding (see there).
+inline double off_axis_point_error(double big_r, double r) { return gamma_bound(12) * (big_r + r); }
+inline double on_axis_point_error(double big_r, double r) {
+  return 4 * std::sqrt(kMachineEpsilon) * (big_r + r);
+}
 
 // A ray's frame for its quartic, as the nearest-hit query forms it: origin f at the line's point
 // nearest the centre, unit direction u, s = (t - t0) len with len = |d|; [s_lo, s_hi] the span

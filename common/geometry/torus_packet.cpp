@@ -50,6 +50,13 @@ using namespace avx2_lanes;
   return result;
 }
 
+// value(index[l]) in lane l.
+template <class Value>
+[[gnu::target("avx2"), gnu::always_inline]] inline V lanes_at(const int (&index)[4],
+                                                              const Value& value) {
+  return _mm256_setr_pd(value(index[0]), value(index[1]), value(index[2]), value(index[3]));
+}
+
 // The squared distance from the axis of f + u s (axis_distance2 in torus.cpp).
 [[gnu::target("avx2"), gnu::always_inline]] inline V axis_distance2_lanes(V fx, V fy, V ux, V uy,
                                                                           V s) {
@@ -291,6 +298,73 @@ using namespace avx2_lanes;
   return formed_lanes;
 }
 
+[[gnu::target("avx2")]] void torus_root_hits_avx2(const Torus& torus, const TorusFrame frames[4],
+                                                  const TorusRoot roots[4], unsigned lanes,
+                                                  LocalHit hits[4]) {
+  const double big_r = torus.torus_radius, r = torus.tube_radius;
+  // Lanes outside `lanes` repeat the first one's (computed, not stored).
+  const int first = std::countr_zero(lanes);
+  const int i0 = lanes & 1u ? 0 : first, i1 = (lanes >> 1) & 1u ? 1 : first,
+            i2 = (lanes >> 2) & 1u ? 2 : first, i3 = (lanes >> 3) & 1u ? 3 : first;
+  const int index[4] = {i0, i1, i2, i3};
+  const V ux = lanes_at(index, [&](int l) { return frames[l].line.u.x; });
+  const V uy = lanes_at(index, [&](int l) { return frames[l].line.u.y; });
+  const V uz = lanes_at(index, [&](int l) { return frames[l].line.u.z; });
+  const V fx = lanes_at(index, [&](int l) { return frames[l].line.f.x; });
+  const V fy = lanes_at(index, [&](int l) { return frames[l].line.f.y; });
+  const V fz = lanes_at(index, [&](int l) { return frames[l].line.f.z; });
+  const V s = lanes_at(index, [&](int l) { return roots[l].s; });
+  // surface_hit at p = f + u s.
+  const V px = add(fx, mul(ux, s)), py = add(fy, mul(uy, s)), pz = add(fz, mul(uz, s));
+  const V rho = hypot_lanes(px, py);
+  const V d_outer = hypot_lanes(sub(rho, splat(big_r)), pz);
+  const V outer_gap = magnitude(sub(d_outer, splat(r)));
+  const V inner_possible =
+      _mm256_cmp_pd(sub(mul(add(rho, splat(big_r)), splat(1 - 8 * kMachineEpsilon)), splat(r)),
+                    outer_gap, _CMP_NGT_UQ);
+  V d_inner = _mm256_setzero_pd();
+  if (_mm256_movemask_pd(inner_possible) != 0)
+    d_inner = select(inner_possible, hypot_lanes(add(rho, splat(big_r)), pz), d_inner);
+  const V inner = _mm256_and_pd(
+      inner_possible, _mm256_cmp_pd(magnitude(sub(d_inner, splat(r))), outer_gap, _CMP_LT_OQ));
+  const V d = select(inner, d_inner, d_outer);
+  const V zero = _mm256_setzero_pd();
+  // rho > 0 (so not NaN) and finite, d > 0.
+  const V off_axis = _mm256_and_pd(
+      _mm256_and_pd(_mm256_cmp_pd(rho, zero, _CMP_GT_OQ), _mm256_cmp_pd(d, zero, _CMP_GT_OQ)),
+      _mm256_cmp_pd(rho, splat(kInfinity), _CMP_LT_OQ));
+  const V cx = divide(px, rho), cy = divide(py, rho);
+  const V a =
+      mul(divide(select(inner, add(rho, splat(big_r)), sub(rho, splat(big_r))), d), splat(r));
+  const V b = mul(divide(pz, d), splat(r));
+  const V rho_on = add(select(inner, splat(-big_r), splat(big_r)), a);
+  // hit_point_error.
+  const double size2 = (big_r + r) * (big_r + r);
+  const V band = divide(splat(16 * kMachineEpsilon * size2 * size2), mul(splat(big_r * r), rho));
+  const V e = std_min(std_max(splat(off_axis_point_error(big_r, r)), band),
+                      splat(on_axis_point_error(big_r, r)));
+  const V sign_a = mul(select(inner, splat(-1.0), splat(1.0)), a);
+  const V sign_b = mul(select(inner, splat(-1.0), splat(1.0)), b);
+  const Lanes point_x = lanes_of(mul(rho_on, cx)), point_y = lanes_of(mul(rho_on, cy)),
+              point_z = lanes_of(b), error = lanes_of(e), normal_x = lanes_of(mul(sign_a, cx)),
+              normal_y = lanes_of(mul(sign_a, cy)), normal_z = lanes_of(sign_b);
+  const unsigned on_axis = lanes & ~static_cast<unsigned>(_mm256_movemask_pd(off_axis));
+  for (unsigned m = lanes & ~on_axis; m != 0; m &= m - 1) {
+    const int l = std::countr_zero(m);
+    LocalHit& hit = hits[l];
+    hit.t = roots[l].t;
+    hit.point = {point_x.v[l], point_y.v[l], point_z.v[l]};
+    hit.point_error = {error.v[l], error.v[l], error.v[l]};
+    hit.normal = {normal_x.v[l], normal_y.v[l], normal_z.v[l]};
+    hit.shading_normal = hit.normal;
+    hit.part = 0;
+  }
+  for (unsigned m = on_axis; m != 0; m &= m - 1) {
+    const int l = std::countr_zero(m);
+    hits[l] = torus_root_hit(torus, frames[l].line, roots[l]);
+  }
+}
+
 unsigned intersect_torus_packet_avx2(const Torus& torus, const Vec3& origin,
                                      const Vec3 directions[4], unsigned lanes,
                                      const double t_max[4], LocalHit hits[4]) {
@@ -302,12 +376,8 @@ unsigned intersect_torus_packet_avx2(const Torus& torus, const Vec3& origin,
     const int l = std::countr_zero(m);
     if (nearest_torus_root(torus, frames[l], t_max[l], roots[l])) hit_lanes |= 1u << l;
   }
-  // The hits after all the searches: their re-projections, chains of square roots and divisions
-  // that a lane's search does not wait on, overlap.
-  for (unsigned m = hit_lanes; m != 0; m &= m - 1) {
-    const int l = std::countr_zero(m);
-    hits[l] = torus_root_hit(torus, frames[l].line, roots[l]);
-  }
+  // The hits after all the searches, four lanes at once.
+  if (hit_lanes != 0) torus_root_hits_avx2(torus, frames, roots, hit_lanes, hits);
   return hit_lanes;
 }
 

@@ -18,6 +18,11 @@ inline constexpr int kTorusPacketLanes = 4;
 unsigned torus_frames_avx2(const Torus& torus, const Vec3& origin, const Vec3 directions[4],
                            const double t_max[4], TorusFrame frames[4]);
 
+// torus_root_hit for the lanes l in `lanes` (bit l, at least one), each root roots[l] of
+// frames[l]: hits[l] written, per lane the same operations in the same order. Needs AVX2.
+void torus_root_hits_avx2(const Torus& torus, const TorusFrame frames[4], const TorusRoot roots[4],
+                          unsigned lanes, LocalHit hits[4]);
+
 // intersect_torus for the lanes l in `lanes` (bit l): bit l of the answer set when ray l hits,
 // hits[l] then written. Needs AVX2; every entry of directions must hold a ray.
 unsigned intersect_torus_packet_avx2(const Torus& torus, const Vec3& origin,

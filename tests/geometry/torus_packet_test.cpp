@@ -7,6 +7,7 @@
 #include <cmath>
 #include <cstring>
 #include <limits>
+#include <numbers>
 #include <random>
 #include <vector>
 
@@ -78,6 +79,75 @@ TEST(TorusPacket, FramesAreTorusFramesBitForBit) {
   // The first-root brackets, both of first_root_bracket's points and the halvings among them.
   EXPECT_GT(bracketed, 100000);
   EXPECT_GT(halved, 50000);
+}
+
+bool same_local_hit(const LocalHit& a, const LocalHit& b) {
+  return same_value(a.t, b.t) && same_value(a.point, b.point) &&
+         same_value(a.point_error, b.point_error) && same_value(a.normal, b.normal) &&
+         same_value(a.shading_normal, b.shading_normal) && a.part == b.part;
+}
+
+// The hits of roots re-projected four lanes at once must be torus_root_hit's, bit for bit: roots
+// near the surface (the spindle's inner lemon among them, which re-projects onto the circle about
+// -R), roots on the axis (surface_hit's other branch), and special values (hypot_inline's ranges,
+// infinities, NaN); lanes left out of the mask are not written.
+TEST(TorusPacket, RootHitsAreTorusRootHitsBitForBit) {
+  if (!wide_box_kernel_supported(WideBoxKernel::Avx2)) GTEST_SKIP() << "no AVX2";
+  std::mt19937_64 rng(13);
+  std::uniform_real_distribution<double> unit(-1, 1);
+  const double two_pi = 2 * std::numbers::pi;
+  int compared = 0, inner = 0, on_axis = 0;
+  for (const Torus& torus : kTori) {
+    const double big_r = torus.torus_radius, r = torus.tube_radius;
+    for (int i = 0; i < 50000; ++i) {
+      TorusFrame frames[kTorusPacketLanes];
+      TorusRoot roots[kTorusPacketLanes];
+      for (int l = 0; l < kTorusPacketLanes; ++l) {
+        const int kind = std::uniform_int_distribution<int>(0, 9)(rng);
+        const double s = unit(rng) * 3;
+        Vec3 u{unit(rng), unit(rng), unit(rng)}, point;
+        if (kind == 0) {  // special values
+          u = {component(rng, 1), component(rng, 1), component(rng, 1)};
+          point = {component(rng, 2), component(rng, 2), component(rng, 2)};
+        } else if (kind == 1) {  // on the axis
+          u = {0, 0, 1};
+          point = {0, 0, unit(rng) * 2};
+        } else {  // near the surface: a point of the tube, moved by up to 1e-6
+          const double theta = unit(rng) * two_pi, phi = unit(rng) * two_pi;
+          const double rho = big_r + r * std::cos(phi);
+          point = Vec3{rho * std::cos(theta), rho * std::sin(theta), r * std::sin(phi)} +
+                  Vec3{unit(rng), unit(rng), unit(rng)} * 1e-6;
+        }
+        frames[l].line = {u, point - u * s, 1, 0, -4, 4, 0, 0};
+        roots[l] = {s, unit(rng) * 10};
+      }
+      const unsigned lanes = static_cast<unsigned>(i % 15 + 1);
+      LocalHit together[kTorusPacketLanes], unwritten;
+      unwritten.t = -7.25;
+      unwritten.point = unwritten.normal = {7, 7, 7};
+      unwritten.part = 77;
+      for (LocalHit& hit : together) hit = unwritten;
+      torus_root_hits_avx2(torus, frames, roots, lanes, together);
+      for (int l = 0; l < kTorusPacketLanes; ++l) {
+        if (!((lanes >> l) & 1u)) {
+          ASSERT_TRUE(same_local_hit(together[l], unwritten)) << i << " lane " << l;
+          continue;
+        }
+        const LocalHit alone = torus_root_hit(torus, frames[l].line, roots[l]);
+        ASSERT_TRUE(same_local_hit(together[l], alone)) << i << " lane " << l;
+        ++compared;
+        const Vec3 p = frames[l].line.f + frames[l].line.u * roots[l].s;
+        if (same_value(alone.point, p)) ++on_axis;
+        // Re-projected onto the circle about -R: nearer the axis than R on its side.
+        if (alone.point.x * p.x + alone.point.y * p.y < big_r * big_r * 0.999 &&
+            std::hypot(alone.point.x, alone.point.y) < big_r && big_r < r)
+          ++inner;
+      }
+    }
+  }
+  EXPECT_GT(compared, 500000);
+  EXPECT_GT(on_axis, 50000);
+  EXPECT_GT(inner, 1000);
 }
 
 // Whole packet tests of tori, turned (full products) and diagonal, against each lane alone, with
