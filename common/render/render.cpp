@@ -141,11 +141,12 @@ template <class CheckInterrupt>
 void trace_packets(const PassContext& c, std::span<const PixelCoord> pixels, std::span<Rgb> out,
                    const CheckInterrupt& check_interrupt) {
   const SampleOffset offset = c.offsets[0];
-  // Out of the loop, where its initializers (zeroes) run once, not at every packet:
-  // directions_through writes all four.
-  Vec3 directions[kPacketLanes];
-  for (std::size_t i = 0; i < pixels.size(); i += kPacketLanes) {
-    const int count = static_cast<int>(std::min<std::size_t>(kPacketLanes, pixels.size() - i));
+  const auto lanes_from = [&](std::size_t i) {
+    return static_cast<int>(std::min<std::size_t>(kPacketLanes, pixels.size() - i));
+  };
+  // The camera directions of the packet at pixel i.
+  const auto aim = [&](std::size_t i, Vec3(&directions)[kPacketLanes]) {
+    const int count = lanes_from(i);
     static_assert(kPacketLanes == 4, "ImageRays::directions_through takes four points");
     double px[kPacketLanes], py[kPacketLanes];
     for (int l = 0; l < kPacketLanes; ++l) {  // lanes past `count` repeat its last pixel
@@ -153,9 +154,19 @@ void trace_packets(const PassContext& c, std::span<const PixelCoord> pixels, std
       px[l] = p.x + offset.dx;
       py[l] = p.y + offset.dy;
     }
-    check_interrupt();  // once a packet: four pixels are short enough between two looks
     c.camera.directions_through(px, py, directions);
-    c.tracer.find_packet_hits(c.camera.eye(), directions, count);
+  };
+  // Each packet's directions are found before the previous packet's pixels are traced: their
+  // chain of divisions and square roots, which the walk waits on, then runs beside that work.
+  // Out of the loop, where their initializers (zeroes) run once, not at every packet:
+  // directions_through writes all four.
+  Vec3 directions[2][kPacketLanes];
+  if (!pixels.empty()) aim(0, directions[0]);
+  for (std::size_t i = 0, k = 0; i < pixels.size(); i += kPacketLanes, k ^= 1) {
+    const int count = lanes_from(i);
+    check_interrupt();  // once a packet: four pixels are short enough between two looks
+    c.tracer.find_packet_hits(c.camera.eye(), directions[k], count);
+    if (i + kPacketLanes < pixels.size()) aim(i + kPacketLanes, directions[k ^ 1]);
     for (int l = 0; l < count; ++l) {
       const PixelCoord p = pixels[i + l];
       SampleStream rng(c.settings.seed, static_cast<std::uint32_t>(p.x),
