@@ -45,11 +45,22 @@ class LightBuffer {
     double squared = 0;
   };
 
+  // Tighter shapes of some objects (a torus's sectors, prepared_scene.h): object o's pieces are
+  // boxes[first[o]] to boxes[first[o + 1]] (exclusive); `first` holds one offset more than there
+  // are objects, or none when no object has pieces. An object with pieces is entered only in
+  // the cells that one of them reaches, with the bound of its whole world bounds there: their
+  // union must hold every point that the object's own tests can hit.
+  struct Pieces {
+    std::span<const Bounds3> boxes;
+    std::span<const std::uint32_t> first;
+  };
+
   // The buffer of the light at `light` over objects with world bounds `bounds`, identified by
-  // `ids` (the same length), and balls inside opaque solids `balls` (inscribed_balls.h, for
-  // this light). Empty (every feeler walks) past kMaxEntries or kMaxId.
+  // `ids` (the same length), balls inside opaque solids `balls` (inscribed_balls.h, for this
+  // light) and the objects' `pieces`. Empty (every feeler walks) past kMaxEntries or kMaxId.
   LightBuffer(const Vec3& light, std::span<const Bounds3> bounds,
-              std::span<const std::uint32_t> ids, std::span<const InscribedBall> balls = {});
+              std::span<const std::uint32_t> ids, std::span<const InscribedBall> balls = {},
+              Pieces pieces = {});
 
   // Which objects' bounds may meet the segment from `origin` to the light, the light excluded:
   // nearest first.

@@ -1,5 +1,6 @@
 #include "common/render/prepared_scene.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
@@ -240,6 +241,58 @@ std::vector<OwnHull> find_own_hulls(const std::vector<Instance>& instances) {
   return out;
 }
 
+}  // namespace
+
+void light_buffer_pieces(const Instance& instance, std::vector<Bounds3>& out) {
+  const auto* torus = std::get_if<Torus>(&instance.geometry);
+  if (!torus || instance.motion) return;
+  // Sector k is the part of the torus at angles [k, k + 1] * 2 pi / n about its axis (z), within
+  // rho in [max(R - r, 0), R + r] and |z| <= r. The box of that annular sector in the plane is the
+  // box of its four corners and of the outer circle's points on the axes that the arc passes
+  // (at angles q pi / 2, the arc's extremes in x or y). Each sector's box is padded by p in every
+  // coordinate, far more than the rounding of its corners (a few units in the last place of
+  // R + r) and ten times the whole box's padding of the tube (torus_world_bounds): a point of the
+  // rounded surface within p of the torus lies within p of a point of some sector, so in that
+  // sector's padded box. Its corners taken to world space and padded by their rounding, as any
+  // shape's box is, hold the sector's image: the union of the world boxes holds whatever the
+  // torus's own tests can hit.
+  constexpr int n = kTorusLightBufferSectors;
+  static_assert(n % 4 == 0, "sector boundaries fall on the axes");
+  const double big_r = torus->torus_radius, r = torus->tube_radius;
+  const double outer = big_r + r, inner = std::max(big_r - r, 0.0);
+  const double p = 1e-9 * outer;
+  for (int k = 0; k < n; ++k) {
+    Bounds3 local;
+    for (int end = 0; end < 2; ++end) {
+      const double angle = (k + end) * (2 * std::numbers::pi / n);
+      const double c = std::cos(angle), s = std::sin(angle);
+      local.extend(Vec3{outer * c, outer * s, 0});
+      local.extend(Vec3{inner * c, inner * s, 0});
+    }
+    for (int q = 0; q <= 4; ++q) {
+      const int at = q * (n / 4);  // the axis point's angle, in sectors
+      if (at >= k && at <= k + 1) {
+        const double axis[4][2] = {{1, 0}, {0, 1}, {-1, 0}, {0, -1}};
+        local.extend(Vec3{outer * axis[q % 4][0], outer * axis[q % 4][1], 0});
+      }
+    }
+    local.lo = local.lo - Vec3{p, p, r + p};
+    local.hi = local.hi + Vec3{p, p, r + p};
+    Bounds3 world;
+    for (int corner = 0; corner < 8; ++corner) {
+      const Vec3 c{(corner & 1) ? local.hi.x : local.lo.x, (corner & 2) ? local.hi.y : local.lo.y,
+                   (corner & 4) ? local.hi.z : local.lo.z};
+      const Vec3 w = instance.to_world.apply_point(c);
+      const Vec3 e = instance.to_world.point_error(c, Vec3{}) * 2;
+      world.extend(w - e);
+      world.extend(w + e);
+    }
+    out.push_back(world);
+  }
+}
+
+namespace {
+
 // At most this many lights get a light buffer (1.5 MB and about a millisecond each).
 constexpr int kMaxLightBuffers = 16;
 
@@ -248,16 +301,25 @@ constexpr int kMaxLightBuffers = 16;
 std::vector<std::optional<LightBuffer>> build_light_buffers(
     const Scene& scene, const Bvh& bvh, const std::vector<Bounds3>& bounds,
     const std::vector<Instance>& instances) {
-  std::vector<Bounds3> top_bounds;
+  std::vector<Bounds3> top_bounds, pieces;
+  std::vector<std::uint32_t> first;  // object o's pieces start at first[o]
   top_bounds.reserve(bvh.primitive_order.size());
-  for (const std::uint32_t index : bvh.primitive_order) top_bounds.push_back(bounds[index]);
+  first.reserve(bvh.primitive_order.size() + 1);
+  for (const std::uint32_t index : bvh.primitive_order) {
+    top_bounds.push_back(bounds[index]);
+    first.push_back(static_cast<std::uint32_t>(pieces.size()));
+    light_buffer_pieces(instances[index], pieces);
+  }
+  first.push_back(static_cast<std::uint32_t>(pieces.size()));
+  if (pieces.empty()) first.clear();
   std::vector<std::optional<LightBuffer>> out(scene.lights.size());
   int built = 0;
   for (std::size_t l = 0; l < scene.lights.size() && built < kMaxLightBuffers; ++l) {
     const Light& light = scene.lights[l];
     if (light.is_directional || !light.casts_shadows) continue;
     out[l].emplace(light.position, top_bounds, bvh.primitive_order,
-                   opaque_balls(scene, instances, bvh.primitive_order, light.position));
+                   opaque_balls(scene, instances, bvh.primitive_order, light.position),
+                   LightBuffer::Pieces{pieces, first});
     ++built;
   }
   return out;
