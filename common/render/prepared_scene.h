@@ -22,7 +22,7 @@ namespace tessera {
 
 // A still torus enters the light buffers as this many sector boxes, so that a cell lists it only
 // when some sector's box, not merely the whole torus's, reaches the cell's directions.
-inline constexpr int kTorusLightBufferSectors = 32;
+inline constexpr int kTorusLightBufferSectors = 64;
 
 // Appends the pieces by which the light buffers enter the instance (LightBuffer::Pieces): world
 // boxes whose union holds every point its own tests can hit. A still torus's sectors; none for
