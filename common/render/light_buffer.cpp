@@ -190,13 +190,17 @@ LightBuffer::LightBuffer(const Vec3& light, std::span<const Bounds3> bounds,
     for (int face = 0; face < 6; ++face) {
       const FaceCells cells = face_cells(lo, hi, bounded, face, margin);
       if (cells.i0 > cells.i1) continue;
-      // A piece holding a point that the object's tests can hit reaches the cell of every
-      // direction towards it, as the whole box does (the same projection, widened by a cell):
-      // a cell that no piece reaches holds no feeler that the object can block.
+      // Why a cell left unmarked holds no feeler that the object blocks: such a feeler meets
+      // the object at a point x that its own test can hit, which lies in the whole box and in
+      // some piece (Pieces' contract). The feeler's cell is the one of the direction x - light
+      // up to rounding; the rectangles below, the box's and the piece's alike, are those of
+      // face_cells, the projection widened by a cell, which holds the cell of every feeler
+      // through a point of its box. So the cell lies in both rectangles: it is marked.
       if (!reached.cover(cells, own_pieces, light, face, margin)) continue;
       // A point of the box in cell (i, j) is at least major_lo along the axis and its tangents
-      // are at least those of the widened cell: its distance is no less. The same holds of the
-      // piece it lies in: the greater bound of the two holds.
+      // are at least those of the widened cell: its distance is no less. So is it from the
+      // piece it lies in, which marked the cell: x is no nearer than the greater of the two
+      // bounds, the box's and the least over the pieces marking this face.
       const double gap = std::max(euclid, reached.least_gap());
       const double major = std::max(cells.projected ? cells.major_lo : 0.0, reached.least_major());
       const std::size_t base = static_cast<std::size_t>(face) * kN * kN;

@@ -28,8 +28,9 @@ class LightBuffer {
   // Cells along each side of a cube face (6 * kCells^2 cells a light, 1.5 MB). Finer cells
   // let more feelers skip the walk; docs/PERFORMANCE.md has 32, 64 and 96 measured against it.
   static constexpr int kCells = 128;
-  // Past this many cell entries (objects times the cells their bounds cover), or with an id
-  // past kMaxId, a light gets no buffer: its build would cost more than its feelers save.
+  // Past this many cell entries (objects times the cells they are entered in, never more than
+  // their bounds cover: pieces only leave cells out), or with an id past kMaxId, a light gets no
+  // buffer: its build would cost more than its feelers save.
   static constexpr std::size_t kMaxEntries = std::size_t{1} << 22;
   static constexpr std::uint32_t kMaxId = 0xFFFF;  // a cell is 16 bytes
 
@@ -48,8 +49,9 @@ class LightBuffer {
   // Tighter shapes of some objects (a torus's sectors, prepared_scene.h): object o's pieces are
   // boxes[first[o]] to boxes[first[o + 1]] (exclusive); `first` holds one offset more than there
   // are objects, or none when no object has pieces. An object with pieces is entered only in
-  // the cells that one of them reaches, with the bound of its whole world bounds there: their
-  // union must hold every point that the object's own tests can hit.
+  // the cells that one of them reaches within its bounds' cells, once, bounded there by its
+  // bounds and its pieces: their union must hold every point that the object's own tests can
+  // hit.
   struct Pieces {
     std::span<const Bounds3> boxes;
     std::span<const std::uint32_t> first;
