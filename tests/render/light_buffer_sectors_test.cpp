@@ -134,11 +134,11 @@ TEST(LightBufferSectors, LeavesOutOnlyFeelersTheTorusLetsThrough) {
 }
 
 // At the entry cap: 42 tori turned at random, each with the light inside its whole box, which
-// then fills every cell of the six faces (42 * 6 * 128^2 entries, just under kMaxEntries): 40 thin
+// then fills every cell of the six faces (42 * 6 * 128^2 entries, just under kMaxEntries): 41 thin
 // ring tori with the light near the centre of the hole, whose sectors reach only a band of cells
-// about the ring's plane, and two spindles with the light in a dimple (on the axis, above the
-// lemon and below the tube's top), inside every one of their sector boxes. Those sectors as boxes
-// of their own would pass the cap; as pieces an object still fills a cell at most once, so the
+// about the ring's plane, and a spindle with the light in a dimple (on the axis, above the lemon
+// and below the tube's top), inside every one of its sector boxes. Those sectors as boxes of
+// their own would pass the cap; as pieces an object still fills a cell at most once, so the
 // buffer is kept. Every torus that blocks a settled feeler must be among its candidates.
 TEST(LightBufferSectors, KeepsItsBufferAtTheEntryCap) {
   std::mt19937_64 rng(20261129);
