@@ -28,8 +28,9 @@ class LightBuffer {
   // Cells along each side of a cube face (6 * kCells^2 cells a light, 1.5 MB). Finer cells
   // let more feelers skip the walk; docs/PERFORMANCE.md has 32, 64 and 96 measured against it.
   static constexpr int kCells = 128;
-  // Past this many cell entries (objects times the cells their bounds cover), or with an id
-  // past kMaxId, a light gets no buffer: its build would cost more than its feelers save.
+  // Past this many cell entries (objects times the cells they are entered in, never more than
+  // their bounds cover: pieces only leave cells out), or with an id past kMaxId, a light gets no
+  // buffer: its build would cost more than its feelers save.
   static constexpr std::size_t kMaxEntries = std::size_t{1} << 22;
   static constexpr std::uint32_t kMaxId = 0xFFFF;  // a cell is 16 bytes
 
@@ -45,11 +46,23 @@ class LightBuffer {
     double squared = 0;
   };
 
+  // Tighter shapes of some objects (a torus's sectors, prepared_scene.h): object o's pieces are
+  // boxes[first[o]] to boxes[first[o + 1]] (exclusive); `first` holds one offset more than there
+  // are objects, or none when no object has pieces. An object with pieces is entered only in
+  // the cells that one of them reaches within its bounds' cells, once, bounded there by its
+  // bounds and its pieces: their union must hold every point that the object's own tests can
+  // hit.
+  struct Pieces {
+    std::span<const Bounds3> boxes;
+    std::span<const std::uint32_t> first;
+  };
+
   // The buffer of the light at `light` over objects with world bounds `bounds`, identified by
-  // `ids` (the same length), and balls inside opaque solids `balls` (inscribed_balls.h, for
-  // this light). Empty (every feeler walks) past kMaxEntries or kMaxId.
+  // `ids` (the same length), balls inside opaque solids `balls` (inscribed_balls.h, for this
+  // light) and the objects' `pieces`. Empty (every feeler walks) past kMaxEntries or kMaxId.
   LightBuffer(const Vec3& light, std::span<const Bounds3> bounds,
-              std::span<const std::uint32_t> ids, std::span<const InscribedBall> balls = {});
+              std::span<const std::uint32_t> ids, std::span<const InscribedBall> balls = {},
+              Pieces pieces = {});
 
   // Which objects' bounds may meet the segment from `origin` to the light, the light excluded:
   // nearest first.

@@ -1,5 +1,6 @@
 #include "common/render/prepared_scene.h"
 
+#include <algorithm>
 #include <cmath>
 #include <numbers>
 #include <stdexcept>
@@ -7,6 +8,7 @@
 #include "common/geometry/csg.h"
 #include "common/geometry/motion.h"
 #include "common/image/decoded_texture.h"
+#include "common/math/float_error.h"
 #include "common/math/portable_math.h"
 #include "common/texture/image_texture.h"
 
@@ -240,6 +242,111 @@ std::vector<OwnHull> find_own_hulls(const std::vector<Instance>& instances) {
   return out;
 }
 
+// Sector k of a torus is the part of it whose nearest points of the core circle (radius R in the
+// xy plane) lie at angles [k, k + 1] * 2 pi / n, n = kTorusLightBufferSectors: the points at
+// those angles about its axis, and the points on the axis (every core point is nearest to them:
+// they lie in every sector). Both boxes below hold the world image of every point within
+// p = 1e-9 (R + r) of the sector, p being ten times the whole box's widening of the tube
+// (torus_world_bounds), so the image of every point of the torus that its tests can hit: such a
+// point lies within p of the torus, so within p of some sector (the computed ends of consecutive
+// arcs are the same numbers; n times 2 pi / n falls short of 2 pi by rounding only, far less
+// than p).
+constexpr int kSectors = kTorusLightBufferSectors;
+static_assert(kSectors % 4 == 0, "sector boundaries fall on the axes; each arc is less than pi");
+
+double sector_angle(int k) { return k * (2 * std::numbers::pi / kSectors); }
+
+// The box of the annular sector rho in [max(R - r, 0), R + r], |z| <= r: in the plane, the box of
+// its four corners and of the outer circle's points on the axes that the arc passes (at angles
+// q pi / 2, the arc's extremes in x or y); padded by p, far more than the rounding of its corners
+// (a few units in the last place of R + r). Its eight corners go to world space padded by their
+// rounding, as any shape's box's do. Tight along the arc, loose across it when turned.
+Bounds3 sector_corner_box(const Affine& to_world, const Torus& torus, int k) {
+  const double big_r = torus.torus_radius, r = torus.tube_radius;
+  const double outer = big_r + r, inner = std::max(big_r - r, 0.0);
+  const double p = 1e-9 * outer;
+  Bounds3 local;
+  for (int end = 0; end < 2; ++end) {
+    const double angle = sector_angle(k + end);
+    const double c = std::cos(angle), s = std::sin(angle);
+    local.extend(Vec3{outer * c, outer * s, 0});
+    local.extend(Vec3{inner * c, inner * s, 0});
+  }
+  for (int q = 0; q <= 4; ++q) {
+    const int at = q * (kSectors / 4);  // the axis point's angle, in sectors
+    if (at >= k && at <= k + 1) {
+      const double axis[4][2] = {{1, 0}, {0, 1}, {-1, 0}, {0, -1}};
+      local.extend(Vec3{outer * axis[q % 4][0], outer * axis[q % 4][1], 0});
+    }
+  }
+  local.lo = local.lo - Vec3{p, p, r + p};
+  local.hi = local.hi + Vec3{p, p, r + p};
+  Bounds3 world;
+  for (int corner = 0; corner < 8; ++corner) {
+    const Vec3 c{(corner & 1) ? local.hi.x : local.lo.x, (corner & 2) ? local.hi.y : local.lo.y,
+                 (corner & 4) ? local.hi.z : local.lo.z};
+    const Vec3 w = to_world.apply_point(c);
+    const Vec3 e = to_world.point_error(c, Vec3{}) * 2;
+    world.extend(w - e);
+    world.extend(w + e);
+  }
+  return world;
+}
+
+// The box of the core arc swept by a ball of radius r + p, as torus_world_bounds takes the whole
+// torus: under to_world's linear part L and translation t, along world axis i, t_i plus R times
+// the range of L_i0 cos(a) + L_i1 sin(a) over the arc, plus or minus (r + p) |L_i| (the ball's
+// image, an ellipsoid). The range's ends are the arc ends' values, or +-|(L_i0, L_i1)| where
+// (L_i0, L_i1), or its opposite, points into the arc (between its ends by both cross products).
+// Padded as the whole box is for the hit points' rounding through to_world, and by a further
+// 16 eps of the terms' size for this sum's own. Tight across the arc when turned, loose along it
+// (the ball overhangs the arc's ends by r).
+Bounds3 sector_swept_box(const Affine& to_world, const Torus& torus, int k) {
+  const double big_r = torus.torus_radius, r = torus.tube_radius, e = big_r + r;
+  const double tube = r + 1e-9 * e;
+  const double hit_error = 16 * kMachineEpsilon * e;
+  const Vec3 error = to_world.point_error(Vec3{e, e, r}, Vec3{hit_error, hit_error, hit_error}) * 2;
+  const double a = sector_angle(k), b = sector_angle(k + 1);
+  const double ca = std::cos(a), sa = std::sin(a), cb = std::cos(b), sb = std::sin(b);
+  Bounds3 world;
+  for (int i = 0; i < 3; ++i) {
+    const double u = to_world.m[i][0], v = to_world.m[i][1], w = to_world.m[i][2];
+    const double at_a = u * ca + v * sa, at_b = u * cb + v * sb;
+    double most = std::max(at_a, at_b), least = std::min(at_a, at_b);
+    const double after_a = ca * v - sa * u, before_b = u * sb - v * cb;
+    const double in_plane = std::sqrt(u * u + v * v);
+    if (after_a >= 0 && before_b >= 0) most = in_plane;
+    if (after_a <= 0 && before_b <= 0) least = -in_plane;
+    const double row = std::sqrt(u * u + v * v + w * w);
+    const double pad =
+        tube * row + error[i] + 16 * kMachineEpsilon * (std::fabs(to_world.m[i][3]) + 2 * e * row);
+    world.lo[i] = to_world.m[i][3] + big_r * least - pad;
+    world.hi[i] = to_world.m[i][3] + big_r * most + pad;
+  }
+  return world;
+}
+
+}  // namespace
+
+void light_buffer_pieces(const Instance& instance, std::vector<Bounds3>& out) {
+  const auto* torus = std::get_if<Torus>(&instance.geometry);
+  if (!torus || instance.motion) return;
+  // Each box holds the sector's image, so their intersection does: the corner box bounds it
+  // along the arc, the swept box across it.
+  for (int k = 0; k < kSectors; ++k) {
+    const Bounds3 corners = sector_corner_box(instance.to_world, *torus, k);
+    const Bounds3 swept = sector_swept_box(instance.to_world, *torus, k);
+    Bounds3 both;
+    for (int i = 0; i < 3; ++i) {
+      both.lo[i] = std::max(corners.lo[i], swept.lo[i]);
+      both.hi[i] = std::min(corners.hi[i], swept.hi[i]);
+    }
+    out.push_back(both);
+  }
+}
+
+namespace {
+
 // At most this many lights get a light buffer (1.5 MB and about a millisecond each).
 constexpr int kMaxLightBuffers = 16;
 
@@ -248,16 +355,25 @@ constexpr int kMaxLightBuffers = 16;
 std::vector<std::optional<LightBuffer>> build_light_buffers(
     const Scene& scene, const Bvh& bvh, const std::vector<Bounds3>& bounds,
     const std::vector<Instance>& instances) {
-  std::vector<Bounds3> top_bounds;
+  std::vector<Bounds3> top_bounds, pieces;
+  std::vector<std::uint32_t> first;  // object o's pieces start at first[o]
   top_bounds.reserve(bvh.primitive_order.size());
-  for (const std::uint32_t index : bvh.primitive_order) top_bounds.push_back(bounds[index]);
+  first.reserve(bvh.primitive_order.size() + 1);
+  for (const std::uint32_t index : bvh.primitive_order) {
+    top_bounds.push_back(bounds[index]);
+    first.push_back(static_cast<std::uint32_t>(pieces.size()));
+    light_buffer_pieces(instances[index], pieces);
+  }
+  first.push_back(static_cast<std::uint32_t>(pieces.size()));
+  if (pieces.empty()) first.clear();
   std::vector<std::optional<LightBuffer>> out(scene.lights.size());
   int built = 0;
   for (std::size_t l = 0; l < scene.lights.size() && built < kMaxLightBuffers; ++l) {
     const Light& light = scene.lights[l];
     if (light.is_directional || !light.casts_shadows) continue;
     out[l].emplace(light.position, top_bounds, bvh.primitive_order,
-                   opaque_balls(scene, instances, bvh.primitive_order, light.position));
+                   opaque_balls(scene, instances, bvh.primitive_order, light.position),
+                   LightBuffer::Pieces{pieces, first});
     ++built;
   }
   return out;

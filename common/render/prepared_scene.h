@@ -20,6 +20,15 @@
 
 namespace tessera {
 
+// A still torus enters the light buffers as this many sector boxes, so that a cell lists it only
+// when some sector's box, not merely the whole torus's, reaches the cell's directions.
+inline constexpr int kTorusLightBufferSectors = 64;
+
+// Appends the pieces by which the light buffers enter the instance (LightBuffer::Pieces): world
+// boxes whose union holds every point its own tests can hit. A still torus's sectors; none for
+// any other object, which enters as its world bounds.
+void light_buffer_pieces(const Instance& instance, std::vector<Bounds3>& out);
+
 // The pinhole camera of §4.1: a vertical field of view `view_angle` through the image centre.
 struct CameraFrame {
   Vec3 eye;

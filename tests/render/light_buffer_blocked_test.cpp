@@ -19,6 +19,7 @@
 #include "common/render/light_buffer.h"
 #include "common/scene/scene.h"
 #include "common/stats/intersection_counters.h"
+#include "tests/render/random_placement.h"
 
 namespace tessera {
 namespace {
@@ -29,15 +30,6 @@ struct Shape {
   // in the torus's hole, in object space.
   Vec3 inside, hole;
 };
-
-Vec3 random_unit(std::mt19937_64& rng) {
-  std::normal_distribution<double> normal;
-  for (;;) {
-    const Vec3 v{normal(rng), normal(rng), normal(rng)};
-    const double l = length(v);
-    if (l > 1e-3) return v / l;
-  }
-}
 
 Shape random_shape(std::mt19937_64& rng) {
   std::uniform_real_distribution<double> unit(0, 1);
@@ -54,18 +46,7 @@ Shape random_shape(std::mt19937_64& rng) {
     shape.inside = {std::max(big_r, r), 0, 0};
     shape.hole = {0, 0, 0};
   }
-  Affine transform = *Affine::rotation(360 * unit(rng), random_unit(rng));
-  if (unit(rng) < 0.3)
-    transform =
-        transform *
-        Affine::scaling({0.3 + 2.7 * unit(rng), 0.3 + 2.7 * unit(rng), 0.3 + 2.7 * unit(rng)}) *
-        *Affine::rotation(360 * unit(rng), random_unit(rng));
-  else
-    transform = transform * Affine::scaling(Vec3{1, 1, 1} * (0.2 + 3 * unit(rng)));
-  const double far = unit(rng) < 0.1 ? 1e4 : 20;
-  transform = Affine::translation({far * (2 * unit(rng) - 1), far * (2 * unit(rng) - 1),
-                                   far * (2 * unit(rng) - 1)}) *
-              transform;
+  const Affine transform = random_placement(rng);
   shape.instance = *make_instance(geometry, transform, nullptr);
   return shape;
 }
