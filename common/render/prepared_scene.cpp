@@ -252,15 +252,17 @@ std::vector<OwnHull> find_own_hulls(const std::vector<Instance>& instances) {
 // arcs are the same numbers; n times 2 pi / n falls short of 2 pi by rounding only, far less
 // than p).
 constexpr int kSectors = kTorusLightBufferSectors;
-static_assert(kSectors % 4 == 0, "sector boundaries fall on the axes; each arc is less than pi");
+static_assert(kSectors % 4 == 0,
+              "sector boundaries fall on the axes: each arc lies in one quadrant");
 
 double sector_angle(int k) { return k * (2 * std::numbers::pi / kSectors); }
 
 // The box of the annular sector rho in [max(R - r, 0), R + r], |z| <= r: in the plane, the box of
-// its four corners and of the outer circle's points on the axes that the arc passes (at angles
-// q pi / 2, the arc's extremes in x or y); padded by p, far more than the rounding of its corners
-// (a few units in the last place of R + r). Its eight corners go to world space padded by their
-// rounding, as any shape's box's do. Tight along the arc, loose across it when turned.
+// its four corners (x = rho cos(a) and y = rho sin(a) are monotone in rho and, the arc lying in
+// one quadrant, in a: their extremes are at the corners); padded by p, far more than the rounding
+// of its corners (a few units in the last place of R + r). Its eight corners go to world space
+// padded by their rounding, as any shape's box's do. Tight along the arc, loose across it when
+// turned.
 Bounds3 sector_corner_box(const Affine& to_world, const Torus& torus, int k) {
   const double big_r = torus.torus_radius, r = torus.tube_radius;
   const double outer = big_r + r, inner = std::max(big_r - r, 0.0);
@@ -271,13 +273,6 @@ Bounds3 sector_corner_box(const Affine& to_world, const Torus& torus, int k) {
     const double c = std::cos(angle), s = std::sin(angle);
     local.extend(Vec3{outer * c, outer * s, 0});
     local.extend(Vec3{inner * c, inner * s, 0});
-  }
-  for (int q = 0; q <= 4; ++q) {
-    const int at = q * (kSectors / 4);  // the axis point's angle, in sectors
-    if (at >= k && at <= k + 1) {
-      const double axis[4][2] = {{1, 0}, {0, 1}, {-1, 0}, {0, -1}};
-      local.extend(Vec3{outer * axis[q % 4][0], outer * axis[q % 4][1], 0});
-    }
   }
   local.lo = local.lo - Vec3{p, p, r + p};
   local.hi = local.hi + Vec3{p, p, r + p};
