@@ -274,6 +274,10 @@ struct Sse2Lanes {
   [[gnu::always_inline]] static unsigned le_mask(const V& a, const V& b) {
     return static_cast<unsigned>(_mm_movemask_ps(_mm_cmple_ps(a, b)));
   }
+  // Bit c set where !(a[c] < b[c]) (true with a NaN).
+  [[gnu::always_inline]] static unsigned not_lt_mask(const V& a, const V& b) {
+    return static_cast<unsigned>(_mm_movemask_ps(_mm_cmpnlt_ps(a, b)));
+  }
 };
 
 // No FMA: the "avx2" target does not enable it.
@@ -290,6 +294,10 @@ struct Avx2Lanes {
   // _CMP_LE_OS is cmpleps's predicate.
   [[gnu::target("avx2")]] static unsigned le_mask(const V& a, const V& b) {
     return static_cast<unsigned>(_mm256_movemask_ps(_mm256_cmp_ps(a, b, _CMP_LE_OS)));
+  }
+  // _CMP_NLT_US is cmpnltps's predicate.
+  [[gnu::target("avx2")]] static unsigned not_lt_mask(const V& a, const V& b) {
+    return static_cast<unsigned>(_mm256_movemask_ps(_mm256_cmp_ps(a, b, _CMP_NLT_US)));
   }
 };
 
@@ -315,18 +323,26 @@ template <typename Lanes>
   }
 }
 
-// intersect_float_child_boxes_scalar's operations for the children from `first` on, as many as
-// a vector holds, in bits 0 up of the result and entry[0] up. maxps(a, b) and minps(a, b) are
-// a > b ? a : b and a < b ? a : b, NaN included, as the scalar comparisons.
+// intersect_float_child_boxes_scalar's results for the children from `first` on, as many as a
+// vector holds, in bits 0 up of the result and entry[0] up. maxps(a, b) is a > b ? a : b, NaN
+// included, as the scalar comparison, so entry is made by the same operations. The far side is
+// not: the scalar test's t1 + margin, with t1 the minimum of far_limit and the far distances that
+// are not NaN (minps(t_far, t1) leaves a NaN t_far out; a NaN far_limit gives NaN), is compared
+// as each of its terms plus the margin: float addition is monotonic, so (min of terms) + margin
+// is the min of (term + margin), and t0 (never NaN: it starts at 0 and maxps leaves NaNs out) is
+// at most that when it is at most far_limit + margin and not above any far distance + margin, a
+// NaN one passing (cmpnltps). The same bits; each axis's compare waits for its own distance only,
+// not for a chain of three minima and an addition, the node step's longest latency (four cycles
+// a step shorter, docs/PERFORMANCE.md "The incoherent ray's stalls").
 template <typename Lanes>
 inline unsigned intersect_float_child_boxes_lanes(const FloatChildBoxes& boxes,
                                                   const FloatBoxRay& ray, float far_limit,
                                                   int first, float* entry) {
   using V = typename Lanes::V;
-  V t0, t1, far_scale, bound, origin, inv, t_near, t_far;
+  V t0, far_scale, margin, bound, origin, inv, t_near, t_far[3];
   Lanes::set1(t0, 0.0f);
-  Lanes::set1(t1, far_limit);
   Lanes::set1(far_scale, kFloatFarScale);
+  Lanes::set1(margin, kFloatTinyMargin);
 #pragma GCC unroll 3
   for (int a = 0; a < 3; ++a) {
     const int near = ray.near_side[a];
@@ -337,19 +353,20 @@ inline unsigned intersect_float_child_boxes_lanes(const FloatChildBoxes& boxes,
     Lanes::mul(t_near, t_near, inv);
     Lanes::load(bound, &boxes.bound[a][1 - near][first]);
     Lanes::load(origin, ray.origin_far[a]);
-    Lanes::sub(t_far, bound, origin);
-    Lanes::mul(t_far, t_far, inv);
-    Lanes::mul(t_far, t_far, far_scale);
+    Lanes::sub(t_far[a], bound, origin);
+    Lanes::mul(t_far[a], t_far[a], inv);
+    Lanes::mul(t_far[a], t_far[a], far_scale);
+    Lanes::add(t_far[a], t_far[a], margin);
     Lanes::max(t0, t_near, t0);
-    Lanes::min(t1, t_far, t1);
   }
   Lanes::store(entry, t0);
-  V margin, lo_x, hi_x;
-  Lanes::set1(margin, kFloatTinyMargin);
-  Lanes::add(t1, t1, margin);
+  V limit, lo_x, hi_x;
+  Lanes::set1(limit, far_limit + kFloatTinyMargin);
   Lanes::load(lo_x, &boxes.bound[0][0][first]);
   Lanes::load(hi_x, &boxes.bound[0][1][first]);
-  return Lanes::le_mask(t0, t1) & Lanes::le_mask(lo_x, hi_x);
+  return Lanes::le_mask(t0, limit) & Lanes::not_lt_mask(t_far[0], t0) &
+         Lanes::not_lt_mask(t_far[1], t0) & Lanes::not_lt_mask(t_far[2], t0) &
+         Lanes::le_mask(lo_x, hi_x);
 }
 
 // The kernel of CPUs without AVX2: the children in two halves of four.

@@ -62,9 +62,13 @@ struct TriangleLanesRay {
   double origin[3];
 };
 
+// The triangle ray is initialized from prepare_triangle_ray's result in place (guaranteed copy
+// elision, and the caller's closure receives `r` by NRVO): assigned instead, it went through a
+// temporary copied with 16-byte loads across the callee's 8-, 4- and 1-byte stores, which the
+// store buffer cannot forward, so each copy waited for the stores to reach the cache
+// (docs/PERFORMANCE.md "The incoherent ray's stalls").
 inline TriangleLanesRay prepare_triangle_lanes_ray(const Ray& ray) {
-  TriangleLanesRay r;
-  r.ray = prepare_triangle_ray(ray);
+  TriangleLanesRay r{prepare_triangle_ray(ray), {}};
   const Vec3 origin = permute_axes(ray.origin, r.ray.kx, r.ray.ky, r.ray.kz);
   r.origin[0] = origin.x;
   r.origin[1] = origin.y;

@@ -150,6 +150,34 @@ TEST(TrianglePair, PathsAgreeForOriginsOnAndNearThePlane) {
   EXPECT_GT(misses, 100);
 }
 
+// The lanes' ray, built in place from prepare_triangle_ray's result (intersect_triangle_pair.h),
+// holds that result and the origin permuted by its axes, bit for bit, for every largest axis.
+TEST(TrianglePair, LanesRayIsTheTriangleRayAndItsPermutedOrigin) {
+  std::mt19937_64 rng(15);
+  std::uniform_real_distribution<double> coordinate(-3, 3);
+  for (int i = 0; i < 1000; ++i) {
+    const Ray ray{{coordinate(rng), coordinate(rng), coordinate(rng)},
+                  {coordinate(rng), coordinate(rng), coordinate(rng)}};
+    const TriangleRay expected = prepare_triangle_ray(ray);
+    const TriangleLanesRay lanes_ray = prepare_triangle_lanes_ray(ray);
+    const TriangleRay& got = lanes_ray.ray;
+    EXPECT_EQ(got.kx, expected.kx);
+    EXPECT_EQ(got.ky, expected.ky);
+    EXPECT_EQ(got.kz, expected.kz);
+    EXPECT_EQ(got.usable, expected.usable);
+    expect_same_bits(got.sx, expected.sx, "sx");
+    expect_same_bits(got.sy, expected.sy, "sy");
+    expect_same_bits(got.sz, expected.sz, "sz");
+    const Vec3 origin = permute_axes(ray.origin, expected.kx, expected.ky, expected.kz);
+    expect_same_bits(got.origin.x, ray.origin.x, "origin.x");
+    expect_same_bits(got.origin.y, ray.origin.y, "origin.y");
+    expect_same_bits(got.origin.z, ray.origin.z, "origin.z");
+    expect_same_bits(lanes_ray.origin[0], origin.x, "permuted x");
+    expect_same_bits(lanes_ray.origin[1], origin.y, "permuted y");
+    expect_same_bits(lanes_ray.origin[2], origin.z, "permuted z");
+  }
+}
+
 TEST(TrianglePair, NaNLanesAndSpecialRaysAgree) {
   constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
   const Corners triangle{{{0, 0, 0}, {1, 0, 0}, {0, 1, 0}}};
