@@ -270,13 +270,15 @@ struct Sse2Lanes {
   [[gnu::always_inline]] static void add(V& r, const V& a, const V& b) { r = _mm_add_ps(a, b); }
   [[gnu::always_inline]] static void max(V& r, const V& a, const V& b) { r = _mm_max_ps(a, b); }
   [[gnu::always_inline]] static void min(V& r, const V& a, const V& b) { r = _mm_min_ps(a, b); }
-  // Bit c set where a[c] <= b[c] (false with a NaN).
-  [[gnu::always_inline]] static unsigned le_mask(const V& a, const V& b) {
-    return static_cast<unsigned>(_mm_movemask_ps(_mm_cmple_ps(a, b)));
+  // All ones in lane c where a[c] <= b[c] (not with a NaN), where !(a[c] < b[c]) (with a NaN),
+  // where both masks are; bit c of mask where lane c's sign bit is set.
+  [[gnu::always_inline]] static void le(V& r, const V& a, const V& b) { r = _mm_cmple_ps(a, b); }
+  [[gnu::always_inline]] static void not_lt(V& r, const V& a, const V& b) {
+    r = _mm_cmpnlt_ps(a, b);
   }
-  // Bit c set where !(a[c] < b[c]) (true with a NaN).
-  [[gnu::always_inline]] static unsigned not_lt_mask(const V& a, const V& b) {
-    return static_cast<unsigned>(_mm_movemask_ps(_mm_cmpnlt_ps(a, b)));
+  [[gnu::always_inline]] static void both(V& r, const V& a, const V& b) { r = _mm_and_ps(a, b); }
+  [[gnu::always_inline]] static unsigned mask(const V& a) {
+    return static_cast<unsigned>(_mm_movemask_ps(a));
   }
 };
 
@@ -291,13 +293,18 @@ struct Avx2Lanes {
   [[gnu::target("avx2")]] static void add(V& r, const V& a, const V& b) { r = _mm256_add_ps(a, b); }
   [[gnu::target("avx2")]] static void max(V& r, const V& a, const V& b) { r = _mm256_max_ps(a, b); }
   [[gnu::target("avx2")]] static void min(V& r, const V& a, const V& b) { r = _mm256_min_ps(a, b); }
-  // _CMP_LE_OS is cmpleps's predicate.
-  [[gnu::target("avx2")]] static unsigned le_mask(const V& a, const V& b) {
-    return static_cast<unsigned>(_mm256_movemask_ps(_mm256_cmp_ps(a, b, _CMP_LE_OS)));
+  // _CMP_LE_OS is cmpleps's predicate, _CMP_NLT_US cmpnltps's.
+  [[gnu::target("avx2")]] static void le(V& r, const V& a, const V& b) {
+    r = _mm256_cmp_ps(a, b, _CMP_LE_OS);
   }
-  // _CMP_NLT_US is cmpnltps's predicate.
-  [[gnu::target("avx2")]] static unsigned not_lt_mask(const V& a, const V& b) {
-    return static_cast<unsigned>(_mm256_movemask_ps(_mm256_cmp_ps(a, b, _CMP_NLT_US)));
+  [[gnu::target("avx2")]] static void not_lt(V& r, const V& a, const V& b) {
+    r = _mm256_cmp_ps(a, b, _CMP_NLT_US);
+  }
+  [[gnu::target("avx2")]] static void both(V& r, const V& a, const V& b) {
+    r = _mm256_and_ps(a, b);
+  }
+  [[gnu::target("avx2")]] static unsigned mask(const V& a) {
+    return static_cast<unsigned>(_mm256_movemask_ps(a));
   }
 };
 
@@ -325,22 +332,26 @@ template <typename Lanes>
 
 // intersect_float_child_boxes_scalar's results for the children from `first` on, as many as a
 // vector holds, in bits 0 up of the result and entry[0] up. maxps(a, b) is a > b ? a : b, NaN
-// included, as the scalar comparison, so entry is made by the same operations. The far side is
-// not: the scalar test's t1 + margin, with t1 the minimum of far_limit and the far distances that
-// are not NaN (minps(t_far, t1) leaves a NaN t_far out; a NaN far_limit gives NaN), is compared
-// as each of its terms plus the margin: float addition is monotonic, so (min of terms) + margin
-// is the min of (term + margin), and t0 (never NaN: it starts at 0 and maxps leaves NaNs out) is
-// at most that when it is at most far_limit + margin and not above any far distance + margin, a
-// NaN one passing (cmpnltps). The same bits; each axis's compare waits for its own distance only,
-// not for a chain of three minima and an addition, the node step's longest latency (four cycles
-// a step shorter, docs/PERFORMANCE.md "The incoherent ray's stalls").
+// included, as the scalar comparison. From a start at +0 such maxima give the largest of the
+// distances that are not NaN and +0 (+0 itself when that is 0: a -0 or a tie never replaces
+// the running value), in whatever order they are taken; so entry, max(x, max(z, max(y, 0))), has
+// the scalar test's bits. The hit bits are the scalar test's without waiting for entry's chain of
+// three maxima (the node step's longest latency, docs/PERFORMANCE.md "The incoherent ray's
+// stalls"). With t0' = max(z, max(y, 0)) (never NaN), entry is x where x > t0', else t0':
+// - entry <= far_limit + margin holds exactly when t0' does and !(x > far_limit + margin) (a NaN
+//   x passes, as maxps left it out; a NaN limit fails the first);
+// - the scalar t1 + margin, t1 the minimum of far_limit and the far distances that are not NaN,
+//   is compared as each of its terms plus the margin (float addition is monotonic, so (min of
+//   terms) + margin is the min of (term + margin)): entry is not above a far distance f + margin
+//   when !(f + margin < t0') and !(f + margin < x), a NaN f or x passing (cmpnltps), as minps
+//   and maxps left them out.
+// Each compare waits for one or two distances and at most two maxima.
 template <typename Lanes>
 inline unsigned intersect_float_child_boxes_lanes(const FloatChildBoxes& boxes,
                                                   const FloatBoxRay& ray, float far_limit,
                                                   int first, float* entry) {
   using V = typename Lanes::V;
-  V t0, far_scale, margin, bound, origin, inv, t_near, t_far[3];
-  Lanes::set1(t0, 0.0f);
+  V far_scale, margin, bound, origin, inv, t_near[3], t_far[3];
   Lanes::set1(far_scale, kFloatFarScale);
   Lanes::set1(margin, kFloatTinyMargin);
 #pragma GCC unroll 3
@@ -349,24 +360,42 @@ inline unsigned intersect_float_child_boxes_lanes(const FloatChildBoxes& boxes,
     Lanes::load(inv, ray.inv_dir[a]);
     Lanes::load(bound, &boxes.bound[a][near][first]);
     Lanes::load(origin, ray.origin_near[a]);
-    Lanes::sub(t_near, bound, origin);
-    Lanes::mul(t_near, t_near, inv);
+    Lanes::sub(t_near[a], bound, origin);
+    Lanes::mul(t_near[a], t_near[a], inv);
     Lanes::load(bound, &boxes.bound[a][1 - near][first]);
     Lanes::load(origin, ray.origin_far[a]);
     Lanes::sub(t_far[a], bound, origin);
     Lanes::mul(t_far[a], t_far[a], inv);
     Lanes::mul(t_far[a], t_far[a], far_scale);
     Lanes::add(t_far[a], t_far[a], margin);
-    Lanes::max(t0, t_near, t0);
   }
+  V t0_yz, t0;
+  Lanes::set1(t0_yz, 0.0f);
+  Lanes::max(t0_yz, t_near[1], t0_yz);
+  Lanes::max(t0_yz, t_near[2], t0_yz);
+  Lanes::max(t0, t_near[0], t0_yz);
   Lanes::store(entry, t0);
-  V limit, lo_x, hi_x;
+  // The masks in a tree: those waiting for t0' or a far distance come last, ANDed in pairs.
+  V limit, lo_x, hi_x, early, late, in, axis[3];
   Lanes::set1(limit, far_limit + kFloatTinyMargin);
   Lanes::load(lo_x, &boxes.bound[0][0][first]);
   Lanes::load(hi_x, &boxes.bound[0][1][first]);
-  return Lanes::le_mask(t0, limit) & Lanes::not_lt_mask(t_far[0], t0) &
-         Lanes::not_lt_mask(t_far[1], t0) & Lanes::not_lt_mask(t_far[2], t0) &
-         Lanes::le_mask(lo_x, hi_x);
+  Lanes::le(early, lo_x, hi_x);
+  Lanes::not_lt(in, limit, t_near[0]);
+  Lanes::both(early, early, in);
+  Lanes::le(in, t0_yz, limit);
+  Lanes::both(early, early, in);
+#pragma GCC unroll 3
+  for (int a = 0; a < 3; ++a) {
+    Lanes::not_lt(axis[a], t_far[a], t_near[0]);
+    Lanes::not_lt(in, t_far[a], t0_yz);
+    Lanes::both(axis[a], axis[a], in);
+  }
+  Lanes::both(late, axis[1], axis[2]);
+  Lanes::both(early, early, axis[0]);
+  V hit;
+  Lanes::both(hit, early, late);
+  return Lanes::mask(hit);
 }
 
 // The kernel of CPUs without AVX2: the children in two halves of four.
