@@ -332,26 +332,22 @@ template <typename Lanes>
 
 // intersect_float_child_boxes_scalar's results for the children from `first` on, as many as a
 // vector holds, in bits 0 up of the result and entry[0] up. maxps(a, b) is a > b ? a : b, NaN
-// included, as the scalar comparison. From a start at +0 such maxima give the largest of the
-// distances that are not NaN and +0 (+0 itself when that is 0: a -0 or a tie never replaces
-// the running value), in whatever order they are taken; so entry, max(x, max(z, max(y, 0))), has
-// the scalar test's bits. The hit bits are the scalar test's without waiting for entry's chain of
-// three maxima (the node step's longest latency, docs/PERFORMANCE.md "The incoherent ray's
-// stalls"). With t0' = max(z, max(y, 0)) (never NaN), entry is x where x > t0', else t0':
-// - entry <= far_limit + margin holds exactly when t0' does and !(x > far_limit + margin) (a NaN
-//   x passes, as maxps left it out; a NaN limit fails the first);
-// - the scalar t1 + margin, t1 the minimum of far_limit and the far distances that are not NaN,
-//   is compared as each of its terms plus the margin (float addition is monotonic, so (min of
-//   terms) + margin is the min of (term + margin)): entry is not above a far distance f + margin
-//   when !(f + margin < t0') and !(f + margin < x), a NaN f or x passing (cmpnltps), as minps
-//   and maxps left them out.
-// Each compare waits for one or two distances and at most two maxima.
+// included, as the scalar comparison, so entry is made by the same operations. The far side is
+// not: the scalar test's t1 + margin, with t1 the minimum of far_limit and the far distances that
+// are not NaN (minps(t_far, t1) leaves a NaN t_far out; a NaN far_limit gives NaN), is compared
+// as each of its terms plus the margin: float addition is monotonic, so (min of terms) + margin
+// is the min of (term + margin), and t0 (never NaN: it starts at 0 and maxps leaves NaNs out) is
+// at most that when it is at most far_limit + margin and not above any far distance + margin, a
+// NaN one passing (cmpnltps). The same bits; each axis's compare waits for its own distance only,
+// not for a chain of three minima and an addition, the node step's longest latency (four cycles
+// a step shorter, docs/PERFORMANCE.md "The incoherent ray's stalls").
 template <typename Lanes>
 inline unsigned intersect_float_child_boxes_lanes(const FloatChildBoxes& boxes,
                                                   const FloatBoxRay& ray, float far_limit,
                                                   int first, float* entry) {
   using V = typename Lanes::V;
-  V far_scale, margin, bound, origin, inv, t_near[3], t_far[3];
+  V t0, far_scale, margin, bound, origin, inv, t_near, t_far[3];
+  Lanes::set1(t0, 0.0f);
   Lanes::set1(far_scale, kFloatFarScale);
   Lanes::set1(margin, kFloatTinyMargin);
 #pragma GCC unroll 3
@@ -360,41 +356,32 @@ inline unsigned intersect_float_child_boxes_lanes(const FloatChildBoxes& boxes,
     Lanes::load(inv, ray.inv_dir[a]);
     Lanes::load(bound, &boxes.bound[a][near][first]);
     Lanes::load(origin, ray.origin_near[a]);
-    Lanes::sub(t_near[a], bound, origin);
-    Lanes::mul(t_near[a], t_near[a], inv);
+    Lanes::sub(t_near, bound, origin);
+    Lanes::mul(t_near, t_near, inv);
     Lanes::load(bound, &boxes.bound[a][1 - near][first]);
     Lanes::load(origin, ray.origin_far[a]);
     Lanes::sub(t_far[a], bound, origin);
     Lanes::mul(t_far[a], t_far[a], inv);
     Lanes::mul(t_far[a], t_far[a], far_scale);
     Lanes::add(t_far[a], t_far[a], margin);
+    Lanes::max(t0, t_near, t0);
   }
-  V t0_yz, t0;
-  Lanes::set1(t0_yz, 0.0f);
-  Lanes::max(t0_yz, t_near[1], t0_yz);
-  Lanes::max(t0_yz, t_near[2], t0_yz);
-  Lanes::max(t0, t_near[0], t0_yz);
   Lanes::store(entry, t0);
-  // The masks in a tree: those waiting for t0' or a far distance come last, ANDed in pairs.
-  V limit, lo_x, hi_x, early, late, in, axis[3];
+  V limit, lo_x, hi_x;
   Lanes::set1(limit, far_limit + kFloatTinyMargin);
   Lanes::load(lo_x, &boxes.bound[0][0][first]);
   Lanes::load(hi_x, &boxes.bound[0][1][first]);
-  Lanes::le(early, lo_x, hi_x);
-  Lanes::not_lt(in, limit, t_near[0]);
-  Lanes::both(early, early, in);
-  Lanes::le(in, t0_yz, limit);
-  Lanes::both(early, early, in);
+  // The compares' masks ANDed as vectors, in pairs (all but the box's own wait for t0), and one
+  // movmskps: fewer instructions than a movmskps each.
+  V hit, in, far[3];
 #pragma GCC unroll 3
-  for (int a = 0; a < 3; ++a) {
-    Lanes::not_lt(axis[a], t_far[a], t_near[0]);
-    Lanes::not_lt(in, t_far[a], t0_yz);
-    Lanes::both(axis[a], axis[a], in);
-  }
-  Lanes::both(late, axis[1], axis[2]);
-  Lanes::both(early, early, axis[0]);
-  V hit;
-  Lanes::both(hit, early, late);
+  for (int a = 0; a < 3; ++a) Lanes::not_lt(far[a], t_far[a], t0);
+  Lanes::le(hit, t0, limit);
+  Lanes::both(hit, hit, far[0]);
+  Lanes::both(far[1], far[1], far[2]);
+  Lanes::le(in, lo_x, hi_x);
+  Lanes::both(hit, hit, in);
+  Lanes::both(hit, hit, far[1]);
   return Lanes::mask(hit);
 }
 
