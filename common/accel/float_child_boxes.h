@@ -270,15 +270,13 @@ struct Sse2Lanes {
   [[gnu::always_inline]] static void add(V& r, const V& a, const V& b) { r = _mm_add_ps(a, b); }
   [[gnu::always_inline]] static void max(V& r, const V& a, const V& b) { r = _mm_max_ps(a, b); }
   [[gnu::always_inline]] static void min(V& r, const V& a, const V& b) { r = _mm_min_ps(a, b); }
-  // All ones in lane c where a[c] <= b[c] (not with a NaN), where !(a[c] < b[c]) (with a NaN),
-  // where both masks are; bit c of mask where lane c's sign bit is set.
-  [[gnu::always_inline]] static void le(V& r, const V& a, const V& b) { r = _mm_cmple_ps(a, b); }
-  [[gnu::always_inline]] static void not_lt(V& r, const V& a, const V& b) {
-    r = _mm_cmpnlt_ps(a, b);
+  // Bit c set where a[c] <= b[c] (false with a NaN).
+  [[gnu::always_inline]] static unsigned le_mask(const V& a, const V& b) {
+    return static_cast<unsigned>(_mm_movemask_ps(_mm_cmple_ps(a, b)));
   }
-  [[gnu::always_inline]] static void both(V& r, const V& a, const V& b) { r = _mm_and_ps(a, b); }
-  [[gnu::always_inline]] static unsigned mask(const V& a) {
-    return static_cast<unsigned>(_mm_movemask_ps(a));
+  // Bit c set where !(a[c] < b[c]) (true with a NaN).
+  [[gnu::always_inline]] static unsigned not_lt_mask(const V& a, const V& b) {
+    return static_cast<unsigned>(_mm_movemask_ps(_mm_cmpnlt_ps(a, b)));
   }
 };
 
@@ -293,18 +291,13 @@ struct Avx2Lanes {
   [[gnu::target("avx2")]] static void add(V& r, const V& a, const V& b) { r = _mm256_add_ps(a, b); }
   [[gnu::target("avx2")]] static void max(V& r, const V& a, const V& b) { r = _mm256_max_ps(a, b); }
   [[gnu::target("avx2")]] static void min(V& r, const V& a, const V& b) { r = _mm256_min_ps(a, b); }
-  // _CMP_LE_OS is cmpleps's predicate, _CMP_NLT_US cmpnltps's.
-  [[gnu::target("avx2")]] static void le(V& r, const V& a, const V& b) {
-    r = _mm256_cmp_ps(a, b, _CMP_LE_OS);
+  // _CMP_LE_OS is cmpleps's predicate.
+  [[gnu::target("avx2")]] static unsigned le_mask(const V& a, const V& b) {
+    return static_cast<unsigned>(_mm256_movemask_ps(_mm256_cmp_ps(a, b, _CMP_LE_OS)));
   }
-  [[gnu::target("avx2")]] static void not_lt(V& r, const V& a, const V& b) {
-    r = _mm256_cmp_ps(a, b, _CMP_NLT_US);
-  }
-  [[gnu::target("avx2")]] static void both(V& r, const V& a, const V& b) {
-    r = _mm256_and_ps(a, b);
-  }
-  [[gnu::target("avx2")]] static unsigned mask(const V& a) {
-    return static_cast<unsigned>(_mm256_movemask_ps(a));
+  // _CMP_NLT_US is cmpnltps's predicate.
+  [[gnu::target("avx2")]] static unsigned not_lt_mask(const V& a, const V& b) {
+    return static_cast<unsigned>(_mm256_movemask_ps(_mm256_cmp_ps(a, b, _CMP_NLT_US)));
   }
 };
 
@@ -371,18 +364,9 @@ inline unsigned intersect_float_child_boxes_lanes(const FloatChildBoxes& boxes,
   Lanes::set1(limit, far_limit + kFloatTinyMargin);
   Lanes::load(lo_x, &boxes.bound[0][0][first]);
   Lanes::load(hi_x, &boxes.bound[0][1][first]);
-  // The compares' masks ANDed as vectors, in pairs (all but the box's own wait for t0), and one
-  // movmskps: fewer instructions than a movmskps each.
-  V hit, in, far[3];
-#pragma GCC unroll 3
-  for (int a = 0; a < 3; ++a) Lanes::not_lt(far[a], t_far[a], t0);
-  Lanes::le(hit, t0, limit);
-  Lanes::both(hit, hit, far[0]);
-  Lanes::both(far[1], far[1], far[2]);
-  Lanes::le(in, lo_x, hi_x);
-  Lanes::both(hit, hit, in);
-  Lanes::both(hit, hit, far[1]);
-  return Lanes::mask(hit);
+  return Lanes::le_mask(t0, limit) & Lanes::not_lt_mask(t_far[0], t0) &
+         Lanes::not_lt_mask(t_far[1], t0) & Lanes::not_lt_mask(t_far[2], t0) &
+         Lanes::le_mask(lo_x, hi_x);
 }
 
 // The kernel of CPUs without AVX2: the children in two halves of four.
