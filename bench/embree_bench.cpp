@@ -4,7 +4,7 @@
 // machine cancels out of the ratio Tessera / Embree (higher is better; 1 is Embree's pace).
 //
 //   tessera-embree-bench [--repeats N] [--width W] [--height H] [--cpu-time] [--smoke] [--counts]
-//                        [--rays camera|shadow|incoherent] [OBJ...]
+//                        [--rays camera|shadow|incoherent] [--embree-config CONFIG] [OBJ...]
 //
 // --cpu-time times each engine by its threads' CPU time (the busiest thread's) instead of the
 // wall clock: on a machine shared with other jobs a thread waits for a core much of the time,
@@ -15,7 +15,9 @@
 // tree (its SAH cost, wide_bvh_cost) and the nodes visited and triangles tested a ray of each
 // kind: they show what a change of the tree does, without the noise of times. --rays traces
 // only the rays of one kind (still made from the camera rays' hits), so that a profile
-// (perf record) shows that kind alone.
+// (perf record) shows that kind alone. --embree-config passes its text to rtcNewDevice: "isa=avx2"
+// pins Embree to the AVX2 kernels Tessera's traversal uses (by default Embree picks the widest
+// ISA the CPU has, AVX-512 on recent Intel and AMD parts), "verbose=1" prints what it chose.
 #include <embree3/rtcore.h>
 
 #include <algorithm>
@@ -74,6 +76,7 @@ struct Options {
   bool cpu_time = false;
   bool counts = false;
   std::optional<RayKind> only;  // --rays
+  std::string embree_config;    // --embree-config
   std::vector<std::string> meshes;
 };
 
@@ -139,7 +142,7 @@ std::vector<RaySet> make_rays(const MeshAccel& accel, int width, int height) {
 
 class EmbreeMesh {
  public:
-  explicit EmbreeMesh(const Mesh& mesh) : device_(rtcNewDevice(nullptr)) {
+  EmbreeMesh(const Mesh& mesh, const std::string& config) : device_(rtcNewDevice(config.c_str())) {
     scene_ = rtcNewScene(device_);
     RTCGeometry geometry = rtcNewGeometry(device_, RTC_GEOMETRY_TYPE_TRIANGLE);
     auto* vertices = static_cast<float*>(
@@ -293,7 +296,7 @@ void count_mesh(const std::string& name, const Mesh& mesh, const Options& option
 // Traces one mesh; prints its rows; returns false when the engines disagree on the hits.
 bool bench_mesh(const std::string& name, const Mesh& mesh, const Options& options) {
   const MeshAccel accel = build_mesh_accel(mesh, BvhMode::Sah);
-  const EmbreeMesh embree(mesh);
+  const EmbreeMesh embree(mesh, options.embree_config);
   const std::vector<RaySet> sets = make_rays(accel, options.width, options.height);
   bool agree = true;
   for (const RaySet& set : sets)
@@ -366,6 +369,9 @@ int main_impl(int argc, char** argv) {
     else if (arg == "--rays") {
       if (i + 1 >= argc) throw std::runtime_error(arg + " needs a value");
       options.only = parse_kind(argv[++i]);
+    } else if (arg == "--embree-config") {
+      if (i + 1 >= argc) throw std::runtime_error(arg + " needs a value");
+      options.embree_config = argv[++i];
     } else if (arg == "--smoke")
       options.smoke = true;
     else if (arg.starts_with("--"))
