@@ -12,24 +12,28 @@
 namespace tessera {
 namespace {
 
-// Tests the triangles of a leaf ending at `end` from its position i (even) on: four (two pairs)
-// in the traversal compiled for AVX2 while more than two remain, else one pair; `next` receives
-// the position after them. Returns the lanes hit as bits, lane l for the triangle at i + l.
+// Tests the triangles of a leaf from its position i (even; a leaf starts a quad) on: the whole
+// quad in the traversal compiled for AVX2 (lanes past the leaf's end are NaN, never hit), else
+// the quad's half that i starts; `next` receives the position after them. Returns the lanes hit
+// as bits, lane l for the triangle at i + l.
 template <typename Kernel>
 [[gnu::always_inline]] inline unsigned intersect_leaf_triangles(
-    Kernel, const MeshAccel& accel, std::uint32_t i, std::uint32_t end,
-    const TriangleLanesRay& lanes_ray, double t_max, TriangleLaneHits& hits, std::uint32_t& next) {
-  const TrianglePair* pairs = &accel.leaf_pairs[i / 2];
+    Kernel, const MeshAccel& accel, std::uint32_t i, const TriangleLanesRay& lanes_ray,
+    double t_max, TriangleLaneHits& hits, std::uint32_t& next) {
+  const TriangleQuad& quad = accel.leaf_quads[i / 4];
 #if defined(__SSE2__)
   if constexpr (Kernel::value == WideBoxKernel::Avx2) {
-    if (end - i > 2) {
-      next = i + 4;
-      return intersect_triangle_quad(pairs, lanes_ray, t_max, hits);
-    }
+    next = i + 4;
+    return intersect_triangle_quad(quad, lanes_ray, t_max, hits);
   }
 #endif
   next = i + 2;
-  return intersect_triangle_pair(*pairs, lanes_ray, t_max, hits);
+  return intersect_triangle_pair(quad, static_cast<int>(i % 4) / 2, lanes_ray, t_max, hits);
+}
+
+// The corners of the triangle at `position` of the mesh's primitive order, from its leaf.
+Vec3 leaf_corner(const MeshAccel& accel, std::uint32_t position, int c) {
+  return quad_corner(accel.leaf_quads[position / 4], c, static_cast<int>(position % 4));
 }
 
 }  // namespace
@@ -63,30 +67,28 @@ bool intersect_mesh(const MeshAccel& accel, bool interpolate_normals, const Ray&
         const double limit = found ? next_up(t_limit) : t_limit;
         TriangleLaneHits hits;
         const unsigned lanes =
-            intersect_leaf_triangles(kernel, accel, i, end, lanes_ray, limit, hits, next);
+            intersect_leaf_triangles(kernel, accel, i, lanes_ray, limit, hits, next);
         for (unsigned rest = lanes; rest != 0; rest &= rest - 1) {
           const int lane = std::countr_zero(rest);
           // One triangle at a time, a lane would have been tested against the limit after the
           // earlier lanes' hits, never a larger one: in the rare case that it changed, test it
           // again with it.
           const double limit_now = found ? next_up(t_limit) : t_limit;
-          const TrianglePair& pair = accel.leaf_pairs[(i + static_cast<std::uint32_t>(lane)) / 2];
+          const std::uint32_t position = i + static_cast<std::uint32_t>(lane);
           TriangleHit h = hits.lane(lane);
           if (limit_now == limit ||
-              intersect_triangle(pair_corner(pair, 0, lane % 2), pair_corner(pair, 1, lane % 2),
-                                 pair_corner(pair, 2, lane % 2), lanes_ray.ray, limit_now, h))
-            take(h, i + static_cast<std::uint32_t>(lane));
+              intersect_triangle(leaf_corner(accel, position, 0), leaf_corner(accel, position, 1),
+                                 leaf_corner(accel, position, 2), lanes_ray.ray, limit_now, h))
+            take(h, position);
         }
       }
       return t_limit;
     };
   });
   if (!found) return false;
-  const TrianglePair& pair = accel.leaf_pairs[found_position / 2];
-  const int lane = static_cast<int>(found_position % 2);
-  hit = triangle_local_hit(*accel.mesh, found_triangle, pair_corner(pair, 0, lane),
-                           pair_corner(pair, 1, lane), pair_corner(pair, 2, lane),
-                           interpolate_normals, nearest);
+  hit = triangle_local_hit(*accel.mesh, found_triangle, leaf_corner(accel, found_position, 0),
+                           leaf_corner(accel, found_position, 1),
+                           leaf_corner(accel, found_position, 2), interpolate_normals, nearest);
   return true;
 }
 
@@ -102,7 +104,7 @@ bool occluded_mesh(const MeshAccel& accel, const Ray& ray, double t_max,
       for (std::uint32_t i = first, next; i < end; i = next) {
         TriangleLaneHits hits;
         const unsigned lanes =
-            intersect_leaf_triangles(kernel, accel, i, end, lanes_ray, t_limit, hits, next);
+            intersect_leaf_triangles(kernel, accel, i, lanes_ray, t_limit, hits, next);
         if (lanes != 0) {
           // Counted as one at a time: up to the first triangle hit.
           counters.triangle_tests +=
@@ -133,7 +135,7 @@ std::vector<LocalHit> mesh_crossings(const MeshAccel& accel, bool interpolate_no
       for (std::uint32_t i = first, next; i < end; i = next) {
         TriangleLaneHits lane_hits;
         const unsigned lanes =
-            intersect_leaf_triangles(kernel, accel, i, end, lanes_ray, limit, lane_hits, next);
+            intersect_leaf_triangles(kernel, accel, i, lanes_ray, limit, lane_hits, next);
         for (unsigned rest = lanes; rest != 0; rest &= rest - 1) {
           const auto lane = static_cast<std::uint32_t>(std::countr_zero(rest));
           hits.emplace_back(lane_hits.lane(static_cast<int>(lane)),
