@@ -99,7 +99,6 @@ struct Sse2DoubleLanes {
   [[gnu::always_inline]] static void max(V& r, const V& a, const V& b) { r = _mm_max_pd(a, b); }
   [[gnu::always_inline]] static void bit_and(V& r, const V& a, const V& b) { r = _mm_and_pd(a, b); }
   [[gnu::always_inline]] static void bit_or(V& r, const V& a, const V& b) { r = _mm_or_pd(a, b); }
-  [[gnu::always_inline]] static void bit_xor(V& r, const V& a, const V& b) { r = _mm_xor_pd(a, b); }
   // ~a & b.
   [[gnu::always_inline]] static void and_not(V& r, const V& a, const V& b) {
     r = _mm_andnot_pd(a, b);
@@ -107,6 +106,7 @@ struct Sse2DoubleLanes {
   [[gnu::always_inline]] static void lt(V& r, const V& a, const V& b) { r = _mm_cmplt_pd(a, b); }
   [[gnu::always_inline]] static void le(V& r, const V& a, const V& b) { r = _mm_cmple_pd(a, b); }
   [[gnu::always_inline]] static void gt(V& r, const V& a, const V& b) { r = _mm_cmpgt_pd(a, b); }
+  [[gnu::always_inline]] static void ge(V& r, const V& a, const V& b) { r = _mm_cmpge_pd(a, b); }
   [[gnu::always_inline]] static void eq(V& r, const V& a, const V& b) { r = _mm_cmpeq_pd(a, b); }
   // !(a < b), true with a NaN.
   [[gnu::always_inline]] static void not_lt(V& r, const V& a, const V& b) {
@@ -137,9 +137,6 @@ struct Avx2DoubleLanes {
   [[gnu::target("avx2")]] static void bit_or(V& r, const V& a, const V& b) {
     r = _mm256_or_pd(a, b);
   }
-  [[gnu::target("avx2")]] static void bit_xor(V& r, const V& a, const V& b) {
-    r = _mm256_xor_pd(a, b);
-  }
   [[gnu::target("avx2")]] static void and_not(V& r, const V& a, const V& b) {
     r = _mm256_andnot_pd(a, b);
   }
@@ -151,6 +148,9 @@ struct Avx2DoubleLanes {
   }
   [[gnu::target("avx2")]] static void gt(V& r, const V& a, const V& b) {
     r = _mm256_cmp_pd(a, b, _CMP_GT_OS);
+  }
+  [[gnu::target("avx2")]] static void ge(V& r, const V& a, const V& b) {
+    r = _mm256_cmp_pd(a, b, _CMP_GE_OS);
   }
   [[gnu::target("avx2")]] static void eq(V& r, const V& a, const V& b) {
     r = _mm256_cmp_pd(a, b, _CMP_EQ_OQ);
@@ -255,20 +255,21 @@ template <typename Lanes>
   Lanes::add(t_scaled, t_scaled, product);
   Lanes::set1(t_max_det, t_max);
   Lanes::mul(t_max_det, t_max_det, det);
-  // The scalar test's det > 0 && (t_scaled <= 0 || t_scaled > t_max * det), and its det < 0 &&
-  // (t_scaled >= 0 || t_scaled < t_max * det), which is the first with both sides of each compare
-  // negated: so one test, of both values with det's sign bit flipped into them (an exact
-  // negation; a compare gives the same with both sides negated, NaN and zeros included). Lanes
-  // whose det is 0 or NaN, whichever its sign, are missed already.
-  V sign_bit, det_sign, t_signed, beyond;
-  Lanes::set1(sign_bit, -0.0);
-  Lanes::bit_and(det_sign, det, sign_bit);
-  Lanes::bit_xor(t_signed, t_scaled, det_sign);
-  Lanes::bit_xor(t_max_det, t_max_det, det_sign);
-  Lanes::le(compared, t_signed, zero);
-  Lanes::gt(beyond, t_signed, t_max_det);
-  Lanes::bit_or(missed, missed, compared);
-  Lanes::bit_or(missed, missed, beyond);
+  V out, side, beyond;
+  // det < 0 && (t_scaled >= 0 || t_scaled < t_max * det)
+  Lanes::lt(side, det, zero);
+  Lanes::ge(compared, t_scaled, zero);
+  Lanes::lt(beyond, t_scaled, t_max_det);
+  Lanes::bit_or(compared, compared, beyond);
+  Lanes::bit_and(out, side, compared);
+  Lanes::bit_or(missed, missed, out);
+  // det > 0 && (t_scaled <= 0 || t_scaled > t_max * det)
+  Lanes::gt(side, det, zero);
+  Lanes::le(compared, t_scaled, zero);
+  Lanes::gt(beyond, t_scaled, t_max_det);
+  Lanes::bit_or(compared, compared, beyond);
+  Lanes::bit_and(out, side, compared);
+  Lanes::bit_or(missed, missed, out);
   if (Lanes::mask(missed) == Lanes::kAllLanes) return 0;
 
   V one, inv_det, t;
