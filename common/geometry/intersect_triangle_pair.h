@@ -95,7 +95,6 @@ struct Sse2DoubleLanes {
   [[gnu::always_inline]] static void sub(V& r, const V& a, const V& b) { r = _mm_sub_pd(a, b); }
   [[gnu::always_inline]] static void mul(V& r, const V& a, const V& b) { r = _mm_mul_pd(a, b); }
   [[gnu::always_inline]] static void div(V& r, const V& a, const V& b) { r = _mm_div_pd(a, b); }
-  [[gnu::always_inline]] static void min(V& r, const V& a, const V& b) { r = _mm_min_pd(a, b); }
   [[gnu::always_inline]] static void max(V& r, const V& a, const V& b) { r = _mm_max_pd(a, b); }
   [[gnu::always_inline]] static void bit_and(V& r, const V& a, const V& b) { r = _mm_and_pd(a, b); }
   [[gnu::always_inline]] static void bit_or(V& r, const V& a, const V& b) { r = _mm_or_pd(a, b); }
@@ -129,7 +128,6 @@ struct Avx2DoubleLanes {
   [[gnu::target("avx2")]] static void sub(V& r, const V& a, const V& b) { r = _mm256_sub_pd(a, b); }
   [[gnu::target("avx2")]] static void mul(V& r, const V& a, const V& b) { r = _mm256_mul_pd(a, b); }
   [[gnu::target("avx2")]] static void div(V& r, const V& a, const V& b) { r = _mm256_div_pd(a, b); }
-  [[gnu::target("avx2")]] static void min(V& r, const V& a, const V& b) { r = _mm256_min_pd(a, b); }
   [[gnu::target("avx2")]] static void max(V& r, const V& a, const V& b) { r = _mm256_max_pd(a, b); }
   [[gnu::target("avx2")]] static void bit_and(V& r, const V& a, const V& b) {
     r = _mm256_and_pd(a, b);
@@ -214,19 +212,18 @@ template <typename Lanes>
   edge(e0, q1, q2);
   edge(e1, q2, q0);
   edge(e2, q0, q1);
-  // Some edge below 0 as min(e) < 0, some above as max(e) > 0: where no edge is NaN, the same
-  // as the scalar test's three compares ORed (minpd and maxpd return one of their operands, so
-  // the extremes are exact; -0 and +0 compare alike). A lane with a NaN edge may come out either
-  // way here, but its determinant, the edges' sum, is NaN and rejects it below, as the scalar
-  // test rejects it: the lane's `missed` is the scalar test's.
-  V zero, lowest, highest, some_negative, some_positive, compared;
+  V zero, some_negative, some_positive, compared;
   Lanes::set1(zero, 0.0);
-  Lanes::min(lowest, e0, e1);
-  Lanes::min(lowest, lowest, e2);
-  Lanes::max(highest, e0, e1);
-  Lanes::max(highest, highest, e2);
-  Lanes::lt(some_negative, lowest, zero);
-  Lanes::gt(some_positive, highest, zero);
+  Lanes::lt(some_negative, e0, zero);
+  Lanes::lt(compared, e1, zero);
+  Lanes::bit_or(some_negative, some_negative, compared);
+  Lanes::lt(compared, e2, zero);
+  Lanes::bit_or(some_negative, some_negative, compared);
+  Lanes::gt(some_positive, e0, zero);
+  Lanes::gt(compared, e1, zero);
+  Lanes::bit_or(some_positive, some_positive, compared);
+  Lanes::gt(compared, e2, zero);
+  Lanes::bit_or(some_positive, some_positive, compared);
   V det;
   Lanes::add(det, e0, e1);
   Lanes::add(det, det, e2);
