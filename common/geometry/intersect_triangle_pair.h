@@ -33,17 +33,16 @@ struct TriangleLaneHits {
 };
 
 // The scalar test of triangle.h once per lane of `quad` from `first_lane`, `lane_count` of them.
-// Returns the lanes hit with t in (0, t_max) as bits (bit l: lane first_lane + l, whose hit is
-// hits' entry l).
+// Returns the lanes hit with t in (0, t_max) as bits of the quad's lanes (bit l: lane l, whose
+// hit is hits' entry l), as every lane test does.
 inline unsigned intersect_triangle_lanes_scalar(const TriangleQuad& quad, int first_lane,
                                                 int lane_count, const TriangleRay& ray,
                                                 double t_max, TriangleLaneHits& hits) {
   unsigned lanes = 0;
-  for (int lane = 0; lane < lane_count; ++lane) {
+  for (int lane = first_lane; lane < first_lane + lane_count; ++lane) {
     TriangleHit h;
-    if (!intersect_triangle(quad_corner(quad, 0, first_lane + lane),
-                            quad_corner(quad, 1, first_lane + lane),
-                            quad_corner(quad, 2, first_lane + lane), ray, t_max, h))
+    if (!intersect_triangle(quad_corner(quad, 0, lane), quad_corner(quad, 1, lane),
+                            quad_corner(quad, 2, lane), ray, t_max, h))
       continue;
     hits.t[lane] = h.t;
     hits.b0[lane] = h.b0;
@@ -325,19 +324,19 @@ template <typename Lanes>
   Lanes::and_not(hit, missed, hit);
   const unsigned lanes = Lanes::mask(hit);
   if (lanes == 0) return 0;
-  Lanes::store(hits.t, t);
+  Lanes::store(hits.t + first_lane, t);
   Lanes::mul(product, e0, inv_det);
-  Lanes::store(hits.b0, product);
+  Lanes::store(hits.b0 + first_lane, product);
   Lanes::mul(product, e1, inv_det);
-  Lanes::store(hits.b1, product);
+  Lanes::store(hits.b1 + first_lane, product);
   Lanes::mul(product, e2, inv_det);
-  Lanes::store(hits.b2, product);
-  return lanes;
+  Lanes::store(hits.b2 + first_lane, product);
+  return lanes << first_lane;
 }
 #endif
 
 // The two triangles of `quad`'s half `half` (lanes 2 half and 2 half + 1), at once where SSE2 is
-// available; lanes as bits 0 and 1.
+// available; lanes as bits 2 half and 2 half + 1.
 [[gnu::always_inline]] inline unsigned intersect_triangle_pair(const TriangleQuad& quad, int half,
                                                                const TriangleLanesRay& lanes_ray,
                                                                double t_max,

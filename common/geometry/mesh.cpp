@@ -12,23 +12,23 @@
 namespace tessera {
 namespace {
 
-// Tests the triangles of a leaf from its position i (even; a leaf starts a quad) on: the whole
-// quad in the traversal compiled for AVX2 (lanes past the leaf's end are NaN, never hit), else
-// the quad's half that i starts; `next` receives the position after them. Returns the lanes hit
-// as bits, lane l for the triangle at i + l.
+// Tests the quad of a leaf's triangles at its position i (a multiple of four: a leaf starts a
+// quad) against a leaf ending at `end`: at once in the traversal compiled for AVX2 (lanes past
+// the leaf's end are NaN, never hit), else as its halves, the second only where the leaf reaches
+// it. Returns the lanes hit as bits, lane l for the triangle at i + l.
 template <typename Kernel>
-[[gnu::always_inline]] inline unsigned intersect_leaf_triangles(
-    Kernel, const MeshAccel& accel, std::uint32_t i, const TriangleLanesRay& lanes_ray,
-    double t_max, TriangleLaneHits& hits, std::uint32_t& next) {
+[[gnu::always_inline]] inline unsigned intersect_leaf_quad(Kernel, const MeshAccel& accel,
+                                                           std::uint32_t i, std::uint32_t end,
+                                                           const TriangleLanesRay& lanes_ray,
+                                                           double t_max, TriangleLaneHits& hits) {
   const TriangleQuad& quad = accel.leaf_quads[i / 4];
 #if defined(__SSE2__)
-  if constexpr (Kernel::value == WideBoxKernel::Avx2) {
-    next = i + 4;
+  if constexpr (Kernel::value == WideBoxKernel::Avx2)
     return intersect_triangle_quad(quad, lanes_ray, t_max, hits);
-  }
 #endif
-  next = i + 2;
-  return intersect_triangle_pair(quad, static_cast<int>(i % 4) / 2, lanes_ray, t_max, hits);
+  const unsigned lanes = intersect_triangle_pair(quad, 0, lanes_ray, t_max, hits);
+  if (end - i <= 2) return lanes;
+  return lanes | intersect_triangle_pair(quad, 1, lanes_ray, t_max, hits);
 }
 
 // The corners of the triangle at `position` of the mesh's primitive order, from its leaf.
@@ -63,11 +63,10 @@ bool intersect_mesh(const MeshAccel& accel, bool interpolate_normals, const Ray&
         t_limit = h.t;
       };
       const std::uint32_t end = first + count;
-      for (std::uint32_t i = first, next; i < end; i = next) {
+      for (std::uint32_t i = first; i < end; i += 4) {
         const double limit = found ? next_up(t_limit) : t_limit;
         TriangleLaneHits hits;
-        const unsigned lanes =
-            intersect_leaf_triangles(kernel, accel, i, lanes_ray, limit, hits, next);
+        const unsigned lanes = intersect_leaf_quad(kernel, accel, i, end, lanes_ray, limit, hits);
         for (unsigned rest = lanes; rest != 0; rest &= rest - 1) {
           const int lane = std::countr_zero(rest);
           // One triangle at a time, a lane would have been tested against the limit after the
@@ -101,10 +100,9 @@ bool occluded_mesh(const MeshAccel& accel, const Ray& ray, double t_max,
         std::uint32_t first, std::uint32_t count, double t_limit, auto kernel)
         __attribute__((always_inline)) {
       const std::uint32_t end = first + count;
-      for (std::uint32_t i = first, next; i < end; i = next) {
+      for (std::uint32_t i = first; i < end; i += 4) {
         TriangleLaneHits hits;
-        const unsigned lanes =
-            intersect_leaf_triangles(kernel, accel, i, lanes_ray, t_limit, hits, next);
+        const unsigned lanes = intersect_leaf_quad(kernel, accel, i, end, lanes_ray, t_limit, hits);
         if (lanes != 0) {
           // Counted as one at a time: up to the first triangle hit.
           counters.triangle_tests +=
@@ -132,10 +130,10 @@ std::vector<LocalHit> mesh_crossings(const MeshAccel& accel, bool interpolate_no
         __attribute__((always_inline)) {
       counters.triangle_tests += count;
       const std::uint32_t end = first + count;
-      for (std::uint32_t i = first, next; i < end; i = next) {
+      for (std::uint32_t i = first; i < end; i += 4) {
         TriangleLaneHits lane_hits;
         const unsigned lanes =
-            intersect_leaf_triangles(kernel, accel, i, lanes_ray, limit, lane_hits, next);
+            intersect_leaf_quad(kernel, accel, i, end, lanes_ray, limit, lane_hits);
         for (unsigned rest = lanes; rest != 0; rest &= rest - 1) {
           const auto lane = static_cast<std::uint32_t>(std::countr_zero(rest));
           hits.emplace_back(lane_hits.lane(static_cast<int>(lane)),

@@ -30,21 +30,30 @@ TriangleQuad make_quad(const Corners* const corners[4]) {
   return quad;
 }
 
+// Lane hits that match no test's: each entry a path reports must be its own.
+TriangleLaneHits unset_hits() {
+  TriangleLaneHits hits;
+  for (double* entries : {hits.t, hits.b0, hits.b1, hits.b2})
+    for (int lane = 0; lane < kTriangleLanesMax; ++lane)
+      entries[lane] = std::numeric_limits<double>::quiet_NaN();
+  return hits;
+}
+
 void expect_same_bits(double a, double b, const char* what) {
   EXPECT_EQ(std::bit_cast<std::uint64_t>(a), std::bit_cast<std::uint64_t>(b)) << what;
 }
 
 // The lanes of `fast` reported hit agree bit for bit with the one-triangle test on `corners`;
-// its lanes, `lane_count` from `first`, are bits 0 up of `fast_lanes`.
+// its lanes, `lane_count` from `first`, are those bits of `fast_lanes` and entries of `fast`.
 void expect_lanes_match(const Corners* const corners[4], int first, int lane_count,
                         unsigned fast_lanes, const TriangleLaneHits& fast,
                         const TriangleRay& triangle_ray, double t_max, const char* path) {
-  for (int lane = 0; lane < lane_count; ++lane) {
-    const Corners& triangle = *corners[first + lane];
+  for (int lane = first; lane < first + lane_count; ++lane) {
+    const Corners& triangle = *corners[lane];
     TriangleHit single;
     const bool hit = intersect_triangle(triangle.p[0], triangle.p[1], triangle.p[2], triangle_ray,
                                         t_max, single);
-    EXPECT_EQ(hit, (fast_lanes >> lane & 1) != 0) << path << " lane " << first + lane;
+    EXPECT_EQ(hit, (fast_lanes >> lane & 1) != 0) << path << " lane " << lane;
     if (!hit || (fast_lanes >> lane & 1) == 0) continue;
     expect_same_bits(fast.t[lane], single.t, "t");
     expect_same_bits(fast.b0[lane], single.b0, "b0");
@@ -62,22 +71,26 @@ unsigned expect_paths_agree(const Corners& a, const Corners& b, const Corners& c
   const TriangleQuad quad = make_quad(corners);
   const TriangleLanesRay lanes_ray = prepare_triangle_lanes_ray(ray);
   const TriangleRay& triangle_ray = lanes_ray.ray;
-  TriangleLaneHits scalar;
+  TriangleLaneHits scalar = unset_hits();
   const unsigned scalar_lanes =
       intersect_triangle_lanes_scalar(quad, 0, 4, triangle_ray, t_max, scalar);
   expect_lanes_match(corners, 0, 4, scalar_lanes, scalar, triangle_ray, t_max, "scalar");
   for (int half = 0; half < 2; ++half) {
-    TriangleLaneHits half_hits;
+    TriangleLaneHits half_hits = unset_hits();
     const unsigned half_lanes =
         intersect_triangle_lanes_scalar(quad, 2 * half, 2, triangle_ray, t_max, half_hits);
     expect_lanes_match(corners, 2 * half, 2, half_lanes, half_hits, triangle_ray, t_max,
                        "scalar half");
-    const unsigned pair_lanes = intersect_triangle_pair(quad, half, lanes_ray, t_max, half_hits);
-    expect_lanes_match(corners, 2 * half, 2, pair_lanes, half_hits, triangle_ray, t_max, "pair");
+    TriangleLaneHits pair_hits = unset_hits();
+    const unsigned pair_lanes = intersect_triangle_pair(quad, half, lanes_ray, t_max, pair_hits);
+    expect_lanes_match(corners, 2 * half, 2, pair_lanes, pair_hits, triangle_ray, t_max, "pair");
+    // A half reports its own lanes only, as the bits of the quad's.
+    EXPECT_EQ(half_lanes & ~(3u << 2 * half), 0u);
+    EXPECT_EQ(pair_lanes & ~(3u << 2 * half), 0u);
   }
 #if defined(__SSE2__)
   if (__builtin_cpu_supports("avx2")) {
-    TriangleLaneHits quad_hits;
+    TriangleLaneHits quad_hits = unset_hits();
     const unsigned quad_lanes = intersect_triangle_quad(quad, lanes_ray, t_max, quad_hits);
     expect_lanes_match(corners, 0, 4, quad_lanes, quad_hits, triangle_ray, t_max, "quad");
   }
