@@ -20,20 +20,21 @@ inline constexpr BvhLeafTests kMeshLeafTests{
     .group = 4, .max_size = 16, .step_cost = 2, .split_above = 4};
 
 struct MeshAccel {
-  // bvh.primitive_order's entries between leaves (see leaf_pairs), which name no triangle.
+  // bvh.primitive_order's entries between leaves (see leaf_quads), which name no triangle.
   static constexpr std::uint32_t kNoTriangle = std::numeric_limits<std::uint32_t>::max();
 
   const Mesh* mesh = nullptr;
   Bvh bvh;
   Bounds3 bounds;
-  // The corners of the triangle at each position i of bvh.primitive_order, in lane i % 2 of
-  // leaf_pairs[i / 2], so that a leaf's triangles lie together in memory and are tested two at a
-  // time, or four (two adjacent pairs) with AVX2 (intersect_triangle_pair.h). Every leaf starts at
-  // an even position: a leaf of odd size is followed by a gap in primitive_order (kNoTriangle),
-  // whose lane's corners are NaN, as are a degenerate triangle's: the triangle test rejects them
-  // (their determinant is not finite). The SAH tree leaves degenerate triangles out, but the flat
+  // The corners of the triangle at each position i of bvh.primitive_order, in lane i % 4 of
+  // leaf_quads[i / 4], so that a leaf's triangles lie together in memory and are tested four at a
+  // time with AVX2, each coordinate one aligned load, or two (a quad's halves) with SSE2
+  // (intersect_triangle_pair.h). Every leaf starts at a multiple of four: a leaf whose size is
+  // not one is followed by gaps in primitive_order (kNoTriangle) up to the next, whose lanes'
+  // corners are NaN, as are a degenerate triangle's: the triangle test rejects them (their
+  // determinant is not finite). The SAH tree leaves degenerate triangles out, but the flat
   // "acceleration off" keeps every one.
-  std::vector<TrianglePair> leaf_pairs;
+  std::vector<TriangleQuad> leaf_quads;
 };
 
 // `threads` as for build_bvh.

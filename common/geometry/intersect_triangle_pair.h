@@ -1,6 +1,6 @@
 // Several triangles of a mesh leaf tested against one ray at once: the watertight test of
-// triangle.h in double lanes, one triangle per lane (the layout: triangle_pair.h). Two at a time
-// with SSE2, which is part of every x86-64 CPU; four at a time, two adjacent pairs, with AVX2,
+// triangle.h in double lanes, one triangle per lane (the layout: triangle_pair.h). Two at a time,
+// a half of a quad, with SSE2, which is part of every x86-64 CPU; a whole quad with AVX2,
 // which only the mesh traversal compiled for AVX2 uses (wide_bvh_traverse.h chooses it at run
 // time); other CPUs run the scalar test once per lane. Each lane computes exactly the IEEE
 // operations of the scalar test in the same order (nothing is fused: the build forbids
@@ -20,7 +20,7 @@
 
 namespace tessera {
 
-// The most triangles one test covers: two pairs.
+// The most triangles one test covers: a quad.
 inline constexpr int kTriangleLanesMax = 4;
 
 // The hits of the lanes tested (meaningful only for the lanes reported hit).
@@ -32,17 +32,17 @@ struct TriangleLaneHits {
   TriangleHit lane(int i) const { return {t[i], b0[i], b1[i], b2[i]}; }
 };
 
-// The scalar test of triangle.h once per lane of `pair_count` adjacent pairs. Returns the lanes
-// hit with t in (0, t_max) as bits (bit 2 p + l: lane l of pairs[p]).
-inline unsigned intersect_triangle_lanes_scalar(const TrianglePair* pairs, int pair_count,
-                                                const TriangleRay& ray, double t_max,
-                                                TriangleLaneHits& hits) {
+// The scalar test of triangle.h once per lane of `quad` from `first_lane`, `lane_count` of them.
+// Returns the lanes hit with t in (0, t_max) as bits of the quad's lanes (bit l: lane l, whose
+// hit is hits' entry l), as every lane test does.
+inline unsigned intersect_triangle_lanes_scalar(const TriangleQuad& quad, int first_lane,
+                                                int lane_count, const TriangleRay& ray,
+                                                double t_max, TriangleLaneHits& hits) {
   unsigned lanes = 0;
-  for (int lane = 0; lane < 2 * pair_count; ++lane) {
-    const TrianglePair& pair = pairs[lane / 2];
+  for (int lane = first_lane; lane < first_lane + lane_count; ++lane) {
     TriangleHit h;
-    if (!intersect_triangle(pair_corner(pair, 0, lane % 2), pair_corner(pair, 1, lane % 2),
-                            pair_corner(pair, 2, lane % 2), ray, t_max, h))
+    if (!intersect_triangle(quad_corner(quad, 0, lane), quad_corner(quad, 1, lane),
+                            quad_corner(quad, 2, lane), ray, t_max, h))
       continue;
     hits.t[lane] = h.t;
     hits.b0[lane] = h.b0;
@@ -77,20 +77,18 @@ inline TriangleLanesRay prepare_triangle_lanes_ray(const Ray& ray) {
 }
 
 #if defined(__SSE2__)
-// The SIMD paths: one algorithm (intersect_triangle_lanes) over the double vectors of SSE2 (one
-// pair) or AVX2 (two pairs), as float_child_boxes.h does for boxes. The operations take and give
-// vectors by reference: an AVX vector passed by value through a function compiled without AVX
-// changes the ABI, and the algorithm is compiled for the baseline, to be inlined whole
+// The SIMD paths: one algorithm (intersect_triangle_lanes) over the double vectors of SSE2 (a
+// quad's half) or AVX2 (the whole quad), as float_child_boxes.h does for boxes. The operations take
+// and give vectors by reference: an AVX vector passed by value through a function compiled without
+// AVX changes the ABI, and the algorithm is compiled for the baseline, to be inlined whole
 // (gnu::flatten) into functions compiled for AVX2. Comparisons give lane masks; the AVX
 // predicates are those of the SSE2 instructions (cmpltpd is _CMP_LT_OS, cmpnltpd _CMP_NLT_US).
 struct Sse2DoubleLanes {
   using V = __m128d;
   static constexpr unsigned kAllLanes = 3;
   [[gnu::always_inline]] static void set1(V& r, double x) { r = _mm_set1_pd(x); }
-  // Coordinate `axis` of corner `c` of each lane's triangle.
-  [[gnu::always_inline]] static void load_corner(V& r, const TrianglePair* pairs, int c, int axis) {
-    r = _mm_load_pd(pairs[0].corner[c][axis]);
-  }
+  // A coordinate of the lanes' corners, from its first lane's (16-byte aligned in a quad).
+  [[gnu::always_inline]] static void load(V& r, const double* lanes) { r = _mm_load_pd(lanes); }
   [[gnu::always_inline]] static void store(double* p, const V& a) { _mm_store_pd(p, a); }
   [[gnu::always_inline]] static void add(V& r, const V& a, const V& b) { r = _mm_add_pd(a, b); }
   [[gnu::always_inline]] static void sub(V& r, const V& a, const V& b) { r = _mm_sub_pd(a, b); }
@@ -117,15 +115,13 @@ struct Sse2DoubleLanes {
   }
 };
 
-// Two adjacent pairs, lanes 0 and 1 from the first; no FMA: the "avx2" target does not enable it.
+// A quad's four lanes; no FMA: the "avx2" target does not enable it.
 struct Avx2DoubleLanes {
   using V = __m256d;
   static constexpr unsigned kAllLanes = 15;
   [[gnu::target("avx2")]] static void set1(V& r, double x) { r = _mm256_set1_pd(x); }
-  [[gnu::target("avx2")]] static void load_corner(V& r, const TrianglePair* pairs, int c,
-                                                  int axis) {
-    r = _mm256_loadu2_m128d(pairs[1].corner[c][axis], pairs[0].corner[c][axis]);
-  }
+  // A coordinate of the quad's corners (32-byte aligned).
+  [[gnu::target("avx2")]] static void load(V& r, const double* lanes) { r = _mm256_load_pd(lanes); }
   [[gnu::target("avx2")]] static void store(double* p, const V& a) { _mm256_store_pd(p, a); }
   [[gnu::target("avx2")]] static void add(V& r, const V& a, const V& b) { r = _mm256_add_pd(a, b); }
   [[gnu::target("avx2")]] static void sub(V& r, const V& a, const V& b) { r = _mm256_sub_pd(a, b); }
@@ -164,10 +160,12 @@ struct Avx2DoubleLanes {
   }
 };
 
-// The scalar test's operations in every lane of `Lanes`. Always inline, as the scalar test: a
-// caller that ignores the hits (shadow rays) lets the compiler drop them.
+// The scalar test's operations in every lane of `Lanes`, on the lanes of `quad` from
+// `first_lane` on. Always inline, as the scalar test: a caller that ignores the hits (shadow
+// rays) lets the compiler drop them.
 template <typename Lanes>
-[[gnu::always_inline]] inline unsigned intersect_triangle_lanes(const TrianglePair* pairs,
+[[gnu::always_inline]] inline unsigned intersect_triangle_lanes(const TriangleQuad& quad,
+                                                                int first_lane,
                                                                 const TriangleLanesRay& lanes_ray,
                                                                 double t_max,
                                                                 TriangleLaneHits& hits) {
@@ -188,9 +186,9 @@ template <typename Lanes>
     V x, y, z;
   };
   const auto transform = [&](Corner& q, int c) {
-    Lanes::load_corner(q.x, pairs, c, ray.kx);
-    Lanes::load_corner(q.y, pairs, c, ray.ky);
-    Lanes::load_corner(q.z, pairs, c, ray.kz);
+    Lanes::load(q.x, &quad.corner[c][ray.kx][first_lane]);
+    Lanes::load(q.y, &quad.corner[c][ray.ky][first_lane]);
+    Lanes::load(q.z, &quad.corner[c][ray.kz][first_lane]);
     Lanes::sub(q.x, q.x, origin_x);
     Lanes::sub(q.y, q.y, origin_y);
     Lanes::sub(q.z, q.z, origin_z);
@@ -326,36 +324,37 @@ template <typename Lanes>
   Lanes::and_not(hit, missed, hit);
   const unsigned lanes = Lanes::mask(hit);
   if (lanes == 0) return 0;
-  Lanes::store(hits.t, t);
+  Lanes::store(hits.t + first_lane, t);
   Lanes::mul(product, e0, inv_det);
-  Lanes::store(hits.b0, product);
+  Lanes::store(hits.b0 + first_lane, product);
   Lanes::mul(product, e1, inv_det);
-  Lanes::store(hits.b1, product);
+  Lanes::store(hits.b1 + first_lane, product);
   Lanes::mul(product, e2, inv_det);
-  Lanes::store(hits.b2, product);
-  return lanes;
+  Lanes::store(hits.b2 + first_lane, product);
+  return lanes << first_lane;
 }
 #endif
 
-// The two triangles of `pair`, at once where SSE2 is available; lanes as bits 0 and 1.
-[[gnu::always_inline]] inline unsigned intersect_triangle_pair(const TrianglePair& pair,
+// The two triangles of `quad`'s half `half` (lanes 2 half and 2 half + 1), at once where SSE2 is
+// available; lanes as bits 2 half and 2 half + 1.
+[[gnu::always_inline]] inline unsigned intersect_triangle_pair(const TriangleQuad& quad, int half,
                                                                const TriangleLanesRay& lanes_ray,
                                                                double t_max,
                                                                TriangleLaneHits& hits) {
 #if defined(__SSE2__)
-  return intersect_triangle_lanes<Sse2DoubleLanes>(&pair, lanes_ray, t_max, hits);
+  return intersect_triangle_lanes<Sse2DoubleLanes>(quad, 2 * half, lanes_ray, t_max, hits);
 #else
-  return intersect_triangle_lanes_scalar(&pair, 1, lanes_ray.ray, t_max, hits);
+  return intersect_triangle_lanes_scalar(quad, 2 * half, 2, lanes_ray.ray, t_max, hits);
 #endif
 }
 
 #if defined(__SSE2__)
-// The four triangles of pairs[0] and pairs[1] at once, lanes as bits 0 to 3; only where the CPU
-// has AVX2 (the mesh traversal's AVX2 kernel, wide_box_kernel.h).
+// The four triangles of `quad` at once, lanes as bits 0 to 3; only where the CPU has AVX2 (the
+// mesh traversal's AVX2 kernel, wide_box_kernel.h).
 [[gnu::target("avx2"), gnu::flatten]] inline unsigned intersect_triangle_quad(
-    const TrianglePair* pairs, const TriangleLanesRay& lanes_ray, double t_max,
+    const TriangleQuad& quad, const TriangleLanesRay& lanes_ray, double t_max,
     TriangleLaneHits& hits) {
-  return intersect_triangle_lanes<Avx2DoubleLanes>(pairs, lanes_ray, t_max, hits);
+  return intersect_triangle_lanes<Avx2DoubleLanes>(quad, 0, lanes_ray, t_max, hits);
 }
 #endif
 

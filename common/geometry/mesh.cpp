@@ -12,24 +12,28 @@
 namespace tessera {
 namespace {
 
-// Tests the triangles of a leaf ending at `end` from its position i (even) on: four (two pairs)
-// in the traversal compiled for AVX2 while more than two remain, else one pair; `next` receives
-// the position after them. Returns the lanes hit as bits, lane l for the triangle at i + l.
+// Tests the quad of a leaf's triangles at its position i (a multiple of four: a leaf starts a
+// quad) against a leaf ending at `end`: at once in the traversal compiled for AVX2 (lanes past
+// the leaf's end are NaN, never hit), else as its halves, the second only where the leaf reaches
+// it. Returns the lanes hit as bits, lane l for the triangle at i + l.
 template <typename Kernel>
-[[gnu::always_inline]] inline unsigned intersect_leaf_triangles(
-    Kernel, const MeshAccel& accel, std::uint32_t i, std::uint32_t end,
-    const TriangleLanesRay& lanes_ray, double t_max, TriangleLaneHits& hits, std::uint32_t& next) {
-  const TrianglePair* pairs = &accel.leaf_pairs[i / 2];
+[[gnu::always_inline]] inline unsigned intersect_leaf_quad(Kernel, const MeshAccel& accel,
+                                                           std::uint32_t i, std::uint32_t end,
+                                                           const TriangleLanesRay& lanes_ray,
+                                                           double t_max, TriangleLaneHits& hits) {
+  const TriangleQuad& quad = accel.leaf_quads[i / 4];
 #if defined(__SSE2__)
-  if constexpr (Kernel::value == WideBoxKernel::Avx2) {
-    if (end - i > 2) {
-      next = i + 4;
-      return intersect_triangle_quad(pairs, lanes_ray, t_max, hits);
-    }
-  }
+  if constexpr (Kernel::value == WideBoxKernel::Avx2)
+    return intersect_triangle_quad(quad, lanes_ray, t_max, hits);
 #endif
-  next = i + 2;
-  return intersect_triangle_pair(*pairs, lanes_ray, t_max, hits);
+  const unsigned lanes = intersect_triangle_pair(quad, 0, lanes_ray, t_max, hits);
+  if (end - i <= 2) return lanes;
+  return lanes | intersect_triangle_pair(quad, 1, lanes_ray, t_max, hits);
+}
+
+// The corners of the triangle at `position` of the mesh's primitive order, from its leaf.
+Vec3 leaf_corner(const MeshAccel& accel, std::uint32_t position, int c) {
+  return quad_corner(accel.leaf_quads[position / 4], c, static_cast<int>(position % 4));
 }
 
 }  // namespace
@@ -59,34 +63,31 @@ bool intersect_mesh(const MeshAccel& accel, bool interpolate_normals, const Ray&
         t_limit = h.t;
       };
       const std::uint32_t end = first + count;
-      for (std::uint32_t i = first, next; i < end; i = next) {
+      for (std::uint32_t i = first; i < end; i += 4) {
         const double limit = found ? next_up(t_limit) : t_limit;
         TriangleLaneHits hits;
-        const unsigned lanes =
-            intersect_leaf_triangles(kernel, accel, i, end, lanes_ray, limit, hits, next);
+        const unsigned lanes = intersect_leaf_quad(kernel, accel, i, end, lanes_ray, limit, hits);
         for (unsigned rest = lanes; rest != 0; rest &= rest - 1) {
           const int lane = std::countr_zero(rest);
           // One triangle at a time, a lane would have been tested against the limit after the
           // earlier lanes' hits, never a larger one: in the rare case that it changed, test it
           // again with it.
           const double limit_now = found ? next_up(t_limit) : t_limit;
-          const TrianglePair& pair = accel.leaf_pairs[(i + static_cast<std::uint32_t>(lane)) / 2];
+          const std::uint32_t position = i + static_cast<std::uint32_t>(lane);
           TriangleHit h = hits.lane(lane);
           if (limit_now == limit ||
-              intersect_triangle(pair_corner(pair, 0, lane % 2), pair_corner(pair, 1, lane % 2),
-                                 pair_corner(pair, 2, lane % 2), lanes_ray.ray, limit_now, h))
-            take(h, i + static_cast<std::uint32_t>(lane));
+              intersect_triangle(leaf_corner(accel, position, 0), leaf_corner(accel, position, 1),
+                                 leaf_corner(accel, position, 2), lanes_ray.ray, limit_now, h))
+            take(h, position);
         }
       }
       return t_limit;
     };
   });
   if (!found) return false;
-  const TrianglePair& pair = accel.leaf_pairs[found_position / 2];
-  const int lane = static_cast<int>(found_position % 2);
-  hit = triangle_local_hit(*accel.mesh, found_triangle, pair_corner(pair, 0, lane),
-                           pair_corner(pair, 1, lane), pair_corner(pair, 2, lane),
-                           interpolate_normals, nearest);
+  hit = triangle_local_hit(*accel.mesh, found_triangle, leaf_corner(accel, found_position, 0),
+                           leaf_corner(accel, found_position, 1),
+                           leaf_corner(accel, found_position, 2), interpolate_normals, nearest);
   return true;
 }
 
@@ -99,10 +100,9 @@ bool occluded_mesh(const MeshAccel& accel, const Ray& ray, double t_max,
         std::uint32_t first, std::uint32_t count, double t_limit, auto kernel)
         __attribute__((always_inline)) {
       const std::uint32_t end = first + count;
-      for (std::uint32_t i = first, next; i < end; i = next) {
+      for (std::uint32_t i = first; i < end; i += 4) {
         TriangleLaneHits hits;
-        const unsigned lanes =
-            intersect_leaf_triangles(kernel, accel, i, end, lanes_ray, t_limit, hits, next);
+        const unsigned lanes = intersect_leaf_quad(kernel, accel, i, end, lanes_ray, t_limit, hits);
         if (lanes != 0) {
           // Counted as one at a time: up to the first triangle hit.
           counters.triangle_tests +=
@@ -130,10 +130,10 @@ std::vector<LocalHit> mesh_crossings(const MeshAccel& accel, bool interpolate_no
         __attribute__((always_inline)) {
       counters.triangle_tests += count;
       const std::uint32_t end = first + count;
-      for (std::uint32_t i = first, next; i < end; i = next) {
+      for (std::uint32_t i = first; i < end; i += 4) {
         TriangleLaneHits lane_hits;
         const unsigned lanes =
-            intersect_leaf_triangles(kernel, accel, i, end, lanes_ray, limit, lane_hits, next);
+            intersect_leaf_quad(kernel, accel, i, end, lanes_ray, limit, lane_hits);
         for (unsigned rest = lanes; rest != 0; rest &= rest - 1) {
           const auto lane = static_cast<std::uint32_t>(std::countr_zero(rest));
           hits.emplace_back(lane_hits.lane(static_cast<int>(lane)),

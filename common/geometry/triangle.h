@@ -113,7 +113,7 @@ inline Vec3 permute_axes(const Vec3& v, int x, int y, int z) {
 LocalHit triangle_local_hit(const Mesh& mesh, std::uint32_t index, bool interpolate_normals,
                             const TriangleHit& hit);
 // The same from the triangle's corners p0 p1 p2 (equal to its mesh positions) as the caller has
-// them at hand: a mesh trace has just loaded them from its leaf (MeshAccel::leaf_pairs), where
+// them at hand: a mesh trace has just loaded them from its leaf (MeshAccel::leaf_quads), where
 // the mesh's index and position arrays would be two more cache misses per hit. The mesh is read
 // only for interpolated normals.
 LocalHit triangle_local_hit(const Mesh& mesh, std::uint32_t index, const Vec3& p0, const Vec3& p1,

@@ -1,26 +1,27 @@
-// Two triangles of a mesh leaf laid out to be tested against a ray at once, or four as two
-// adjacent pairs (intersect_triangle_pair.h): MeshAccel::leaf_pairs.
+// Four triangles of a mesh leaf laid out to be tested against a ray at once, or two at a time as
+// its halves (intersect_triangle_pair.h): MeshAccel::leaf_quads.
 #pragma once
 
 #include "common/math/vec3.h"
 
 namespace tessera {
 
-// Two triangles' corners, structure of arrays: corner[c][axis][lane], so that one load brings a
-// coordinate of both. A lane whose corners are NaN is never hit (its determinant is not finite):
-// it stands for degenerate triangles and pads leaves of odd size.
-struct alignas(16) TrianglePair {
-  double corner[3][3][2];
+// Four triangles' corners, structure of arrays: corner[c][axis][lane], so that one aligned load
+// brings a coordinate of all four (AVX2), or of a half's two (SSE2). A lane whose corners are NaN
+// is never hit (its determinant is not finite): it stands for degenerate triangles and pads
+// leaves whose size is not a multiple of four.
+struct alignas(32) TriangleQuad {
+  double corner[3][3][4];
 };
 
-inline Vec3 pair_corner(const TrianglePair& pair, int c, int lane) {
-  return {pair.corner[c][0][lane], pair.corner[c][1][lane], pair.corner[c][2][lane]};
+inline Vec3 quad_corner(const TriangleQuad& quad, int c, int lane) {
+  return {quad.corner[c][0][lane], quad.corner[c][1][lane], quad.corner[c][2][lane]};
 }
 
-inline void set_pair_corner(TrianglePair& pair, int c, int lane, const Vec3& p) {
-  pair.corner[c][0][lane] = p.x;
-  pair.corner[c][1][lane] = p.y;
-  pair.corner[c][2][lane] = p.z;
+inline void set_quad_corner(TriangleQuad& quad, int c, int lane, const Vec3& p) {
+  quad.corner[c][0][lane] = p.x;
+  quad.corner[c][1][lane] = p.y;
+  quad.corner[c][2][lane] = p.z;
 }
 
 }  // namespace tessera

@@ -210,47 +210,54 @@ TEST(MeshAccel, OccludedMatchesBruteForceAndStopsEarly) {
   EXPECT_LT(any_hit.triangle_tests, closest.triangle_tests);
 }
 
-// Every leaf starts a pair of leaf_pairs; each triangle of the tree sits in its lane once, and
-// every other lane (gaps after odd leaves, the tail) holds NaN corners, which never hit.
-TEST(MeshAccel, LeavesFillWholePairs) {
+// Every leaf the traversal reads (the wide tree's, or a root that is a leaf) starts a quad of
+// leaf_quads, and so does every binary leaf that starts one of them; each triangle of the tree
+// sits in its lane once, and every other lane (gaps before leaves, the tail) holds NaN corners,
+// which never hit.
+TEST(MeshAccel, LeavesFillWholeQuads) {
   std::mt19937_64 rng(79);
   const Mesh mesh = random_triangles(rng, 999, 10, 1.2);
   for (const BvhMode mode : {BvhMode::Sah, BvhMode::None}) {
     const MeshAccel accel = build_mesh_accel(mesh, mode);
     const std::vector<std::uint32_t>& order = accel.bvh.primitive_order;
-    ASSERT_EQ(accel.leaf_pairs.size(), (order.size() + 1) / 2);
+    ASSERT_EQ(accel.leaf_quads.size(), (order.size() + 3) / 4);
     std::vector<bool> in_leaf(order.size() + 1, false);
-    int odd_leaves = 0;
     for (const BvhNode& node : accel.bvh.nodes) {
       if (node.count == 0) continue;
-      EXPECT_EQ(node.first_or_second_child % 2, 0u);
-      odd_leaves += node.count % 2;
       for (std::uint32_t i = node.first_or_second_child;
            i < node.first_or_second_child + node.count; ++i)
         in_leaf.at(i) = true;
     }
+    if (accel.bvh.wide.empty()) {
+      EXPECT_EQ(accel.bvh.nodes.at(0).first_or_second_child % 4, 0u);
+    }
+    int partial_leaves = 0;
     for (const BvhWideNode& node : accel.bvh.wide)
       for (int c = 0; c < kWideChildren; ++c)
         if (node.count[c] > 0) {
-          EXPECT_EQ(node.child[c] % 2, 0u);
+          EXPECT_EQ(node.child[c] % 4, 0u);
+          partial_leaves += node.count[c] % 4 != 0;
+          // Its range holds triangles only: the binary leaves it takes lie together.
+          for (std::uint32_t i = node.child[c]; i < node.child[c] + node.count[c]; ++i)
+            EXPECT_TRUE(in_leaf.at(i));
         }
     if (mode == BvhMode::Sah) {
-      EXPECT_GT(odd_leaves, 10);  // so that there are gaps
+      EXPECT_GT(partial_leaves, 10);  // so that there are gaps
     }
     std::vector<int> seen(mesh.triangles.size(), 0);
-    for (std::size_t i = 0; i < 2 * accel.leaf_pairs.size(); ++i) {
-      const TrianglePair& pair = accel.leaf_pairs[i / 2];
-      const int lane = static_cast<int>(i % 2);
+    for (std::size_t i = 0; i < 4 * accel.leaf_quads.size(); ++i) {
+      const TriangleQuad& quad = accel.leaf_quads[i / 4];
+      const int lane = static_cast<int>(i % 4);
       if (i < order.size() && in_leaf[i]) {
         const MeshTriangle& tri = mesh.triangles.at(order[i]);
         ++seen[order[i]];
         for (int c = 0; c < 3; ++c)
-          EXPECT_EQ(pair_corner(pair, c, lane), mesh.positions[tri.v[static_cast<std::size_t>(c)]]);
+          EXPECT_EQ(quad_corner(quad, c, lane), mesh.positions[tri.v[static_cast<std::size_t>(c)]]);
       } else {
         if (i < order.size()) {
           EXPECT_EQ(order[i], MeshAccel::kNoTriangle);
         }
-        for (int c = 0; c < 3; ++c) EXPECT_TRUE(std::isnan(pair_corner(pair, c, lane).x));
+        for (int c = 0; c < 3; ++c) EXPECT_TRUE(std::isnan(quad_corner(quad, c, lane).x));
       }
     }
     for (const int n : seen) EXPECT_EQ(n, 1);

@@ -141,8 +141,8 @@ TEST(Mesh, CountsTestsAndFindsTheNearestTriangle) {
   }
 }
 
-// intersect_mesh builds its hit from the corners in the leaf it tested (MeshAccel::leaf_pairs):
-// bit for bit the hit that the mesh's own positions give, in either lane of a pair, with the
+// intersect_mesh builds its hit from the corners in the leaf it tested (MeshAccel::leaf_quads):
+// bit for bit the hit that the mesh's own positions give, in every lane of a quad, with the
 // BVH and without, with normals interpolated and not.
 TEST(Mesh, HitFromTheLeafCornersEqualsTheHitFromTheMesh) {
   Mesh mesh = subdivided_cube(5);
@@ -153,7 +153,7 @@ TEST(Mesh, HitFromTheLeafCornersEqualsTheHitFromTheMesh) {
   for (BvhMode mode : {BvhMode::Sah, BvhMode::None}) {
     const MeshAccel accel = build_mesh_accel(mesh, mode);
     IntersectionCounters counters;
-    std::vector<bool> lane_seen(2);
+    std::vector<bool> lane_seen(4);
     for (int i = 0; i < 2000; ++i) {
       const Ray ray{random_unit(rng) * 0.5, random_unit(rng)};
       for (const bool interpolate : {false, true}) {
@@ -174,9 +174,9 @@ TEST(Mesh, HitFromTheLeafCornersEqualsTheHitFromTheMesh) {
       intersect_mesh(accel, false, ray, kInfinity, hit, counters);
       const auto& order = accel.bvh.primitive_order;
       const auto position = std::find(order.begin(), order.end(), hit.part) - order.begin();
-      lane_seen[static_cast<std::size_t>(position % 2)] = true;
+      lane_seen[static_cast<std::size_t>(position % 4)] = true;
     }
-    EXPECT_TRUE(lane_seen[0] && lane_seen[1]);
+    EXPECT_TRUE(lane_seen[0] && lane_seen[1] && lane_seen[2] && lane_seen[3]);
   }
 }
 

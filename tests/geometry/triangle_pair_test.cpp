@@ -23,13 +23,20 @@ struct Corners {
   Vec3 p[3];
 };
 
-TrianglePair make_pair(const Corners& a, const Corners& b) {
-  TrianglePair pair;
-  for (int c = 0; c < 3; ++c) {
-    set_pair_corner(pair, c, 0, a.p[c]);
-    set_pair_corner(pair, c, 1, b.p[c]);
-  }
-  return pair;
+TriangleQuad make_quad(const Corners* const corners[4]) {
+  TriangleQuad quad;
+  for (int lane = 0; lane < 4; ++lane)
+    for (int c = 0; c < 3; ++c) set_quad_corner(quad, c, lane, corners[lane]->p[c]);
+  return quad;
+}
+
+// Lane hits that match no test's: each entry a path reports must be its own.
+TriangleLaneHits unset_hits() {
+  TriangleLaneHits hits;
+  for (double* entries : {hits.t, hits.b0, hits.b1, hits.b2})
+    for (int lane = 0; lane < kTriangleLanesMax; ++lane)
+      entries[lane] = std::numeric_limits<double>::quiet_NaN();
+  return hits;
 }
 
 void expect_same_bits(double a, double b, const char* what) {
@@ -37,16 +44,16 @@ void expect_same_bits(double a, double b, const char* what) {
 }
 
 // The lanes of `fast` reported hit agree bit for bit with the one-triangle test on `corners`;
-// its lanes, `lane_count` from `first`, are bits 0 up of `fast_lanes`.
+// its lanes, `lane_count` from `first`, are those bits of `fast_lanes` and entries of `fast`.
 void expect_lanes_match(const Corners* const corners[4], int first, int lane_count,
                         unsigned fast_lanes, const TriangleLaneHits& fast,
                         const TriangleRay& triangle_ray, double t_max, const char* path) {
-  for (int lane = 0; lane < lane_count; ++lane) {
-    const Corners& triangle = *corners[first + lane];
+  for (int lane = first; lane < first + lane_count; ++lane) {
+    const Corners& triangle = *corners[lane];
     TriangleHit single;
     const bool hit = intersect_triangle(triangle.p[0], triangle.p[1], triangle.p[2], triangle_ray,
                                         t_max, single);
-    EXPECT_EQ(hit, (fast_lanes >> lane & 1) != 0) << path << " lane " << first + lane;
+    EXPECT_EQ(hit, (fast_lanes >> lane & 1) != 0) << path << " lane " << lane;
     if (!hit || (fast_lanes >> lane & 1) == 0) continue;
     expect_same_bits(fast.t[lane], single.t, "t");
     expect_same_bits(fast.b0[lane], single.b0, "b0");
@@ -55,35 +62,43 @@ void expect_lanes_match(const Corners* const corners[4], int first, int lane_cou
   }
 }
 
-// Every path on the four triangles a, b, c, d (pairs a b and c d) and one ray: each pair alone,
-// both pairs at once with AVX2 where the CPU has it, and the scalar path, each checked lane by
+// Every path on the four triangles a, b, c, d (a quad, halves a b and c d) and one ray: each half
+// alone, the quad at once with AVX2 where the CPU has it, and the scalar path, each checked lane by
 // lane against the one-triangle test. Returns the lanes hit (a: bit 0 ... d: bit 3).
 unsigned expect_paths_agree(const Corners& a, const Corners& b, const Corners& c, const Corners& d,
                             const Ray& ray, double t_max) {
-  const TrianglePair pairs[2] = {make_pair(a, b), make_pair(c, d)};
+  const Corners* const corners[4] = {&a, &b, &c, &d};
+  const TriangleQuad quad = make_quad(corners);
   const TriangleLanesRay lanes_ray = prepare_triangle_lanes_ray(ray);
   const TriangleRay& triangle_ray = lanes_ray.ray;
-  const Corners* const corners[4] = {&a, &b, &c, &d};
-  TriangleLaneHits scalar;
+  TriangleLaneHits scalar = unset_hits();
   const unsigned scalar_lanes =
-      intersect_triangle_lanes_scalar(pairs, 2, triangle_ray, t_max, scalar);
+      intersect_triangle_lanes_scalar(quad, 0, 4, triangle_ray, t_max, scalar);
   expect_lanes_match(corners, 0, 4, scalar_lanes, scalar, triangle_ray, t_max, "scalar");
-  for (int p = 0; p < 2; ++p) {
-    TriangleLaneHits pair_hits;
-    const unsigned pair_lanes = intersect_triangle_pair(pairs[p], lanes_ray, t_max, pair_hits);
-    expect_lanes_match(corners, 2 * p, 2, pair_lanes, pair_hits, triangle_ray, t_max, "pair");
+  for (int half = 0; half < 2; ++half) {
+    TriangleLaneHits half_hits = unset_hits();
+    const unsigned half_lanes =
+        intersect_triangle_lanes_scalar(quad, 2 * half, 2, triangle_ray, t_max, half_hits);
+    expect_lanes_match(corners, 2 * half, 2, half_lanes, half_hits, triangle_ray, t_max,
+                       "scalar half");
+    TriangleLaneHits pair_hits = unset_hits();
+    const unsigned pair_lanes = intersect_triangle_pair(quad, half, lanes_ray, t_max, pair_hits);
+    expect_lanes_match(corners, 2 * half, 2, pair_lanes, pair_hits, triangle_ray, t_max, "pair");
+    // A half reports its own lanes only, as the bits of the quad's.
+    EXPECT_EQ(half_lanes & ~(3u << 2 * half), 0u);
+    EXPECT_EQ(pair_lanes & ~(3u << 2 * half), 0u);
   }
 #if defined(__SSE2__)
   if (__builtin_cpu_supports("avx2")) {
-    TriangleLaneHits quad_hits;
-    const unsigned quad_lanes = intersect_triangle_quad(pairs, lanes_ray, t_max, quad_hits);
+    TriangleLaneHits quad_hits = unset_hits();
+    const unsigned quad_lanes = intersect_triangle_quad(quad, lanes_ray, t_max, quad_hits);
     expect_lanes_match(corners, 0, 4, quad_lanes, quad_hits, triangle_ray, t_max, "quad");
   }
 #endif
   return scalar_lanes;
 }
 
-// Triangles a and b, both pairs (a b, and b a), for the cases written for pairs.
+// Triangles a and b in both halves (a b, and b a), for the cases written for pairs.
 unsigned expect_paths_agree(const Corners& a, const Corners& b, const Ray& ray, double t_max) {
   const unsigned lanes = expect_paths_agree(a, b, b, a, ray, t_max);
   EXPECT_EQ(lanes >> 2, (lanes & 1) << 1 | (lanes >> 1 & 1));
@@ -191,7 +206,7 @@ TEST(TrianglePair, NaNLanesAndSpecialRaysAgree) {
   expect_paths_agree(huge, triangle, down, kInfinity);
   EXPECT_EQ(expect_paths_agree(flat, triangle, down, kInfinity), 2u);
   EXPECT_EQ(expect_paths_agree(triangle, triangle, down, 1.0), 0u);  // t = 1 is not below 1
-  // Padding in either pair of a four-wide test, as in leaves of three.
+  // Padding in either half of a quad, as in leaves of three.
   EXPECT_EQ(expect_paths_agree(triangle, flat, triangle, padding, down, kInfinity), 5u);
   EXPECT_EQ(expect_paths_agree(padding, padding, padding, triangle, down, kInfinity), 8u);
   EXPECT_EQ(expect_paths_agree(padding, padding, padding, padding, down, kInfinity), 0u);
