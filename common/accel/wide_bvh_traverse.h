@@ -80,7 +80,7 @@ inline void traverse_wide_bvh_below_root(const Bvh& bvh, const Ray& ray, double 
                                          TestBoxes test_boxes) {
   FloatBoxRay box_ray;
   set_box_ray(box_ray, ray);
-  float far_limit = float_far_limit(t_max);
+  FloatBoxLimit far_limit(float_far_limit(t_max));
   // A step pushes at most 7 a level; the AVX2 one stores past the top (wide_bvh_pending.h).
   WideBvhPending stack[(kWideChildren - 1) * kBvhMaxDepth + kWideBvhStackSlack];
   int size = 0;
@@ -143,16 +143,16 @@ inline void traverse_wide_bvh_below_root(const Bvh& bvh, const Ray& ray, double 
       if (current.count > 0) goto leaf;
       continue;
     }
-  leaf: {
+  leaf : {
     const double limit = visit_leaf(current.index, current.count, t_max, kernel);
     if (limit < 0) break;
-    if (limit != t_max) t_max = limit, far_limit = float_far_limit(t_max);
+    if (limit != t_max) t_max = limit, far_limit = FloatBoxLimit(float_far_limit(t_max));
   }
   pop:
     if (size == 0) break;
     current = stack[--size];
     // Without the order, entries are no reason to skip: t_max does not shrink.
-    if (kOrder == WideBvhOrder::NearestFirst && !(current.entry <= far_limit)) goto pop;
+    if (kOrder == WideBvhOrder::NearestFirst && !(current.entry <= far_limit.far)) goto pop;
     if (current.count > 0) goto leaf;
   }
   nodes_visited += steps * kWideChildren;
