@@ -49,8 +49,8 @@ template <int k>
 // entered or not (those not entered, and the nearest, above the new top), so that nothing
 // branches on the hits or their distances.
 [[gnu::target("avx2"), gnu::flatten]] inline WideBvhPending push_ranked_hits_avx2(
-    const BvhWideNode& node, const float entry[kWideChildren], unsigned hits,
-    WideBvhPending*& top) {
+    const BvhWideNode& node, const float entry[kWideChildren], unsigned hits, WideBvhPending* stack,
+    int& size) {
   const __m256i lane_bit = _mm256_setr_epi32(1, 2, 4, 8, 16, 32, 64, 128);
   const __m256i hit = _mm256_cmpeq_epi32(
       _mm256_and_si256(_mm256_set1_epi32(static_cast<int>(hits)), lane_bit), lane_bit);
@@ -66,10 +66,10 @@ template <int k>
   count_nearer_avx2<5>(rank, key);
   count_nearer_avx2<6>(rank, key);
   count_nearer_avx2<7>(rank, key);
-  // Rank r of the n entered goes to slot n - 1 - r above the top (the nearest, r = 0, just above
-  // the new top, where it is read back), the others to slot n (hit is -1 where entered).
+  // Rank r of the n entered goes to slot size + n - 1 - r (the nearest, r = 0, just above the
+  // new top, where it is read back), the others to size + n (hit is -1 where entered).
   const int n = std::popcount(hits);
-  const __m256i slot = _mm256_add_epi32(_mm256_sub_epi32(_mm256_set1_epi32(n), rank), hit);
+  const __m256i slot = _mm256_add_epi32(_mm256_sub_epi32(_mm256_set1_epi32(size + n), rank), hit);
   alignas(32) std::int32_t offset[kWideChildren];
   _mm256_store_si256(reinterpret_cast<__m256i*>(offset),
                      _mm256_slli_epi32(slot, 4));  // sizeof(WideBvhPending)
@@ -85,7 +85,7 @@ template <int k>
                              _mm256_unpackhi_epi64(child_count_lo, entry_lo),
                              _mm256_unpacklo_epi64(child_count_hi, entry_hi),
                              _mm256_unpackhi_epi64(child_count_hi, entry_hi)};
-  auto* const base = reinterpret_cast<char*>(top);
+  auto* const base = reinterpret_cast<char*>(stack);
 #pragma GCC unroll 4
   for (int c = 0; c < 4; ++c) {
     _mm_store_si128(reinterpret_cast<__m128i*>(base + offset[c]),
@@ -93,25 +93,25 @@ template <int k>
     _mm_store_si128(reinterpret_cast<__m128i*>(base + offset[c + 4]),
                     _mm256_extracti128_si256(record[c], 1));
   }
-  top += n - 1;
-  return *top;
+  size += n - 1;
+  return stack[size];
 }
 
 // The children of `node` in `hits` (at least two; one needs no order), entry distances in
 // `entry` (not NaN, not -0: the box test's max with +0): returns the nearest (the lowest slot on
-// a tie) and pushes the others at `top` (one past the stack's top, moved up), the nearer ones on
-// top: the insertion sort's order exactly. Two children, most often, take one comparison and
-// selections by masks; more take push_ranked_hits_avx2. The stack needs kWideBvhStackSlack slots
-// past the traversal's deepest.
+// a tie) and pushes the others onto `stack` above `size`, the nearer ones on top: the insertion
+// sort's order exactly. Two children, most often, take one comparison and selections by masks;
+// more take push_ranked_hits_avx2. `stack` needs kWideBvhStackSlack slots past the traversal's
+// deepest.
 [[gnu::target("avx2"), gnu::flatten]] inline WideBvhPending push_hits_nearest_first_avx2(
-    const BvhWideNode& node, const float entry[kWideChildren], unsigned hits,
-    WideBvhPending*& top) {
+    const BvhWideNode& node, const float entry[kWideChildren], unsigned hits, WideBvhPending* stack,
+    int& size) {
   const unsigned rest = hits & (hits - 1);
-  if ((rest & (rest - 1)) != 0) return push_ranked_hits_avx2(node, entry, hits, top);
+  if ((rest & (rest - 1)) != 0) return push_ranked_hits_avx2(node, entry, hits, stack, size);
   const int a = std::countr_zero(hits), b = std::countr_zero(rest);
   const int b_nearer = -static_cast<int>(entry[b] < entry[a]);  // a on a tie
   const int near = a ^ ((a ^ b) & b_nearer), far = a ^ b ^ near;
-  *top++ = {node.child[far], node.count[far], entry[far]};
+  stack[size++] = {node.child[far], node.count[far], entry[far]};
   return {node.child[near], node.count[near], entry[near]};
 }
 #endif

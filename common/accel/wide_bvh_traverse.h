@@ -83,8 +83,7 @@ inline void traverse_wide_bvh_below_root(const Bvh& bvh, const Ray& ray, double 
   FloatBoxLimit far_limit(float_far_limit(t_max));
   // A step pushes at most 7 a level; the AVX2 one stores past the top (wide_bvh_pending.h).
   WideBvhPending stack[(kWideChildren - 1) * kBvhMaxDepth + kWideBvhStackSlack];
-  // One past the top: a pointer rather than a count, which every push and pop scaled by 16.
-  WideBvhPending* top = stack;
+  int size = 0;
   WideBvhPending current{0, 0, 0};
   const BvhWideNode* wide = bvh.wide.data();
   // Node steps, counted here and added to `nodes_visited` once: through the reference, every
@@ -113,7 +112,7 @@ inline void traverse_wide_bvh_below_root(const Bvh& bvh, const Ray& ray, double 
       }
 #if defined(__SSE2__)
       if constexpr (kOrder == WideBvhOrder::NearestFirst && Kernel::value == WideBoxKernel::Avx2) {
-        current = push_hits_nearest_first_avx2(node, entry, hits, top);
+        current = push_hits_nearest_first_avx2(node, entry, hits, stack, size);
         if (current.count > 0) goto leaf;
         continue;
       }
@@ -123,7 +122,7 @@ inline void traverse_wide_bvh_below_root(const Bvh& bvh, const Ray& ray, double 
         const int c0 = std::countr_zero(rest);
         for (rest &= rest - 1; rest != 0; rest &= rest - 1) {
           const int c = std::countr_zero(rest);
-          *top++ = {node.child[c], node.count[c], entry[c]};
+          stack[size++] = {node.child[c], node.count[c], entry[c]};
         }
         current = {node.child[c0], node.count[c0], entry[c0]};
         if (current.count > 0) goto leaf;
@@ -139,7 +138,7 @@ inline void traverse_wide_bvh_below_root(const Bvh& bvh, const Ray& ray, double 
         order[i] = c;
       }
       for (int i = n - 1; i > 0; --i)
-        *top++ = {node.child[order[i]], node.count[order[i]], entry[order[i]]};
+        stack[size++] = {node.child[order[i]], node.count[order[i]], entry[order[i]]};
       current = {node.child[order[0]], node.count[order[0]], entry[order[0]]};
       if (current.count > 0) goto leaf;
       continue;
@@ -150,8 +149,8 @@ inline void traverse_wide_bvh_below_root(const Bvh& bvh, const Ray& ray, double 
     if (limit != t_max) t_max = limit, far_limit = FloatBoxLimit(float_far_limit(t_max));
   }
   pop:
-    if (top == stack) break;
-    current = *--top;
+    if (size == 0) break;
+    current = stack[--size];
     // Without the order, entries are no reason to skip: t_max does not shrink.
     if (kOrder == WideBvhOrder::NearestFirst && !(current.entry <= far_limit.far)) goto pop;
     if (current.count > 0) goto leaf;

@@ -52,9 +52,9 @@ TEST(WideBvhPending, TheAvx2StepOrdersChildrenAsTheInsertionSort) {
     const int below = static_cast<int>(rng() % 20);
     std::vector<WideBvhPending> stack(static_cast<std::size_t>(below + kWideBvhStackSlack));
     for (int s = 0; s < below; ++s) stack[static_cast<std::size_t>(s)] = {7u, 3u, 1.5f};
-    WideBvhPending* top = stack.data() + below;
-    const WideBvhPending nearest = push_hits_nearest_first_avx2(node, entry, hits, top);
-    const int size = static_cast<int>(top - stack.data());
+    int size = below;
+    const WideBvhPending nearest =
+        push_hits_nearest_first_avx2(node, entry, hits, stack.data(), size);
 
     ASSERT_EQ(size, below + static_cast<int>(order.size()) - 1) << "case " << i;
     const auto expect = [&](const WideBvhPending& got, int c) {
