@@ -86,16 +86,13 @@ inline void traverse_wide_bvh_below_root(const Bvh& bvh, const Ray& ray, double 
   int size = 0;
   WideBvhPending current{0, 0, 0};
   const BvhWideNode* wide = bvh.wide.data();
-  // Node steps, counted here and added to `nodes_visited` once: through the reference, every
-  // step added to memory that the stack's stores might alias.
-  std::uint64_t steps = 0;
   // Each way to the next child branches to the leaf test (`leaf:`) or the next node step (the
   // loop's head) itself: a flag tested at the loop's head cost a setcc and a test after each.
   for (;;) {
     {
       const BvhWideNode& node = wide[current.index];
       alignas(32) float entry[kWideChildren];
-      ++steps;
+      nodes_visited += kWideChildren;
       const unsigned leaf_bits = leaf_children(node, kernel);
       const unsigned hits = test_boxes(node.boxes, box_ray, far_limit, entry);
       if (hits == 0) goto pop;
@@ -155,7 +152,6 @@ inline void traverse_wide_bvh_below_root(const Bvh& bvh, const Ray& ray, double 
     if (kOrder == WideBvhOrder::NearestFirst && !(current.entry <= far_limit.far)) goto pop;
     if (current.count > 0) goto leaf;
   }
-  nodes_visited += steps * kWideChildren;
 }
 
 template <WideBvhOrder kOrder, typename VisitLeaf>
