@@ -65,20 +65,27 @@ std::vector<std::uint64_t> trace_all(const MeshAccel& accel, const std::vector<R
   return out;
 }
 
+// `count` random triangles of about unit size, their centres in the cube of side 10 at `corner`.
+Mesh random_triangles(std::mt19937_64& rng, int count, const Vec3& corner) {
+  std::uniform_real_distribution<double> u(0, 1);
+  Mesh mesh;
+  for (int i = 0; i < count; ++i) {
+    const Vec3 c = corner + Vec3{u(rng), u(rng), u(rng)} * 10;
+    MeshTriangle t;
+    for (int k = 0; k < 3; ++k) {
+      t.v[static_cast<std::size_t>(k)] = static_cast<std::uint32_t>(mesh.positions.size());
+      mesh.positions.push_back(c + Vec3{u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5});
+    }
+    mesh.triangles.push_back(t);
+  }
+  return mesh;
+}
+
 TEST(WideBoxKernels, EveryKernelTracesMeshesAlike) {
   std::mt19937_64 rng(18);
   std::uniform_real_distribution<double> u(0, 1);
   for (const double offset : {0.0, 1e5}) {
-    Mesh mesh;
-    for (int i = 0; i < 3000; ++i) {
-      const Vec3 c = Vec3{offset, offset, -offset} + Vec3{u(rng), u(rng), u(rng)} * 10;
-      MeshTriangle t;
-      for (int k = 0; k < 3; ++k) {
-        t.v[static_cast<std::size_t>(k)] = static_cast<std::uint32_t>(mesh.positions.size());
-        mesh.positions.push_back(c + Vec3{u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5});
-      }
-      mesh.triangles.push_back(t);
-    }
+    const Mesh mesh = random_triangles(rng, 3000, {offset, offset, -offset});
     const MeshAccel accel = build_mesh_accel(mesh, BvhMode::Sah);
     std::vector<Ray> rays;
     for (int r = 0; r < 3000; ++r) {
@@ -209,17 +216,7 @@ std::uint64_t boxes_an_any_order_walk_tests(const Bvh& bvh, const Ray& ray, doub
 TEST(WideBoxKernels, EveryKernelCountsEightBoxesANodeStep) {
   std::mt19937_64 rng(31);
   std::uniform_real_distribution<double> u(0, 1);
-  Mesh mesh;
-  for (int i = 0; i < 2000; ++i) {
-    const Vec3 c = Vec3{u(rng), u(rng), u(rng)} * 10;
-    MeshTriangle t;
-    for (int k = 0; k < 3; ++k) {
-      t.v[static_cast<std::size_t>(k)] = static_cast<std::uint32_t>(mesh.positions.size());
-      mesh.positions.push_back(c + Vec3{u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5});
-    }
-    mesh.triangles.push_back(t);
-  }
-  const MeshAccel accel = build_mesh_accel(mesh, BvhMode::Sah);
+  const MeshAccel accel = build_mesh_accel(random_triangles(rng, 2000, {0, 0, 0}), BvhMode::Sah);
   ASSERT_GT(accel.bvh.wide.size(), 10u);
   std::uint64_t steps = 0;
   for (const WideBoxKernel kernel : selectable_kernels()) {
