@@ -86,8 +86,9 @@ inline void traverse_wide_bvh_below_root(const Bvh& bvh, const Ray& ray, double 
   int size = 0;
   WideBvhPending current{0, 0, 0};
   const BvhWideNode* wide = bvh.wide.data();
-  // Each way to the next child branches to the leaf test (`leaf:`) or the next node step (the
-  // loop's head) itself: a flag tested at the loop's head cost a setcc and a test after each.
+  // Each way to the next child branches to the leaf visit (`leaf:`) or the next node step (the
+  // loop's head) itself: a flag tested at the loop's head cost a setcc and a test after each
+  // (docs/PERFORMANCE.md "The wide traversal's own instructions").
   for (;;) {
     {
       const BvhWideNode& node = wide[current.index];
