@@ -109,6 +109,18 @@ inline float float_far_limit(double t_max) {
 // Children a wide node holds (Embree's eight-wide nodes: one AVX register of floats).
 inline constexpr int kWideChildren = 8;
 
+// The limits a box test compares a child's entry distance with: `far` is float_far_limit(t_max)
+// and `entry_max` far + kFloatTinyMargin in every lane, the SIMD kernels' form. Made when t_max
+// changes, not at every node step (an addition and a broadcast a step, docs/PERFORMANCE.md "The
+// wide traversal's own instructions").
+struct FloatBoxLimit {
+  alignas(32) float entry_max[kWideChildren];
+  float far;
+  explicit FloatBoxLimit(float far_limit) : far(far_limit) {
+    for (float& e : entry_max) e = far_limit + kFloatTinyMargin;
+  }
+};
+
 struct alignas(32) FloatChildBoxes {
   float bound[3][2][kWideChildren];  // [axis][0 lo, 1 hi][child]
 };
@@ -231,14 +243,15 @@ inline FloatBoxRay::FloatBoxRay(const Ray& ray) { set_float_box_ray_per_axis(*th
 // Bit c of the result is set when the ray [0, t_max] may meet child c's box (every box the
 // double test accepts, and some more); entry[c] receives its float entry distance, which is at
 // most float_far_limit of any t_max for which the double test accepts the box (so a later,
-// smaller t_max may skip it). `far_limit` is float_far_limit(t_max). One child at a time: the
-// path of CPUs without SSE, and the reference the SIMD kernels are tested against.
+// smaller t_max may skip it). `limit` is FloatBoxLimit(float_far_limit(t_max)). One child at a
+// time: the path of CPUs without SSE, and the reference the SIMD kernels are tested against.
 inline unsigned intersect_float_child_boxes_scalar(const FloatChildBoxes& boxes,
-                                                   const FloatBoxRay& ray, float far_limit,
+                                                   const FloatBoxRay& ray,
+                                                   const FloatBoxLimit& limit,
                                                    float entry[kWideChildren]) {
   unsigned hits = 0;
   for (int c = 0; c < kWideChildren; ++c) {
-    float t0 = 0, t1 = far_limit;
+    float t0 = 0, t1 = limit.far;
     for (int a = 0; a < 3; ++a) {
       const int near = ray.near_side[a];
       const float t_near = (boxes.bound[a][near][c] - ray.origin_near[a][c]) * ray.inv_dir[a][c];
@@ -336,8 +349,9 @@ template <typename Lanes>
 // a step shorter, docs/PERFORMANCE.md "The incoherent ray's stalls").
 template <typename Lanes>
 inline unsigned intersect_float_child_boxes_lanes(const FloatChildBoxes& boxes,
-                                                  const FloatBoxRay& ray, float far_limit,
-                                                  int first, float* entry) {
+                                                  const FloatBoxRay& ray,
+                                                  const FloatBoxLimit& far_limit, int first,
+                                                  float* entry) {
   using V = typename Lanes::V;
   V t0, far_scale, margin, bound, origin, inv, t_near, t_far[3];
   Lanes::set1(t0, 0.0f);
@@ -361,7 +375,7 @@ inline unsigned intersect_float_child_boxes_lanes(const FloatChildBoxes& boxes,
   }
   Lanes::store(entry, t0);
   V limit, lo_x, hi_x;
-  Lanes::set1(limit, far_limit + kFloatTinyMargin);
+  Lanes::load(limit, far_limit.entry_max);
   Lanes::load(lo_x, &boxes.bound[0][0][first]);
   Lanes::load(hi_x, &boxes.bound[0][1][first]);
   return Lanes::le_mask(t0, limit) & Lanes::not_lt_mask(t_far[0], t0) &
@@ -372,7 +386,7 @@ inline unsigned intersect_float_child_boxes_lanes(const FloatChildBoxes& boxes,
 // The kernel of CPUs without AVX2: the children in two halves of four.
 [[gnu::flatten]] inline unsigned intersect_float_child_boxes_sse2(const FloatChildBoxes& boxes,
                                                                   const FloatBoxRay& ray,
-                                                                  float far_limit,
+                                                                  const FloatBoxLimit& far_limit,
                                                                   float entry[kWideChildren]) {
   return intersect_float_child_boxes_lanes<Sse2Lanes>(boxes, ray, far_limit, 0, entry) |
          intersect_float_child_boxes_lanes<Sse2Lanes>(boxes, ray, far_limit, 4, entry + 4) << 4;
@@ -389,7 +403,7 @@ inline unsigned intersect_float_child_boxes_lanes(const FloatChildBoxes& boxes,
 
 // Eight children in one go; only where the CPU has AVX2 (wide_box_kernel.h).
 [[gnu::target("avx2"), gnu::flatten]] inline unsigned intersect_float_child_boxes_avx2(
-    const FloatChildBoxes& boxes, const FloatBoxRay& ray, float far_limit,
+    const FloatChildBoxes& boxes, const FloatBoxRay& ray, const FloatBoxLimit& far_limit,
     float entry[kWideChildren]) {
   return intersect_float_child_boxes_lanes<Avx2Lanes>(boxes, ray, far_limit, 0, entry);
 }

@@ -80,78 +80,78 @@ inline void traverse_wide_bvh_below_root(const Bvh& bvh, const Ray& ray, double 
                                          TestBoxes test_boxes) {
   FloatBoxRay box_ray;
   set_box_ray(box_ray, ray);
-  float far_limit = float_far_limit(t_max);
+  FloatBoxLimit far_limit(float_far_limit(t_max));
   // A step pushes at most 7 a level; the AVX2 one stores past the top (wide_bvh_pending.h).
   WideBvhPending stack[(kWideChildren - 1) * kBvhMaxDepth + kWideBvhStackSlack];
   int size = 0;
   WideBvhPending current{0, 0, 0};
   const BvhWideNode* wide = bvh.wide.data();
-  // Whether `current` is a leaf. After a step that enters one child, the most common step, it
-  // comes from the node's leaf bits (leaf_children), ready as soon as the box test's hits are,
-  // instead of from the child's count, which can only be loaded once the hits have named the
-  // child: the branch on it, mispredicted about once in four for incoherent rays, resolves a
-  // load sooner (docs/PERFORMANCE.md "The leaf-or-node branch from the node's leaf bits").
-  bool leaf = false;
+  // Each way to the next child branches to the leaf visit (`leaf:`) or the next node step (the
+  // loop's head) itself: a flag tested at the loop's head cost a setcc and a test after each
+  // (docs/PERFORMANCE.md "The wide traversal's own instructions").
   for (;;) {
-    if (leaf) {
-      const double limit = visit_leaf(current.index, current.count, t_max, kernel);
-      if (limit < 0) return;
-      if (limit != t_max) t_max = limit, far_limit = float_far_limit(t_max);
-    } else {
+    {
       const BvhWideNode& node = wide[current.index];
       alignas(32) float entry[kWideChildren];
       nodes_visited += kWideChildren;
       const unsigned leaf_bits = leaf_children(node, kernel);
       const unsigned hits = test_boxes(node.boxes, box_ray, far_limit, entry);
-      if (hits != 0) {
-        if ((hits & (hits - 1)) == 0) {  // one child: nothing to order
-          const int c = std::countr_zero(hits);
-          current = {node.child[c], node.count[c], entry[c]};
-          leaf = (hits & leaf_bits) != 0;
-          continue;
-        }
-#if defined(__SSE2__)
-        if constexpr (kOrder == WideBvhOrder::NearestFirst &&
-                      Kernel::value == WideBoxKernel::Avx2) {
-          current = push_hits_nearest_first_avx2(node, entry, hits, stack, size);
-          leaf = current.count > 0;
-          continue;
-        }
-#endif
-        if constexpr (kOrder == WideBvhOrder::Any) {
-          unsigned rest = hits;
-          const int c0 = std::countr_zero(rest);
-          for (rest &= rest - 1; rest != 0; rest &= rest - 1) {
-            const int c = std::countr_zero(rest);
-            stack[size++] = {node.child[c], node.count[c], entry[c]};
-          }
-          current = {node.child[c0], node.count[c0], entry[c0]};
-          leaf = current.count > 0;
-          continue;
-        }
-        // The children hit, nearest first (the lower slot on a tie): an insertion sort of at
-        // most eight.
-        int order[kWideChildren], n = 0;
-        for (unsigned rest = hits; rest != 0; rest &= rest - 1) {
-          const int c = std::countr_zero(rest);
-          int i = n++;
-          for (; i > 0 && entry[order[i - 1]] > entry[c]; --i) order[i] = order[i - 1];
-          order[i] = c;
-        }
-        for (int i = n - 1; i > 0; --i)
-          stack[size++] = {node.child[order[i]], node.count[order[i]], entry[order[i]]};
-        current = {node.child[order[0]], node.count[order[0]], entry[order[0]]};
-        leaf = current.count > 0;
+      if (hits == 0) goto pop;
+      if ((hits & (hits - 1)) == 0) {  // one child: nothing to order
+        const int c = std::countr_zero(hits);
+        current = {node.child[c], node.count[c], entry[c]};
+        // Whether it is a leaf, from the node's leaf bits (leaf_children), ready as soon as the
+        // box test's hits are, instead of from the child's count, which can only be loaded once
+        // the hits have named the child: the branch on it, mispredicted about once in four for
+        // incoherent rays, resolves a load sooner (docs/PERFORMANCE.md "The leaf-or-node branch
+        // from the node's leaf bits").
+        if ((hits & leaf_bits) != 0) goto leaf;
         continue;
       }
+#if defined(__SSE2__)
+      if constexpr (kOrder == WideBvhOrder::NearestFirst && Kernel::value == WideBoxKernel::Avx2) {
+        current = push_hits_nearest_first_avx2(node, entry, hits, stack, size);
+        if (current.count > 0) goto leaf;
+        continue;
+      }
+#endif
+      if constexpr (kOrder == WideBvhOrder::Any) {
+        unsigned rest = hits;
+        const int c0 = std::countr_zero(rest);
+        for (rest &= rest - 1; rest != 0; rest &= rest - 1) {
+          const int c = std::countr_zero(rest);
+          stack[size++] = {node.child[c], node.count[c], entry[c]};
+        }
+        current = {node.child[c0], node.count[c0], entry[c0]};
+        if (current.count > 0) goto leaf;
+        continue;
+      }
+      // The children hit, nearest first (the lower slot on a tie): an insertion sort of at
+      // most eight.
+      int order[kWideChildren], n = 0;
+      for (unsigned rest = hits; rest != 0; rest &= rest - 1) {
+        const int c = std::countr_zero(rest);
+        int i = n++;
+        for (; i > 0 && entry[order[i - 1]] > entry[c]; --i) order[i] = order[i - 1];
+        order[i] = c;
+      }
+      for (int i = n - 1; i > 0; --i)
+        stack[size++] = {node.child[order[i]], node.count[order[i]], entry[order[i]]};
+      current = {node.child[order[0]], node.count[order[0]], entry[order[0]]};
+      if (current.count > 0) goto leaf;
+      continue;
     }
-    for (;;) {
-      if (size == 0) return;
-      current = stack[--size];
-      // Without the order, entries are no reason to skip: t_max does not shrink.
-      if (kOrder == WideBvhOrder::Any || current.entry <= far_limit) break;
-    }
-    leaf = current.count > 0;
+  leaf : {
+    const double limit = visit_leaf(current.index, current.count, t_max, kernel);
+    if (limit < 0) break;
+    if (limit != t_max) t_max = limit, far_limit = FloatBoxLimit(float_far_limit(t_max));
+  }
+  pop:
+    if (size == 0) break;
+    current = stack[--size];
+    // Without the order, entries are no reason to skip: t_max does not shrink.
+    if (kOrder == WideBvhOrder::NearestFirst && !(current.entry <= far_limit.far)) goto pop;
+    if (current.count > 0) goto leaf;
   }
 }
 

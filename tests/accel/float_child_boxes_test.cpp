@@ -40,7 +40,8 @@ std::string describe(const Vec3& v) {
 // select gives the same hits and the same entry distances, bit for bit.
 unsigned intersect_with_every_kernel(const FloatChildBoxes& wide, const FloatBoxRay& box_ray,
                                      float far_limit, float entry[kWideChildren]) {
-  const unsigned hits = intersect_float_child_boxes_scalar(wide, box_ray, far_limit, entry);
+  const FloatBoxLimit limit(far_limit);
+  const unsigned hits = intersect_float_child_boxes_scalar(wide, box_ray, limit, entry);
 #if defined(__SSE2__)
   const auto expect_same = [&](const char* kernel, unsigned simd_hits,
                                const float simd_entry[kWideChildren]) {
@@ -50,10 +51,10 @@ unsigned intersect_with_every_kernel(const FloatChildBoxes& wide, const FloatBox
           << kernel << " child " << c;
   };
   float simd_entry[kWideChildren];
-  expect_same("sse2", intersect_float_child_boxes_sse2(wide, box_ray, far_limit, simd_entry),
+  expect_same("sse2", intersect_float_child_boxes_sse2(wide, box_ray, limit, simd_entry),
               simd_entry);
   if (wide_box_kernel_supported(WideBoxKernel::Avx2))
-    expect_same("avx2", intersect_float_child_boxes_avx2(wide, box_ray, far_limit, simd_entry),
+    expect_same("avx2", intersect_float_child_boxes_avx2(wide, box_ray, limit, simd_entry),
                 simd_entry);
 #endif
   return hits;

@@ -65,20 +65,27 @@ std::vector<std::uint64_t> trace_all(const MeshAccel& accel, const std::vector<R
   return out;
 }
 
+// `count` random triangles of about unit size, their centres in the cube of side 10 at `corner`.
+Mesh random_triangles(std::mt19937_64& rng, int count, const Vec3& corner) {
+  std::uniform_real_distribution<double> u(0, 1);
+  Mesh mesh;
+  for (int i = 0; i < count; ++i) {
+    const Vec3 c = corner + Vec3{u(rng), u(rng), u(rng)} * 10;
+    MeshTriangle t;
+    for (int k = 0; k < 3; ++k) {
+      t.v[static_cast<std::size_t>(k)] = static_cast<std::uint32_t>(mesh.positions.size());
+      mesh.positions.push_back(c + Vec3{u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5});
+    }
+    mesh.triangles.push_back(t);
+  }
+  return mesh;
+}
+
 TEST(WideBoxKernels, EveryKernelTracesMeshesAlike) {
   std::mt19937_64 rng(18);
   std::uniform_real_distribution<double> u(0, 1);
   for (const double offset : {0.0, 1e5}) {
-    Mesh mesh;
-    for (int i = 0; i < 3000; ++i) {
-      const Vec3 c = Vec3{offset, offset, -offset} + Vec3{u(rng), u(rng), u(rng)} * 10;
-      MeshTriangle t;
-      for (int k = 0; k < 3; ++k) {
-        t.v[static_cast<std::size_t>(k)] = static_cast<std::uint32_t>(mesh.positions.size());
-        mesh.positions.push_back(c + Vec3{u(rng) - 0.5, u(rng) - 0.5, u(rng) - 0.5});
-      }
-      mesh.triangles.push_back(t);
-    }
+    const Mesh mesh = random_triangles(rng, 3000, {offset, offset, -offset});
     const MeshAccel accel = build_mesh_accel(mesh, BvhMode::Sah);
     std::vector<Ray> rays;
     for (int r = 0; r < 3000; ++r) {
@@ -180,6 +187,65 @@ TEST(WideBoxKernels, EveryKernelTracesStacksOfTrianglesAlike) {
       }
     }
   }
+}
+
+// The boxes an any-order traversal tests, counted apart: one for the root, eight for the root's
+// wide node and for every interior child whose box the float test accepts (any order visits
+// them all when the visitor keeps t_max), recursively.
+std::uint64_t boxes_an_any_order_walk_tests(const Bvh& bvh, const Ray& ray, double t_max) {
+  const FloatBoxRay box_ray(ray);
+  const FloatBoxLimit limit(float_far_limit(t_max));
+  std::uint64_t boxes = 1;
+  std::vector<std::uint32_t> pending = {0};
+  while (!pending.empty()) {
+    const BvhWideNode& node = bvh.wide[pending.back()];
+    pending.pop_back();
+    boxes += kWideChildren;
+    float entry[kWideChildren];
+    const unsigned hits = intersect_float_child_boxes_scalar(node.boxes, box_ray, limit, entry);
+    for (int c = 0; c < kWideChildren; ++c)
+      if ((hits >> c & 1u) != 0 && node.count[c] == 0) pending.push_back(node.child[c]);
+  }
+  return boxes;
+}
+
+// Every kernel's count of boxes tested (IntersectionCounters::bvh_nodes) must be the walk's
+// above, for rays that start inside the mesh's box (no root test to miss) and outside it: the
+// traversal's loop has several ways to its next node and leaf (docs/PERFORMANCE.md "The wide
+// traversal's own instructions"), and no other test pins the count.
+TEST(WideBoxKernels, EveryKernelCountsEightBoxesANodeStep) {
+  std::mt19937_64 rng(31);
+  std::uniform_real_distribution<double> u(0, 1);
+  const MeshAccel accel = build_mesh_accel(random_triangles(rng, 2000, {0, 0, 0}), BvhMode::Sah);
+  ASSERT_GT(accel.bvh.wide.size(), 10u);
+  std::uint64_t steps = 0;
+  for (const WideBoxKernel kernel : selectable_kernels()) {
+    SCOPED_TRACE(std::string(wide_box_kernel_name(kernel)));
+    const ForcedKernel forced(kernel);
+    std::mt19937_64 ray_rng(32);
+    for (int r = 0; r < 500; ++r) {
+      const double spread = r % 2 == 0 ? 8 : 30;  // inside the root box, or mostly outside
+      const Vec3 origin =
+          Vec3{5, 5, 5} + Vec3{u(ray_rng) - 0.5, u(ray_rng) - 0.5, u(ray_rng) - 0.5} * spread;
+      const Vec3 direction{u(ray_rng) - 0.5, u(ray_rng) - 0.5, u(ray_rng) - 0.5};
+      const Ray ray{origin, direction};
+      const double t_max = r % 3 == 0 ? 4.0 : kInfinity;
+      std::uint64_t nodes_visited = 0;
+      std::uint64_t leaves = 0;
+      traverse_wide_bvh_leaves(accel.bvh, ray, t_max, nodes_visited, kAnyOrder, [&] {
+        return [&](std::uint32_t, std::uint32_t, double limit, auto) { return ++leaves, limit; };
+      });
+      const bool enters =
+          starts_inside(accel.bvh.nodes[0].bounds, ray.origin, t_max) ||
+          intersect_bounds(accel.bvh.nodes[0].bounds, ray.origin,
+                           {1 / direction.x, 1 / direction.y, 1 / direction.z}, t_max);
+      const std::uint64_t expected =
+          enters ? boxes_an_any_order_walk_tests(accel.bvh, ray, t_max) : 1;
+      ASSERT_EQ(nodes_visited, expected) << "ray " << r;
+      steps += (expected - 1) / kWideChildren;
+    }
+  }
+  EXPECT_GT(steps, 1000u);  // the walks went deep
 }
 
 // The traversal takes a child entered alone for a leaf from leaf_children's bit rather than from
