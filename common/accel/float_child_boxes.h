@@ -36,9 +36,6 @@
 //  - The argument is relative, so it fails where products fall below FLT_MIN (gradual
 //    underflow, absolute errors up to 2^-149): the comparison gives the far end a margin of
 //    kFloatTinyMargin = FLT_MIN, which covers those and changes nothing at normal magnitudes.
-//    It is taken from the entry, once, not added to each far distance: fl(t0 - margin) <= far
-//    holds whenever t0 - margin <= far exactly (rounding is monotonic and far is a float), so
-//    the test accepts all that the exact margin does.
 //    Overflow rounds a far distance to +inf, which accepts; a near distance that overflows
 //    only when the true one exceeds FLT_MAX, where the far one and t_max overflow as well.
 //    inv_far overflows to +-inf only where |fl(1 / d)| > FLT_MAX / kFloatFarScale (d below
@@ -121,15 +118,15 @@ inline float float_far_limit(double t_max) {
 // Children a wide node holds (Embree's eight-wide nodes: one AVX register of floats).
 inline constexpr int kWideChildren = 8;
 
-// The limit a box test compares a child's entry distance with: `far` is float_far_limit(t_max),
-// and `lanes` the same in every lane, the SIMD kernels' form. Made when t_max changes, not at
-// every node step (a broadcast a step, docs/PERFORMANCE.md "The wide traversal's own
-// instructions").
+// The limits a box test compares a child's entry distance with: `far` is float_far_limit(t_max)
+// and `entry_max` far + kFloatTinyMargin in every lane, the SIMD kernels' form. Made when t_max
+// changes, not at every node step (an addition and a broadcast a step, docs/PERFORMANCE.md "The
+// wide traversal's own instructions").
 struct FloatBoxLimit {
-  alignas(32) float lanes[kWideChildren];
+  alignas(32) float entry_max[kWideChildren];
   float far;
   explicit FloatBoxLimit(float far_limit) : far(far_limit) {
-    for (float& l : lanes) l = far_limit;
+    for (float& e : entry_max) e = far_limit + kFloatTinyMargin;
   }
 };
 
@@ -280,8 +277,7 @@ inline unsigned intersect_float_child_boxes_scalar(const FloatChildBoxes& boxes,
       t1 = t_far < t1 ? t_far : t1;
     }
     entry[c] = t0;
-    const float t0_less_margin = t0 - kFloatTinyMargin;
-    const bool hit = t0_less_margin <= t1 && boxes.bound[0][0][c] <= boxes.bound[0][1][c];
+    const bool hit = t0 <= t1 + kFloatTinyMargin && boxes.bound[0][0][c] <= boxes.bound[0][1][c];
     hits |= (hit ? 1u : 0u) << c;
   }
   return hits;
@@ -360,12 +356,14 @@ template <typename Lanes>
 // intersect_float_child_boxes_scalar's results for the children from `first` on, as many as a
 // vector holds, in bits 0 up of the result and entry[0] up. maxps(a, b) is a > b ? a : b, NaN
 // included, as the scalar comparison, so entry is made by the same operations. The far side is
-// not: the scalar test's t1, the minimum of far_limit and the far distances that are not NaN
-// (the scalar comparison leaves a NaN t_far out; a NaN far_limit gives NaN), is compared term
-// by term: t0 - margin (never NaN: t0 starts at 0 and maxps leaves NaNs out) is at most t1 when
-// it is at most far_limit and not above any far distance, a NaN one passing (cmpnltps). The same
-// bits; each axis's compare waits for its own distance only, not for a chain of three minima,
-// the node step's longest latency (docs/PERFORMANCE.md "The incoherent ray's stalls").
+// not: the scalar test's t1 + margin, with t1 the minimum of far_limit and the far distances that
+// are not NaN (minps(t_far, t1) leaves a NaN t_far out; a NaN far_limit gives NaN), is compared
+// as each of its terms plus the margin: float addition is monotonic, so (min of terms) + margin
+// is the min of (term + margin), and t0 (never NaN: it starts at 0 and maxps leaves NaNs out) is
+// at most that when it is at most far_limit + margin and not above any far distance + margin, a
+// NaN one passing (cmpnltps). The same bits; each axis's compare waits for its own distance only,
+// not for a chain of three minima and an addition, the node step's longest latency (four cycles
+// a step shorter, docs/PERFORMANCE.md "The incoherent ray's stalls").
 template <typename Lanes>
 inline unsigned intersect_float_child_boxes_lanes(const FloatChildBoxes& boxes,
                                                   const FloatBoxRay& ray,
@@ -388,12 +386,12 @@ inline unsigned intersect_float_child_boxes_lanes(const FloatChildBoxes& boxes,
     Lanes::load(inv, ray.inv_far[a]);
     Lanes::sub(t_far[a], bound, origin);
     Lanes::mul(t_far[a], t_far[a], inv);
+    Lanes::add(t_far[a], t_far[a], margin);
     Lanes::max(t0, t_near, t0);
   }
   Lanes::store(entry, t0);
-  Lanes::sub(t0, t0, margin);
   V limit, lo_x, hi_x;
-  Lanes::load(limit, far_limit.lanes);
+  Lanes::load(limit, far_limit.entry_max);
   Lanes::load(lo_x, &boxes.bound[0][0][first]);
   Lanes::load(hi_x, &boxes.bound[0][1][first]);
   return Lanes::le_mask(t0, limit) & Lanes::not_lt_mask(t_far[0], t0) &
