@@ -23,26 +23,17 @@
 //    (1 / d in double, rounded to float), with three roundings (the subtraction, the
 //    reciprocal's conversion, the product; the reciprocal's double rounding and the double
 //    test's own roundings add terms of order 2^-53). So a near distance is at most its exact
-//    value times (1 + gamma(3)); the double test's distances are within gamma_double(4) of the
-//    same exact values. Far distances are enlarged by kFloatFarScale = 1 + 2 gamma(5), folded into
-//    their factor once per ray: FloatBoxRay::inv_far = fl(fl(1 / d) * kFloatFarScale), so a far
-//    distance is fl(fl(b - o) * inv_far), four roundings, as many as the product scaled after
-//    the fact, fl(fl(fl(b - o) * fl(1 / d)) * kFloatFarScale), had; each rounding multiplies the
-//    exact product (b - o) (1 / d) kFloatFarScale by a factor (1 + e), |e| <= u, whatever the
-//    order of the products, so a far distance is at least that exact value times (1 - gamma(4)):
-//    the extra rounding, and room for the double terms. t_max is rounded up and multiplied by
-//    the same (float_far_limit), so that whenever a double near distance is at most a double far
+//    value times (1 + gamma(3)), and a far one at least its exact value times (1 - gamma(3));
+//    the double test's distances are within gamma_double(4) of the same exact values. Far
+//    distances are multiplied by kFloatFarScale = 1 + 2 gamma(5) (an extra rounding for that
+//    product, and room for the double terms), and t_max is rounded up and multiplied by the
+//    same (float_far_limit), so that whenever a double near distance is at most a double far
 //    distance or t_max, the float near distance is at most the float far one or t_max.
 //  - The argument is relative, so it fails where products fall below FLT_MIN (gradual
 //    underflow, absolute errors up to 2^-149): the comparison gives the far end a margin of
 //    kFloatTinyMargin = FLT_MIN, which covers those and changes nothing at normal magnitudes.
 //    Overflow rounds a far distance to +inf, which accepts; a near distance that overflows
 //    only when the true one exceeds FLT_MAX, where the far one and t_max overflow as well.
-//    inv_far overflows to +-inf only where |fl(1 / d)| > FLT_MAX / kFloatFarScale (d below
-//    3e-39): a far distance is then NaN where b - o is 0, which the comparisons leave out (it
-//    accepts), +inf where b - o has the accepting sign, and -inf only where the exact b - o has
-//    the rejecting sign as well, where the double far distance is negative (|b - o| >= 2^-1074
-//    times |1 / d| > 2^127) and the double test rejects too.
 //  - A zero direction component makes the reciprocal +-inf and a distance +-inf or, with the
 //    origin on a plane, NaN, which maxps/minps leave out (the NaN operand comes first): the
 //    same as the double test. Since the float differences keep their sign and are on the
@@ -156,9 +147,6 @@ struct FloatBoxRay {
   alignas(32) float origin_near[3][kWideChildren];
   alignas(32) float origin_far[3][kWideChildren];
   alignas(32) float inv_dir[3][kWideChildren];
-  // inv_dir * kFloatFarScale (one float product): the far distances' factor, so that a node step
-  // multiplies once for them, as for the near ones (see the argument above).
-  alignas(32) float inv_far[3][kWideChildren];
   int near_side[3];  // 0 (lo) where the direction is forward (1 / d >= 0), else 1 (hi)
 
   FloatBoxRay() = default;  // filled by set_float_box_ray_sse2 or _avx2
@@ -178,10 +166,8 @@ inline void set_float_box_ray_per_axis(FloatBoxRay& r, const Ray& ray) {
     // backward, it is hi and (hi - origin) * inv is smaller with (hi - origin) larger.
     const float near_origin = select_float_bits(forward, up, down);
     const float far_origin = select_float_bits(forward, down, up);
-    const float inv_float = static_cast<float>(inv);
     for (int c = 0; c < kWideChildren; ++c) {
-      r.inv_dir[a][c] = inv_float;
-      r.inv_far[a][c] = inv_float * kFloatFarScale;
+      r.inv_dir[a][c] = static_cast<float>(inv);
       r.origin_near[a][c] = near_origin;
       r.origin_far[a][c] = far_origin;
     }
@@ -212,7 +198,6 @@ inline void set_float_box_ray_per_axis(FloatBoxRay& r, const Ray& ray) {
 // The per-axis values of a FloatBoxRay, x, y and z in lanes 0 to 2 (see float_box_ray_axes).
 struct FloatBoxRayAxes {
   alignas(16) float inv_dir[4];
-  alignas(16) float inv_far[4];
   alignas(16) float origin_near[4];
   alignas(16) float origin_far[4];
   int forward_bits;  // bit a set where the direction is forward along axis a
@@ -245,9 +230,7 @@ struct FloatBoxRayAxes {
   const __m128d zero = _mm_setzero_pd();
   const __m128i forward = narrow_masks_sse2(_mm_cmpge_pd(inv_xy, zero), _mm_cmpge_pd(inv_z, zero));
   FloatBoxRayAxes axes;
-  const __m128 inv = _mm_movelh_ps(_mm_cvtpd_ps(inv_xy), _mm_cvtpd_ps(inv_z));
-  _mm_store_ps(axes.inv_dir, inv);
-  _mm_store_ps(axes.inv_far, _mm_mul_ps(inv, _mm_set1_ps(kFloatFarScale)));
+  _mm_store_ps(axes.inv_dir, _mm_movelh_ps(_mm_cvtpd_ps(inv_xy), _mm_cvtpd_ps(inv_z)));
   _mm_store_ps(axes.origin_near, _mm_castsi128_ps(select_bits_sse2(forward, up, down)));
   _mm_store_ps(axes.origin_far, _mm_castsi128_ps(select_bits_sse2(forward, down, up)));
   axes.forward_bits = _mm_movemask_ps(_mm_castsi128_ps(forward));
@@ -272,7 +255,8 @@ inline unsigned intersect_float_child_boxes_scalar(const FloatChildBoxes& boxes,
     for (int a = 0; a < 3; ++a) {
       const int near = ray.near_side[a];
       const float t_near = (boxes.bound[a][near][c] - ray.origin_near[a][c]) * ray.inv_dir[a][c];
-      const float t_far = (boxes.bound[a][1 - near][c] - ray.origin_far[a][c]) * ray.inv_far[a][c];
+      const float t_far =
+          (boxes.bound[a][1 - near][c] - ray.origin_far[a][c]) * ray.inv_dir[a][c] * kFloatFarScale;
       t0 = t_near > t0 ? t_near : t0;
       t1 = t_far < t1 ? t_far : t1;
     }
@@ -346,7 +330,6 @@ template <typename Lanes>
 #pragma GCC unroll 3
   for (int a = 0; a < 3; ++a) {
     fill(r.inv_dir[a], axes.inv_dir[a]);
-    fill(r.inv_far[a], axes.inv_far[a]);
     fill(r.origin_near[a], axes.origin_near[a]);
     fill(r.origin_far[a], axes.origin_far[a]);
     r.near_side[a] = 1 - ((axes.forward_bits >> a) & 1);
@@ -370,8 +353,9 @@ inline unsigned intersect_float_child_boxes_lanes(const FloatChildBoxes& boxes,
                                                   const FloatBoxLimit& far_limit, int first,
                                                   float* entry) {
   using V = typename Lanes::V;
-  V t0, margin, bound, origin, inv, t_near, t_far[3];
+  V t0, far_scale, margin, bound, origin, inv, t_near, t_far[3];
   Lanes::set1(t0, 0.0f);
+  Lanes::set1(far_scale, kFloatFarScale);
   Lanes::set1(margin, kFloatTinyMargin);
 #pragma GCC unroll 3
   for (int a = 0; a < 3; ++a) {
@@ -383,9 +367,9 @@ inline unsigned intersect_float_child_boxes_lanes(const FloatChildBoxes& boxes,
     Lanes::mul(t_near, t_near, inv);
     Lanes::load(bound, &boxes.bound[a][1 - near][first]);
     Lanes::load(origin, ray.origin_far[a]);
-    Lanes::load(inv, ray.inv_far[a]);
     Lanes::sub(t_far[a], bound, origin);
     Lanes::mul(t_far[a], t_far[a], inv);
+    Lanes::mul(t_far[a], t_far[a], far_scale);
     Lanes::add(t_far[a], t_far[a], margin);
     Lanes::max(t0, t_near, t0);
   }
