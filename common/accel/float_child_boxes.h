@@ -41,10 +41,6 @@
 //    direction component below 3e-39) is +-inf in float and takes the same path, on the
 //    accepting side. Directions with components above 1e37 are outside this argument (their
 //    reciprocals lose precision as subnormals); nothing in a scene comes near.
-//  - The entry t0 is the largest of 0 and the near distances, NaNs left out, except that a NaN
-//    distance on z also leaves out y's (intersect_float_child_boxes_scalar's two levels of
-//    maxima): leaving a near distance out only lowers t0, so the box is accepted for every t_max
-//    it was, and the entry stays at most float_far_limit of any t_max the double test accepts.
 //  - Empty child slots (fewer than eight children) hold the empty box (lo = +inf, hi = -inf)
 //    and are masked out by lo.x <= hi.x, so a ray of NaNs, which accepts every slab, still
 //    never enters one.
@@ -255,22 +251,15 @@ inline unsigned intersect_float_child_boxes_scalar(const FloatChildBoxes& boxes,
                                                    float entry[kWideChildren]) {
   unsigned hits = 0;
   for (int c = 0; c < kWideChildren; ++c) {
-    float t_near[3], t1 = limit.far;
+    float t0 = 0, t1 = limit.far;
     for (int a = 0; a < 3; ++a) {
       const int near = ray.near_side[a];
-      t_near[a] = (boxes.bound[a][near][c] - ray.origin_near[a][c]) * ray.inv_dir[a][c];
+      const float t_near = (boxes.bound[a][near][c] - ray.origin_near[a][c]) * ray.inv_dir[a][c];
       const float t_far =
           (boxes.bound[a][1 - near][c] - ray.origin_far[a][c]) * ray.inv_dir[a][c] * kFloatFarScale;
+      t0 = t_near > t0 ? t_near : t0;
       t1 = t_far < t1 ? t_far : t1;
     }
-    // The entry: the largest of 0 and the near distances in two levels of maxima, not a chain of
-    // three (the node step's longest latency, docs/PERFORMANCE.md "The far side's scale folded
-    // into the reciprocal"). x_or_0 is never NaN, so t0 is not; where z's distance is NaN, y_or_z
-    // is NaN and t0 leaves y's out too: a smaller entry, which only accepts more (see the
-    // argument at the top).
-    const float x_or_0 = t_near[0] > 0 ? t_near[0] : 0.0f;
-    const float y_or_z = t_near[1] > t_near[2] ? t_near[1] : t_near[2];
-    const float t0 = y_or_z > x_or_0 ? y_or_z : x_or_0;
     entry[c] = t0;
     const bool hit = t0 <= t1 + kFloatTinyMargin && boxes.bound[0][0][c] <= boxes.bound[0][1][c];
     hits |= (hit ? 1u : 0u) << c;
@@ -353,19 +342,19 @@ template <typename Lanes>
 // not: the scalar test's t1 + margin, with t1 the minimum of far_limit and the far distances that
 // are not NaN (minps(t_far, t1) leaves a NaN t_far out; a NaN far_limit gives NaN), is compared
 // as each of its terms plus the margin: float addition is monotonic, so (min of terms) + margin
-// is the min of (term + margin), and t0 (never NaN, as the scalar test's) is at most that when it
-// is at most far_limit + margin and not above any far distance + margin, a NaN one passing
-// (cmpnltps). The same bits; each axis's compare waits for its own distance only, not for a chain
-// of three minima and an addition (four cycles a step shorter, docs/PERFORMANCE.md "The incoherent
-// ray's stalls").
+// is the min of (term + margin), and t0 (never NaN: it starts at 0 and maxps leaves NaNs out) is
+// at most that when it is at most far_limit + margin and not above any far distance + margin, a
+// NaN one passing (cmpnltps). The same bits; each axis's compare waits for its own distance only,
+// not for a chain of three minima and an addition, the node step's longest latency (four cycles
+// a step shorter, docs/PERFORMANCE.md "The incoherent ray's stalls").
 template <typename Lanes>
 inline unsigned intersect_float_child_boxes_lanes(const FloatChildBoxes& boxes,
                                                   const FloatBoxRay& ray,
                                                   const FloatBoxLimit& far_limit, int first,
                                                   float* entry) {
   using V = typename Lanes::V;
-  V t0, zero, far_scale, margin, bound, origin, inv, t_near[3], t_far[3];
-  Lanes::set1(zero, 0.0f);
+  V t0, far_scale, margin, bound, origin, inv, t_near, t_far[3];
+  Lanes::set1(t0, 0.0f);
   Lanes::set1(far_scale, kFloatFarScale);
   Lanes::set1(margin, kFloatTinyMargin);
 #pragma GCC unroll 3
@@ -374,20 +363,16 @@ inline unsigned intersect_float_child_boxes_lanes(const FloatChildBoxes& boxes,
     Lanes::load(inv, ray.inv_dir[a]);
     Lanes::load(bound, &boxes.bound[a][near][first]);
     Lanes::load(origin, ray.origin_near[a]);
-    Lanes::sub(t_near[a], bound, origin);
-    Lanes::mul(t_near[a], t_near[a], inv);
+    Lanes::sub(t_near, bound, origin);
+    Lanes::mul(t_near, t_near, inv);
     Lanes::load(bound, &boxes.bound[a][1 - near][first]);
     Lanes::load(origin, ray.origin_far[a]);
     Lanes::sub(t_far[a], bound, origin);
     Lanes::mul(t_far[a], t_far[a], inv);
     Lanes::mul(t_far[a], t_far[a], far_scale);
     Lanes::add(t_far[a], t_far[a], margin);
+    Lanes::max(t0, t_near, t0);
   }
-  // The entry in two levels of maxima (see intersect_float_child_boxes_scalar).
-  V x_or_0, y_or_z;
-  Lanes::max(x_or_0, t_near[0], zero);
-  Lanes::max(y_or_z, t_near[1], t_near[2]);
-  Lanes::max(t0, y_or_z, x_or_0);
   Lanes::store(entry, t0);
   V limit, lo_x, hi_x;
   Lanes::load(limit, far_limit.entry_max);
