@@ -225,6 +225,19 @@ TEST(FloatChildBoxes, ConservativeBelowFloatsNormalRange) {
   EXPECT_GT(counts.double_hits, 1000);
 }
 
+// A tie on float's subnormal grid (g = 2^-149), which the random cases above do not meet: from
+// the origin along (6, 2, 1), the box's x slab starts at 3g / 6 = g / 2 and its y slab ends at
+// g / 2, so the double test accepts it at t = g / 2. In float, 3g * fl(1 / 6) lies just above
+// g / 2 and rounds up to g, while g * 0.5 is exactly g / 2, which rounds to even, 0: the far end
+// comes a grid step before the entry, and only kFloatTinyMargin keeps the box.
+TEST(FloatChildBoxes, TheTinyMarginCoversASubnormalTie) {
+  const double g = std::ldexp(1.0, -149);
+  Counts counts;
+  expect_conservative({{{3 * g, -1, -1}, {1, g, 1}}}, {{0, 0, 0}, {6, 2, 1}}, kInfinity, counts);
+  if (HasFatalFailure()) return;
+  EXPECT_EQ(counts.double_hits, 1);
+}
+
 // Slots left empty are never entered, even by a ray of NaNs, which accepts every slab.
 TEST(FloatChildBoxes, EmptySlotsAreNeverHit) {
   FloatChildBoxes wide = empty_float_child_boxes();
