@@ -56,28 +56,34 @@ bool intersect_mesh(const MeshAccel& accel, bool interpolate_normals, const Ray&
         std::uint32_t first, std::uint32_t count, double t_limit, auto kernel)
         __attribute__((always_inline)) {
       counters.triangle_tests += count;
+      // The limit triangles are tested against, kept in a local that only a hit taken changes,
+      // rather than worked out from `found` and t_limit at each quad: `found` is the caller's,
+      // held by reference, which the compiler reloaded at each quad (the stores of a hit taken
+      // might change it) (docs/PERFORMANCE.md "The leaf visit").
+      double limit = found ? next_up(t_limit) : t_limit;
       const auto take = [&](const TriangleHit& h, std::uint32_t position) {
         const std::uint32_t triangle = accel.bvh.primitive_order[position];
         if (found && h.t == nearest.t && triangle > found_triangle) return;
         nearest = h, found_triangle = triangle, found_position = position, found = true;
         t_limit = h.t;
+        limit = next_up(t_limit);
       };
       const std::uint32_t end = first + count;
       for (std::uint32_t i = first; i < end; i += 4) {
-        const double limit = found ? next_up(t_limit) : t_limit;
+        const double quad_limit = limit;
         TriangleLaneHits hits;
-        const unsigned lanes = intersect_leaf_quad(kernel, accel, i, end, lanes_ray, limit, hits);
+        const unsigned lanes =
+            intersect_leaf_quad(kernel, accel, i, end, lanes_ray, quad_limit, hits);
         for (unsigned rest = lanes; rest != 0; rest &= rest - 1) {
           const int lane = std::countr_zero(rest);
           // One triangle at a time, a lane would have been tested against the limit after the
           // earlier lanes' hits, never a larger one: in the rare case that it changed, test it
           // again with it.
-          const double limit_now = found ? next_up(t_limit) : t_limit;
           const std::uint32_t position = i + static_cast<std::uint32_t>(lane);
           TriangleHit h = hits.lane(lane);
-          if (limit_now == limit ||
+          if (limit == quad_limit ||
               intersect_triangle(leaf_corner(accel, position, 0), leaf_corner(accel, position, 1),
-                                 leaf_corner(accel, position, 2), lanes_ray.ray, limit_now, h))
+                                 leaf_corner(accel, position, 2), lanes_ray.ray, limit, h))
             take(h, position);
         }
       }
