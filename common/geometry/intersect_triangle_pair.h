@@ -53,13 +53,16 @@ inline unsigned intersect_triangle_lanes_scalar(const TriangleQuad& quad, int fi
   return lanes;
 }
 
-// A ray prepared for the lane tests: the triangle test's ray and its permuted origin
-// (components kx, ky, kz), once per ray rather than once per test. Small, as the leaf visitors
-// hold a copy: repeating each value once per lane here cost more in stores and copies than the
-// tests' broadcasts (one instruction each, from memory).
+// A ray prepared for the lane tests: the triangle test's ray, its permuted origin (components
+// kx, ky, kz) and the byte offsets of coordinates kx, ky, kz in a corner of a TriangleQuad, once
+// per ray rather than once per test: with the offsets, a quad's nine loads address their
+// coordinate without a shift each (docs/PERFORMANCE.md "The leaf visit"). Small, as the leaf
+// visitors hold a copy: repeating each value once per lane here cost more in stores and copies
+// than the tests' broadcasts (one instruction each, from memory).
 struct TriangleLanesRay {
   TriangleRay ray;
   double origin[3];
+  int coordinate_offset[3];
 };
 
 // The triangle ray is initialized from prepare_triangle_ray's result in place (guaranteed copy
@@ -68,11 +71,15 @@ struct TriangleLanesRay {
 // store buffer cannot forward, so each copy waited for the stores to reach the cache
 // (docs/PERFORMANCE.md "The incoherent ray's stalls").
 inline TriangleLanesRay prepare_triangle_lanes_ray(const Ray& ray) {
-  TriangleLanesRay r{prepare_triangle_ray(ray), {}};
+  TriangleLanesRay r{prepare_triangle_ray(ray), {}, {}};
   const Vec3 origin = permute_axes(ray.origin, r.ray.kx, r.ray.ky, r.ray.kz);
   r.origin[0] = origin.x;
   r.origin[1] = origin.y;
   r.origin[2] = origin.z;
+  constexpr int kCoordinateBytes = sizeof(TriangleQuad::corner[0][0]);
+  r.coordinate_offset[0] = r.ray.kx * kCoordinateBytes;
+  r.coordinate_offset[1] = r.ray.ky * kCoordinateBytes;
+  r.coordinate_offset[2] = r.ray.kz * kCoordinateBytes;
   return r;
 }
 
@@ -185,10 +192,15 @@ template <typename Lanes>
   struct Corner {
     V x, y, z;
   };
+  // Coordinate `offset` (bytes, coordinate_offset) of corner c, from lane first_lane on.
+  const auto coordinate = [&](int c, int offset) {
+    return reinterpret_cast<const double*>(reinterpret_cast<const char*>(quad.corner[c]) + offset) +
+           first_lane;
+  };
   const auto transform = [&](Corner& q, int c) {
-    Lanes::load(q.x, &quad.corner[c][ray.kx][first_lane]);
-    Lanes::load(q.y, &quad.corner[c][ray.ky][first_lane]);
-    Lanes::load(q.z, &quad.corner[c][ray.kz][first_lane]);
+    Lanes::load(q.x, coordinate(c, lanes_ray.coordinate_offset[0]));
+    Lanes::load(q.y, coordinate(c, lanes_ray.coordinate_offset[1]));
+    Lanes::load(q.z, coordinate(c, lanes_ray.coordinate_offset[2]));
     Lanes::sub(q.x, q.x, origin_x);
     Lanes::sub(q.y, q.y, origin_y);
     Lanes::sub(q.z, q.z, origin_z);

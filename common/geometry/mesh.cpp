@@ -12,23 +12,29 @@
 namespace tessera {
 namespace {
 
-// Tests the quad of a leaf's triangles at its position i (a multiple of four: a leaf starts a
-// quad) against a leaf ending at `end`: at once in the traversal compiled for AVX2 (lanes past
-// the leaf's end are NaN, never hit), else as its halves, the second only where the leaf reaches
-// it. Returns the lanes hit as bits, lane l for the triangle at i + l.
+// Tests a quad of a leaf's triangles, `remaining` of the leaf's triangles from its first lane
+// on: at once in the traversal compiled for AVX2 (lanes past the leaf's end are NaN, never hit),
+// else as its halves, the second only where the leaf reaches it. Returns the lanes hit as bits.
 template <typename Kernel>
-[[gnu::always_inline]] inline unsigned intersect_leaf_quad(Kernel, const MeshAccel& accel,
-                                                           std::uint32_t i, std::uint32_t end,
+[[gnu::always_inline]] inline unsigned intersect_leaf_quad(Kernel, const TriangleQuad& quad,
+                                                           std::uint32_t remaining,
                                                            const TriangleLanesRay& lanes_ray,
                                                            double t_max, TriangleLaneHits& hits) {
-  const TriangleQuad& quad = accel.leaf_quads[i / 4];
 #if defined(__SSE2__)
   if constexpr (Kernel::value == WideBoxKernel::Avx2)
     return intersect_triangle_quad(quad, lanes_ray, t_max, hits);
 #endif
   const unsigned lanes = intersect_triangle_pair(quad, 0, lanes_ray, t_max, hits);
-  if (end - i <= 2) return lanes;
+  if (remaining <= 2) return lanes;
   return lanes | intersect_triangle_pair(quad, 1, lanes_ray, t_max, hits);
+}
+
+// The quad holding position `first` of the mesh's primitive order, the first of a leaf (a
+// multiple of four: a leaf starts a quad). The leaf visitors step a pointer from it, one quad
+// per four positions, rather than index the quads by position at each quad: the division and
+// the scaling by the quad's size were four instructions a quad.
+const TriangleQuad* leaf_first_quad(const MeshAccel& accel, std::uint32_t first) {
+  return accel.leaf_quads.data() + first / 4;
 }
 
 // The corners of the triangle at `position` of the mesh's primitive order, from its leaf.
@@ -56,28 +62,35 @@ bool intersect_mesh(const MeshAccel& accel, bool interpolate_normals, const Ray&
         std::uint32_t first, std::uint32_t count, double t_limit, auto kernel)
         __attribute__((always_inline)) {
       counters.triangle_tests += count;
+      // The limit triangles are tested against, kept in a local that only a hit taken changes,
+      // rather than worked out from `found` and t_limit at each quad: `found` is the caller's,
+      // held by reference, which the compiler reloaded at each quad (the stores of a hit taken
+      // might change it) (docs/PERFORMANCE.md "The leaf visit").
+      double limit = found ? next_up(t_limit) : t_limit;
       const auto take = [&](const TriangleHit& h, std::uint32_t position) {
         const std::uint32_t triangle = accel.bvh.primitive_order[position];
         if (found && h.t == nearest.t && triangle > found_triangle) return;
         nearest = h, found_triangle = triangle, found_position = position, found = true;
         t_limit = h.t;
+        limit = next_up(t_limit);
       };
       const std::uint32_t end = first + count;
-      for (std::uint32_t i = first; i < end; i += 4) {
-        const double limit = found ? next_up(t_limit) : t_limit;
+      const TriangleQuad* quad = leaf_first_quad(accel, first);
+      for (std::uint32_t i = first; i < end; i += 4, ++quad) {
+        const double quad_limit = limit;
         TriangleLaneHits hits;
-        const unsigned lanes = intersect_leaf_quad(kernel, accel, i, end, lanes_ray, limit, hits);
+        const unsigned lanes =
+            intersect_leaf_quad(kernel, *quad, end - i, lanes_ray, quad_limit, hits);
         for (unsigned rest = lanes; rest != 0; rest &= rest - 1) {
           const int lane = std::countr_zero(rest);
           // One triangle at a time, a lane would have been tested against the limit after the
           // earlier lanes' hits, never a larger one: in the rare case that it changed, test it
           // again with it.
-          const double limit_now = found ? next_up(t_limit) : t_limit;
           const std::uint32_t position = i + static_cast<std::uint32_t>(lane);
           TriangleHit h = hits.lane(lane);
-          if (limit_now == limit ||
+          if (limit == quad_limit ||
               intersect_triangle(leaf_corner(accel, position, 0), leaf_corner(accel, position, 1),
-                                 leaf_corner(accel, position, 2), lanes_ray.ray, limit_now, h))
+                                 leaf_corner(accel, position, 2), lanes_ray.ray, limit, h))
             take(h, position);
         }
       }
@@ -100,9 +113,11 @@ bool occluded_mesh(const MeshAccel& accel, const Ray& ray, double t_max,
         std::uint32_t first, std::uint32_t count, double t_limit, auto kernel)
         __attribute__((always_inline)) {
       const std::uint32_t end = first + count;
-      for (std::uint32_t i = first; i < end; i += 4) {
+      const TriangleQuad* quad = leaf_first_quad(accel, first);
+      for (std::uint32_t i = first; i < end; i += 4, ++quad) {
         TriangleLaneHits hits;
-        const unsigned lanes = intersect_leaf_quad(kernel, accel, i, end, lanes_ray, t_limit, hits);
+        const unsigned lanes =
+            intersect_leaf_quad(kernel, *quad, end - i, lanes_ray, t_limit, hits);
         if (lanes != 0) {
           // Counted as one at a time: up to the first triangle hit.
           counters.triangle_tests +=
@@ -130,10 +145,11 @@ std::vector<LocalHit> mesh_crossings(const MeshAccel& accel, bool interpolate_no
         __attribute__((always_inline)) {
       counters.triangle_tests += count;
       const std::uint32_t end = first + count;
-      for (std::uint32_t i = first; i < end; i += 4) {
+      const TriangleQuad* quad = leaf_first_quad(accel, first);
+      for (std::uint32_t i = first; i < end; i += 4, ++quad) {
         TriangleLaneHits lane_hits;
         const unsigned lanes =
-            intersect_leaf_quad(kernel, accel, i, end, lanes_ray, limit, lane_hits);
+            intersect_leaf_quad(kernel, *quad, end - i, lanes_ray, limit, lane_hits);
         for (unsigned rest = lanes; rest != 0; rest &= rest - 1) {
           const auto lane = static_cast<std::uint32_t>(std::countr_zero(rest));
           hits.emplace_back(lane_hits.lane(static_cast<int>(lane)),

@@ -166,7 +166,8 @@ TEST(TrianglePair, PathsAgreeForOriginsOnAndNearThePlane) {
 }
 
 // The lanes' ray, built in place from prepare_triangle_ray's result (intersect_triangle_pair.h),
-// holds that result and the origin permuted by its axes, bit for bit, for every largest axis.
+// holds that result, the origin permuted by its axes, bit for bit, and the byte offsets of those
+// axes' coordinates in a quad's corner, for every largest axis.
 TEST(TrianglePair, LanesRayIsTheTriangleRayAndItsPermutedOrigin) {
   std::mt19937_64 rng(15);
   std::uniform_real_distribution<double> coordinate(-3, 3);
@@ -190,6 +191,11 @@ TEST(TrianglePair, LanesRayIsTheTriangleRayAndItsPermutedOrigin) {
     expect_same_bits(lanes_ray.origin[0], origin.x, "permuted x");
     expect_same_bits(lanes_ray.origin[1], origin.y, "permuted y");
     expect_same_bits(lanes_ray.origin[2], origin.z, "permuted z");
+    const int axes[3] = {expected.kx, expected.ky, expected.kz};
+    const TriangleQuad quad{};
+    for (int k = 0; k < 3; ++k)
+      EXPECT_EQ(reinterpret_cast<const char*>(quad.corner[1]) + lanes_ray.coordinate_offset[k],
+                reinterpret_cast<const char*>(quad.corner[1][axes[k]]));
   }
 }
 
