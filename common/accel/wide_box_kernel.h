@@ -23,9 +23,10 @@ inline constexpr WideBoxKernel kWideBoxKernels[] = {WideBoxKernel::Scalar, WideB
                                                     WideBoxKernel::Avx2, WideBoxKernel::Avx512Vl};
 
 // Whether `kernel` runs the AVX2 code: the box test, the leaf's quad test, the packet walks.
-constexpr bool has_avx2(WideBoxKernel kernel) {
-  return kernel == WideBoxKernel::Avx2 || kernel == WideBoxKernel::Avx512Vl;
-}
+// The kernels are declared narrowest first, and every one from Avx2 on runs it: one compare, as
+// long as the test for Avx2 alone was (the packet walks' dispatch kept its size, and the code
+// after it its alignment).
+constexpr bool has_avx2(WideBoxKernel kernel) { return kernel >= WideBoxKernel::Avx2; }
 
 // The target of the functions compiled for WideBoxKernel::Avx512Vl (a macro: gnu::target takes a
 // string literal). Without "fma", and with -ffp-contract=off, a*b+c stays two roundings.
