@@ -27,6 +27,7 @@ inline constexpr WideBoxKernel kWideBoxKernels[] = {WideBoxKernel::Scalar, WideB
 // long as the test for Avx2 alone was (the packet walks' dispatch kept its size, and the code
 // after it its alignment).
 constexpr bool has_avx2(WideBoxKernel kernel) { return kernel >= WideBoxKernel::Avx2; }
+static_assert(!has_avx2(WideBoxKernel::Sse2) && has_avx2(WideBoxKernel::Avx512Vl));
 
 // The target of the functions compiled for WideBoxKernel::Avx512Vl (a macro: gnu::target takes a
 // string literal). Without "fma", and with -ffp-contract=off, a*b+c stays two roundings.
