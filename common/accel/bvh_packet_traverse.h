@@ -237,7 +237,7 @@ class BvhPacketWalk {
         unsigned hits[2];
         nodes_visited_ += 2 * kLaneCount[current.lanes];
 #if defined(__SSE2__)
-        if constexpr (kKernel == WideBoxKernel::Avx2)
+        if constexpr (has_avx2(kKernel))
           intersect_child_boxes_packet_avx2(pair.boxes, rays_, t_max_, entry, hits);
         else
 #endif
@@ -258,7 +258,7 @@ class BvhPacketWalk {
           int fork_size = size;
           Pending fork_current = descend(pair, 1, fork_hits, entry, fork, fork_size);
 #if defined(__SSE2__)
-          if constexpr (kKernel == WideBoxKernel::Avx2)
+          if constexpr (has_avx2(kKernel))
             run_avx2(second_first, fork_current, fork, fork_size);
           else
 #endif
@@ -339,7 +339,7 @@ void traverse_bvh_packet_leaves(const Bvh& bvh, const PacketRays& rays, double* 
   typename Walk::Pending stack[kBvhMaxDepth];
   Walk walk(bvh, rays, t_max, nodes_visited, visit_leaf);
 #if defined(__SSE2__)
-  if (wide_box_kernel() == WideBoxKernel::Avx2)
+  if (has_avx2(wide_box_kernel()))
     return walk.run_avx2(rays.lanes, {0, 0, rays.lanes, {}}, stack, 0);
 #endif
   walk.run(rays.lanes, {0, 0, rays.lanes, {}}, stack, 0);

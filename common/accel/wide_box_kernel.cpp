@@ -8,6 +8,7 @@ namespace tessera {
 namespace {
 
 WideBoxKernel widest_supported() {
+  if (wide_box_kernel_supported(WideBoxKernel::Avx512Vl)) return WideBoxKernel::Avx512Vl;
   if (wide_box_kernel_supported(WideBoxKernel::Avx2)) return WideBoxKernel::Avx2;
   if (wide_box_kernel_supported(WideBoxKernel::Sse2)) return WideBoxKernel::Sse2;
   return WideBoxKernel::Scalar;
@@ -44,6 +45,14 @@ bool wide_box_kernel_supported(WideBoxKernel kernel) {
 #else
       return false;
 #endif
+    case WideBoxKernel::Avx512Vl:
+#if defined(__SSE2__)
+      return __builtin_cpu_supports("avx2") != 0 && __builtin_cpu_supports("avx512f") != 0 &&
+             __builtin_cpu_supports("avx512vl") != 0 && __builtin_cpu_supports("avx512dq") != 0 &&
+             __builtin_cpu_supports("avx512bw") != 0;
+#else
+      return false;
+#endif
   }
   return false;
 }
@@ -68,12 +77,14 @@ std::string_view wide_box_kernel_name(WideBoxKernel kernel) {
       return "sse2";
     case WideBoxKernel::Avx2:
       return "avx2";
+    case WideBoxKernel::Avx512Vl:
+      return "avx512vl";
   }
   return "?";
 }
 
 std::optional<WideBoxKernel> parse_wide_box_kernel(std::string_view name) {
-  for (const auto kernel : {WideBoxKernel::Scalar, WideBoxKernel::Sse2, WideBoxKernel::Avx2})
+  for (const auto kernel : kWideBoxKernels)
     if (name == wide_box_kernel_name(kernel)) return kernel;
   return std::nullopt;
 }

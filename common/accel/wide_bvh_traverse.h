@@ -51,7 +51,7 @@ template <typename Kernel>
 [[gnu::always_inline]] inline unsigned leaf_children(const BvhWideNode& node, Kernel) {
   static_assert(kWideChildren == 8);
 #if defined(__SSE2__)
-  if constexpr (Kernel::value == WideBoxKernel::Avx2) {
+  if constexpr (has_avx2(Kernel::value)) {
     return leaf_children_avx2(node);
   } else if constexpr (Kernel::value == WideBoxKernel::Sse2) {
     const __m128i zero = _mm_setzero_si128();
@@ -109,7 +109,7 @@ inline void traverse_wide_bvh_below_root(const Bvh& bvh, const Ray& ray, double 
         continue;
       }
 #if defined(__SSE2__)
-      if constexpr (kOrder == WideBvhOrder::NearestFirst && Kernel::value == WideBoxKernel::Avx2) {
+      if constexpr (kOrder == WideBvhOrder::NearestFirst && has_avx2(Kernel::value)) {
         current = push_hits_nearest_first_avx2(node, entry, hits, stack, size);
         if (current.count > 0) goto leaf;
         continue;
@@ -184,6 +184,17 @@ template <WideBvhOrder kOrder, typename VisitLeaf>
                                        WideBoxKernelTag<WideBoxKernel::Avx2>{},
                                        set_float_box_ray_avx2, intersect_float_child_boxes_avx2);
 }
+
+// The same code for a CPU with AVX-512F, VL, DQ and BW (WideBoxKernel::Avx512Vl): the AVX2
+// functions inlined here are compiled for this target, so the loop has 32 vector registers.
+template <WideBvhOrder kOrder, typename VisitLeaf>
+[[gnu::flatten, gnu::target(TESSERA_AVX512VL_TARGET)]] void traverse_wide_bvh_avx512vl(
+    const Bvh& bvh, const Ray& ray, double t_max, std::uint64_t& nodes_visited,
+    VisitLeaf& visit_leaf) {
+  traverse_wide_bvh_below_root<kOrder>(bvh, ray, t_max, nodes_visited, visit_leaf,
+                                       WideBoxKernelTag<WideBoxKernel::Avx512Vl>{},
+                                       set_float_box_ray_avx2, intersect_float_child_boxes_avx2);
+}
 #endif
 
 // Whether a ray from `origin` certainly enters `box` for every direction: the origin lies in the
@@ -229,6 +240,8 @@ void traverse_wide_bvh_leaves(const Bvh& bvh, const Ray& ray, double t_max,
   }
   switch (wide_box_kernel()) {
 #if defined(__SSE2__)
+    case WideBoxKernel::Avx512Vl:
+      return traverse_wide_bvh_avx512vl<kOrder>(bvh, ray, t_max, nodes_visited, visit_leaf);
     case WideBoxKernel::Avx2:
       return traverse_wide_bvh_avx2<kOrder>(bvh, ray, t_max, nodes_visited, visit_leaf);
     case WideBoxKernel::Sse2:

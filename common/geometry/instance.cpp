@@ -433,7 +433,7 @@ unsigned intersect_instance_packet(const Instance& instance, const Ray rays[4], 
                                    WorldHit* const hits[4], IntersectionCounters& counters) {
 #if defined(__SSE2__)
   // A moving shape takes the lanes one at a time (posed at each ray's time).
-  if (!instance.motion && !std::has_single_bit(lanes) && wide_box_kernel() == WideBoxKernel::Avx2) {
+  if (!instance.motion && !std::has_single_bit(lanes) && has_avx2(wide_box_kernel())) {
     if (const Torus* torus = std::get_if<Torus>(&instance.geometry))
       return intersect_placed_lanes(instance, rays, lanes, hits, counters,
                                     [&](const Vec3 directions[4], LocalHit* locals) {

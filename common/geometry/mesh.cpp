@@ -13,15 +13,16 @@ namespace tessera {
 namespace {
 
 // Tests a quad of a leaf's triangles, `remaining` of the leaf's triangles from its first lane
-// on: at once in the traversal compiled for AVX2 (lanes past the leaf's end are NaN, never hit),
-// else as its halves, the second only where the leaf reaches it. Returns the lanes hit as bits.
+// on: at once in the traversals compiled for AVX2 (has_avx2; lanes past the leaf's end are NaN,
+// never hit), else as its halves, the second only where the leaf reaches it. Returns the lanes hit
+// as bits.
 template <typename Kernel>
 [[gnu::always_inline]] inline unsigned intersect_leaf_quad(Kernel, const TriangleQuad& quad,
                                                            std::uint32_t remaining,
                                                            const TriangleLanesRay& lanes_ray,
                                                            double t_max, TriangleLaneHits& hits) {
 #if defined(__SSE2__)
-  if constexpr (Kernel::value == WideBoxKernel::Avx2)
+  if constexpr (has_avx2(Kernel::value))
     return intersect_triangle_quad(quad, lanes_ray, t_max, hits);
 #endif
   const unsigned lanes = intersect_triangle_pair(quad, 0, lanes_ray, t_max, hits);

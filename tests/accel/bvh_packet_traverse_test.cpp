@@ -21,10 +21,12 @@
 namespace tessera {
 namespace {
 
-// The box kernels this machine runs: the SSE2 (and scalar) packet test, and AVX2's.
+// The box kernels this machine runs: the SSE2 (and scalar) packet test, and AVX2's (which the
+// AVX-512VL kernel runs too).
 std::vector<WideBoxKernel> packet_kernels() {
   std::vector<WideBoxKernel> kernels = {WideBoxKernel::Sse2};
-  if (wide_box_kernel_supported(WideBoxKernel::Avx2)) kernels.push_back(WideBoxKernel::Avx2);
+  for (const WideBoxKernel kernel : {WideBoxKernel::Avx2, WideBoxKernel::Avx512Vl})
+    if (wide_box_kernel_supported(kernel)) kernels.push_back(kernel);
   return kernels;
 }
 
@@ -34,7 +36,7 @@ void expect_lanes_as_alone(const ChildBoxes& boxes, const Ray* rays, const doubl
   const PacketRays packet(rays, kPacketLanes);
   double entry[2][kPacketLanes];
   unsigned hits[2];
-  if (kernel == WideBoxKernel::Avx2)
+  if (has_avx2(kernel))
     intersect_child_boxes_packet_avx2(boxes, packet, t_max, entry, hits);
   else
     intersect_child_boxes_packet(boxes, packet, t_max, entry, hits);

@@ -2,8 +2,8 @@
 // intersect_bounds (it never rejects a box that one accepts, and its entry distances never let
 // a later, smaller t_max skip one), on random and adversarial rays and boxes (far from the
 // origin, tiny boxes, axis-parallel rays, zero direction components, grazing rays, origins on
-// box planes); and every kernel this build and CPU can select (SSE2, AVX2) bit-identical to the
-// scalar one, so that images do not depend on which one runs.
+// box planes); and every kernel this build and CPU can select (SSE2, AVX2, AVX-512VL)
+// bit-identical to the scalar one, so that images do not depend on which one runs.
 #include "common/accel/float_child_boxes.h"
 
 #include <gtest/gtest.h>
@@ -36,6 +36,20 @@ std::string describe(const Vec3& v) {
   return out.str();
 }
 
+#if defined(__SSE2__)
+// The AVX2 functions as the AVX-512VL kernel compiles them (wide_box_kernel.h): inlined into a
+// function for its target, where the compiler may pick other instructions and registers.
+[[gnu::target(TESSERA_AVX512VL_TARGET), gnu::flatten]] unsigned
+intersect_float_child_boxes_avx512vl(const FloatChildBoxes& boxes, const FloatBoxRay& ray,
+                                     const FloatBoxLimit& far_limit, float entry[kWideChildren]) {
+  return intersect_float_child_boxes_avx2(boxes, ray, far_limit, entry);
+}
+[[gnu::target(TESSERA_AVX512VL_TARGET), gnu::flatten]] void set_float_box_ray_avx512vl(
+    FloatBoxRay& r, const Ray& ray) {
+  set_float_box_ray_avx2(r, ray);
+}
+#endif
+
 // The scalar kernel's result, after checking that every SIMD kernel this build and CPU can
 // select gives the same hits and the same entry distances, bit for bit.
 unsigned intersect_with_every_kernel(const FloatChildBoxes& wide, const FloatBoxRay& box_ray,
@@ -56,14 +70,20 @@ unsigned intersect_with_every_kernel(const FloatChildBoxes& wide, const FloatBox
   if (wide_box_kernel_supported(WideBoxKernel::Avx2))
     expect_same("avx2", intersect_float_child_boxes_avx2(wide, box_ray, limit, simd_entry),
                 simd_entry);
+  if (wide_box_kernel_supported(WideBoxKernel::Avx512Vl))
+    expect_same("avx512vl", intersect_float_child_boxes_avx512vl(wide, box_ray, limit, simd_entry),
+                simd_entry);
 #endif
   return hits;
 }
 
-TEST(FloatChildBoxes, ThisMachineRunsTheAvx2Kernel) {
-  // Where the CPU has AVX2, traversals use it, and the comparisons above cover it.
+TEST(FloatChildBoxes, ThisMachineRunsTheAvx2Code) {
+  // Where the CPU has AVX2, traversals use its code (alone, or compiled for AVX-512VL where the
+  // CPU has that too), and the comparisons above cover it.
   if (!wide_box_kernel_supported(WideBoxKernel::Avx2)) GTEST_SKIP() << "no AVX2 on this CPU";
-  EXPECT_EQ(wide_box_kernel(), WideBoxKernel::Avx2);
+  EXPECT_EQ(wide_box_kernel(), wide_box_kernel_supported(WideBoxKernel::Avx512Vl)
+                                   ? WideBoxKernel::Avx512Vl
+                                   : WideBoxKernel::Avx2);
 }
 
 // Tests the eight boxes (fewer leave empty slots) against `ray` both ways.
@@ -320,6 +340,11 @@ TEST(FloatChildBoxes, RayConstantsMatchTheAxisByAxisReference) {
       FloatBoxRay made_avx2;
       set_float_box_ray_avx2(made_avx2, ray);
       expect_same("avx2", made_avx2, reference, ray);
+    }
+    if (wide_box_kernel_supported(WideBoxKernel::Avx512Vl)) {
+      FloatBoxRay made_avx512vl;
+      set_float_box_ray_avx512vl(made_avx512vl, ray);
+      expect_same("avx512vl", made_avx512vl, reference, ray);
     }
 #endif
   }

@@ -6,6 +6,7 @@
 
 #include <bit>
 #include <cstdint>
+#include <cstdlib>
 #include <filesystem>
 #include <optional>
 #include <random>
@@ -25,7 +26,7 @@ namespace {
 
 std::vector<WideBoxKernel> selectable_kernels() {
   std::vector<WideBoxKernel> kernels;
-  for (const auto kernel : {WideBoxKernel::Scalar, WideBoxKernel::Sse2, WideBoxKernel::Avx2})
+  for (const auto kernel : kWideBoxKernels)
     if (wide_box_kernel_supported(kernel)) kernels.push_back(kernel);
   return kernels;
 }
@@ -270,14 +271,29 @@ TEST(WideBoxKernels, LeafChildrenAreTheChildrenWithACount) {
     if (wide_box_kernel_supported(WideBoxKernel::Avx2)) {
       ASSERT_EQ(leaf_children(node, WideBoxKernelTag<WideBoxKernel::Avx2>{}), expected);
     }
+    if (wide_box_kernel_supported(WideBoxKernel::Avx512Vl)) {
+      ASSERT_EQ(leaf_children(node, WideBoxKernelTag<WideBoxKernel::Avx512Vl>{}), expected);
+    }
   }
 }
 
 TEST(WideBoxKernels, NamesRoundTripAndScalarIsAlwaysThere) {
-  for (const auto kernel : {WideBoxKernel::Scalar, WideBoxKernel::Sse2, WideBoxKernel::Avx2})
+  for (const auto kernel : kWideBoxKernels)
     EXPECT_EQ(parse_wide_box_kernel(wide_box_kernel_name(kernel)), kernel);
+  EXPECT_EQ(wide_box_kernel_name(WideBoxKernel::Avx512Vl), "avx512vl");
   EXPECT_EQ(parse_wide_box_kernel("avx512"), std::nullopt);
   EXPECT_TRUE(wide_box_kernel_supported(WideBoxKernel::Scalar));
+}
+
+// The automatic choice is the widest kernel the CPU runs; the AVX-512VL one only where it also
+// runs AVX2's, whose code it is. Where it cannot run, the tests above compare the others only.
+TEST(WideBoxKernels, TheAvx512VlKernelIsChosenWhereTheCpuHasIt) {
+  EXPECT_TRUE(!wide_box_kernel_supported(WideBoxKernel::Avx512Vl) ||
+              wide_box_kernel_supported(WideBoxKernel::Avx2));
+  if (std::getenv("TESSERA_BOX_KERNEL") != nullptr) GTEST_SKIP() << "TESSERA_BOX_KERNEL is set";
+  if (!wide_box_kernel_supported(WideBoxKernel::Avx512Vl))
+    GTEST_SKIP() << "no AVX-512F, VL, DQ and BW on this CPU: the avx512vl kernel is not tested";
+  EXPECT_EQ(wide_box_kernel(), WideBoxKernel::Avx512Vl);
 }
 
 }  // namespace

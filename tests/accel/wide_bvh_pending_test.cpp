@@ -30,8 +30,17 @@ std::vector<int> insertion_sorted(const float entry[kWideChildren], unsigned hit
   return order;
 }
 
-TEST(WideBvhPending, TheAvx2StepOrdersChildrenAsTheInsertionSort) {
-  if (!wide_box_kernel_supported(WideBoxKernel::Avx2)) GTEST_SKIP() << "no AVX2";
+using PushHits = WideBvhPending (*)(const BvhWideNode&, const float*, unsigned, WideBvhPending*,
+                                    int&);
+
+// The AVX2 step as the AVX-512VL kernel compiles it (wide_box_kernel.h): inlined into a function
+// for its target.
+[[gnu::target(TESSERA_AVX512VL_TARGET), gnu::flatten]] WideBvhPending push_hits_avx512vl(
+    const BvhWideNode& node, const float* entry, unsigned hits, WideBvhPending* stack, int& size) {
+  return push_hits_nearest_first_avx2(node, entry, hits, stack, size);
+}
+
+void expect_insertion_sort_order(PushHits push_hits) {
   std::mt19937_64 rng(12);
   // Few distinct values, so that ties are common; the box test's entries are >= +0, not NaN.
   const std::vector<float> values = {0.0f, 1e-30f, 0.5f, 0.5000001f, 1.0f, 2.0f, 1e30f, INFINITY};
@@ -53,8 +62,7 @@ TEST(WideBvhPending, TheAvx2StepOrdersChildrenAsTheInsertionSort) {
     std::vector<WideBvhPending> stack(static_cast<std::size_t>(below + kWideBvhStackSlack));
     for (int s = 0; s < below; ++s) stack[static_cast<std::size_t>(s)] = {7u, 3u, 1.5f};
     int size = below;
-    const WideBvhPending nearest =
-        push_hits_nearest_first_avx2(node, entry, hits, stack.data(), size);
+    const WideBvhPending nearest = push_hits(node, entry, hits, stack.data(), size);
 
     ASSERT_EQ(size, below + static_cast<int>(order.size()) - 1) << "case " << i;
     const auto expect = [&](const WideBvhPending& got, int c) {
@@ -71,9 +79,20 @@ TEST(WideBvhPending, TheAvx2StepOrdersChildrenAsTheInsertionSort) {
       ASSERT_EQ(stack[static_cast<std::size_t>(s)].index, 7u) << "case " << i;
       ASSERT_EQ(stack[static_cast<std::size_t>(s)].count, 3u) << "case " << i;
     }
-    if (HasFailure()) return;
+    if (::testing::Test::HasFailure()) return;
   }
   EXPECT_GT(ties, 100000);
+}
+
+TEST(WideBvhPending, TheAvx2StepOrdersChildrenAsTheInsertionSort) {
+  if (!wide_box_kernel_supported(WideBoxKernel::Avx2)) GTEST_SKIP() << "no AVX2";
+  expect_insertion_sort_order(push_hits_nearest_first_avx2);
+}
+
+TEST(WideBvhPending, TheAvx512VlStepOrdersChildrenAsTheInsertionSort) {
+  if (!wide_box_kernel_supported(WideBoxKernel::Avx512Vl))
+    GTEST_SKIP() << "no AVX-512F, VL, DQ and BW on this CPU";
+  expect_insertion_sort_order(push_hits_avx512vl);
 }
 #endif
 

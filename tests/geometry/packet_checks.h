@@ -61,8 +61,7 @@ inline int compare_instance_packets(const std::vector<Instance>& instances, cons
                                     std::mt19937_64& rng) {
   std::uniform_real_distribution<double> unit(-1, 1);
   int hits = 0;
-  for (const WideBoxKernel kernel :
-       {WideBoxKernel::Scalar, WideBoxKernel::Sse2, WideBoxKernel::Avx2}) {
+  for (const WideBoxKernel kernel : kWideBoxKernels) {
     if (!wide_box_kernel_supported(kernel)) continue;
     force_wide_box_kernel(kernel);
     for (const Instance& instance : instances) {
