@@ -250,8 +250,14 @@ void traverse_wide_bvh_leaves(const Bvh& bvh, const Ray& ray, double t_max,
   }
   auto visit_leaf = make_visit_leaf();
   if (root.count > 0) {
-    visit_leaf(root.first_or_second_child, root.count, t_max,
-               WideBoxKernelTag<WideBoxKernel::Scalar>{});
+    // A root that is a leaf (a mesh of a few triangles) is visited out of line: inlined here, it
+    // made the compiler keep a second copy of the leaf visitor's state for it, a dozen stores a
+    // ray on the common path (docs/PERFORMANCE.md "An incoherent ray's set-up").
+    const auto visit_root = [&visit_leaf, &root, t_max ]() __attribute__((noinline, cold)) {
+      visit_leaf(root.first_or_second_child, root.count, t_max,
+                 WideBoxKernelTag<WideBoxKernel::Scalar>{});
+    };
+    visit_root();
     return;
   }
   switch (wide_box_kernel()) {
