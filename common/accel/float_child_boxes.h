@@ -49,7 +49,6 @@
 #include <bit>
 #include <cfloat>
 #include <cmath>
-#include <cstddef>
 #include <cstdint>
 
 #include "common/math/ray.h"
@@ -393,51 +392,13 @@ inline unsigned intersect_float_child_boxes_lanes(const FloatChildBoxes& boxes,
          intersect_float_child_boxes_lanes<Sse2Lanes>(boxes, ray, far_limit, 4, entry + 4) << 4;
 }
 
-// The ray's constants for the SSE2 kernel.
+// The ray's constants for the SSE2 kernel and the AVX2 one (with 256-bit stores).
 [[gnu::flatten]] inline void set_float_box_ray_sse2(FloatBoxRay& r, const Ray& ray) {
   set_float_box_ray_lanes<Sse2Lanes>(r, ray);
 }
-// The AVX2 kernel's: float_box_ray_axes's operations on x, y and z in the lanes of 256-bit double
-// vectors (one division and one conversion each way instead of two, no assembling of the x-y and
-// z halves), each value then broadcast from its lane with vpermps and stored with 256-bit stores;
-// about 30 instructions fewer a ray (docs/PERFORMANCE.md "An incoherent ray's set-up"). The
-// fourth lanes (direction.x as an origin, 1 / ray.time) are computed and never used.
-[[gnu::target("avx2")]] inline void set_float_box_ray_avx2(FloatBoxRay& r, const Ray& ray) {
-  static_assert(offsetof(Ray, direction) == 3 * sizeof(double) &&
-                sizeof(Ray) >= 7 * sizeof(double));
-  const __m256d origin = _mm256_loadu_pd(&ray.origin.x);
-  const __m256d inv = _mm256_div_pd(_mm256_set1_pd(1.0), _mm256_loadu_pd(&ray.direction.x));
-  const __m128 f = _mm256_cvtpd_ps(origin);
-  const __m256d f_wide = _mm256_cvtps_pd(f);
-  // A double compare's 64-bit masks, narrowed to 32-bit lanes 0 to 3.
-  const __m256i even = _mm256_setr_epi32(0, 2, 4, 6, 0, 2, 4, 6);
-  const auto narrow = [&even](__m256d mask) __attribute__((always_inline, target("avx2"))) {
-    return _mm256_castsi256_si128(_mm256_permutevar8x32_epi32(_mm256_castpd_si256(mask), even));
-  };
-  const __m128i f_bits = _mm_castps_si128(f);
-  const __m128i sign = _mm_set1_epi32(static_cast<int>(0x80000000u));
-  // round_down_to_float: f stepped down (-(step up of -f)) where (double)f > x, else f.
-  const __m128i down = select_bits_sse2(
-      narrow(_mm256_cmp_pd(origin, f_wide, _CMP_LT_OS)),
-      _mm_xor_si128(float_step_up_bits_sse2(_mm_xor_si128(f_bits, sign)), sign), f_bits);
-  // round_up_to_float: f stepped up where (double)f < x, else f.
-  const __m128i up = select_bits_sse2(narrow(_mm256_cmp_pd(f_wide, origin, _CMP_LT_OS)),
-                                      float_step_up_bits_sse2(f_bits), f_bits);
-  // 1 / d >= 0 (_CMP_GE_OS, false with a NaN, as cmplepd(0, inv) and the scalar compare).
-  const __m128i forward = narrow(_mm256_cmp_pd(inv, _mm256_setzero_pd(), _CMP_GE_OS));
-  const __m128 values[3] = {_mm256_cvtpd_ps(inv),
-                            _mm_castsi128_ps(select_bits_sse2(forward, up, down)),
-                            _mm_castsi128_ps(select_bits_sse2(forward, down, up))};
-  float(*const to[3])[kWideChildren] = {r.inv_dir, r.origin_near, r.origin_far};
-  const int forward_bits = _mm_movemask_ps(_mm_castsi128_ps(forward));
-#pragma GCC unroll 3
-  for (int a = 0; a < 3; ++a) {
-    const __m256i lane = _mm256_set1_epi32(a);
-#pragma GCC unroll 3
-    for (int v = 0; v < 3; ++v)
-      _mm256_storeu_ps(to[v][a], _mm256_permutevar8x32_ps(_mm256_castps128_ps256(values[v]), lane));
-    r.near_side[a] = 1 - ((forward_bits >> a) & 1);
-  }
+[[gnu::target("avx2"), gnu::flatten]] inline void set_float_box_ray_avx2(FloatBoxRay& r,
+                                                                         const Ray& ray) {
+  set_float_box_ray_lanes<Avx2Lanes>(r, ray);
 }
 
 // Eight children in one go; only where the CPU has AVX2 (wide_box_kernel.h).
