@@ -209,13 +209,15 @@ std::size_t trace_tessera(const MeshAccel& accel, const RaySet& set, std::size_t
                           std::size_t end) {
   IntersectionCounters counters;
   std::size_t hits = 0;
+  // One hit record for the range, as Embree's loop fills its RTCRayHit without clearing it: made
+  // in the loop, its zeroing was a `rep stos` of 112 bytes a ray, work a caller need not do
+  // (intersect_instance hands shapes unzeroed records, local_hit.h's UnzeroedLocalHits).
+  LocalHit hit;
   for (std::size_t i = begin; i < end; ++i) {
-    if (set.kind == RayKind::Shadow) {
+    if (set.kind == RayKind::Shadow)
       hits += occluded_mesh(accel, set.rays[i], set.t_max[i], counters);
-    } else {
-      LocalHit hit;
+    else
       hits += intersect_mesh(accel, false, set.rays[i], set.t_max[i], hit, counters);
-    }
   }
   return hits;
 }

@@ -15,6 +15,9 @@ WideBoxKernel widest_supported() {
 }
 
 WideBoxKernel automatic_choice() {
+#if defined(__SSE2__)
+  __builtin_cpu_init();  // run from a static initializer: __builtin_cpu_supports needs it there
+#endif
   if (const char* name = std::getenv("TESSERA_BOX_KERNEL")) {
     const auto kernel = parse_wide_box_kernel(name);
     if (kernel && wide_box_kernel_supported(*kernel)) return *kernel;
@@ -22,10 +25,14 @@ WideBoxKernel automatic_choice() {
   return widest_supported();
 }
 
-std::optional<WideBoxKernel>& forced() {
-  static std::optional<WideBoxKernel> kernel;
-  return kernel;
-}
+// The automatic choice, made once when the program starts (the environment and the CPU do not
+// change), and the kernel in use, which force_wide_box_kernel changes: wide_box_kernel() reads it
+// for every mesh ray, and as function-local statics the choice cost a guard's load and test and
+// the forced kernel's another, seven instructions and two branches a ray (docs/PERFORMANCE.md
+// "An incoherent ray's set-up"). A traversal run by another file's static initializer, before
+// these are made, would read the zero-initialized Scalar: the same results, only slower.
+const WideBoxKernel automatic = automatic_choice();
+WideBoxKernel in_use = automatic;
 
 }  // namespace
 
@@ -57,16 +64,13 @@ bool wide_box_kernel_supported(WideBoxKernel kernel) {
   return false;
 }
 
-WideBoxKernel wide_box_kernel() {
-  static const WideBoxKernel automatic = automatic_choice();
-  return forced().value_or(automatic);
-}
+WideBoxKernel wide_box_kernel() { return in_use; }
 
 void force_wide_box_kernel(std::optional<WideBoxKernel> kernel) {
   if (kernel && !wide_box_kernel_supported(*kernel))
     throw std::invalid_argument("box kernel " + std::string(wide_box_kernel_name(*kernel)) +
                                 " is not supported here");
-  forced() = kernel;
+  in_use = kernel.value_or(automatic);
 }
 
 std::string_view wide_box_kernel_name(WideBoxKernel kernel) {

@@ -208,9 +208,25 @@ template <WideBvhOrder kOrder, typename VisitLeaf>
 // feelers, reflections) start on the mesh, inside its root box.
 [[gnu::always_inline]] inline bool starts_inside(const Bounds3& box, const Vec3& origin,
                                                  double t_max) {
+  static_assert(sizeof(Vec3) == 3 * sizeof(double) && sizeof(Bounds3) == 2 * sizeof(Vec3));
+#if defined(__SSE2__)
+  // The six comparisons as three of two lanes (cmplepd is <=, false with a NaN), from the box's
+  // and the origin's doubles read in pairs: (lo.x, lo.y) <= (o.x, o.y), (lo.z, o.x) <= (o.z,
+  // hi.x), (o.y, o.z) <= (hi.y, hi.z). Compared one at a time, with their loads, setcc and ands,
+  // they were some 30 instructions of a mesh ray's set-up.
+  const double* b = &box.lo.x;
+  const __m128d lo_xy = _mm_loadu_pd(b), lo_z_hi_x = _mm_loadu_pd(b + 2);
+  const __m128d hi_yz = _mm_loadu_pd(b + 4);
+  const __m128d o_xy = _mm_loadu_pd(&origin.x), o_yz = _mm_loadu_pd(&origin.y);
+  const __m128d in_xy = _mm_cmple_pd(lo_xy, o_xy), in_yz = _mm_cmple_pd(o_yz, hi_yz);
+  const __m128d in_zx =
+      _mm_cmple_pd(_mm_shuffle_pd(lo_z_hi_x, o_xy, 0b00), _mm_shuffle_pd(o_yz, lo_z_hi_x, 0b11));
+  return (_mm_movemask_pd(_mm_and_pd(_mm_and_pd(in_xy, in_yz), in_zx)) == 3) & (t_max >= 0);
+#else
   // Non-short-circuit operators: one branch instead of seven.
   return (box.lo.x <= origin.x) & (origin.x <= box.hi.x) & (box.lo.y <= origin.y) &
          (origin.y <= box.hi.y) & (box.lo.z <= origin.z) & (origin.z <= box.hi.z) & (t_max >= 0);
+#endif
 }
 
 // Visits the leaves whose boxes the ray [0, t_max] may enter, in the order `order` names:
@@ -234,8 +250,14 @@ void traverse_wide_bvh_leaves(const Bvh& bvh, const Ray& ray, double t_max,
   }
   auto visit_leaf = make_visit_leaf();
   if (root.count > 0) {
-    visit_leaf(root.first_or_second_child, root.count, t_max,
-               WideBoxKernelTag<WideBoxKernel::Scalar>{});
+    // A root that is a leaf (a mesh of a few triangles) is visited out of line: inlined here, it
+    // made the compiler keep a second copy of the leaf visitor's state for it, a dozen stores a
+    // ray on the common path (docs/PERFORMANCE.md "An incoherent ray's set-up").
+    const auto visit_root = [&visit_leaf, &root, t_max ]() __attribute__((noinline, cold)) {
+      visit_leaf(root.first_or_second_child, root.count, t_max,
+                 WideBoxKernelTag<WideBoxKernel::Scalar>{});
+    };
+    visit_root();
     return;
   }
   switch (wide_box_kernel()) {

@@ -11,32 +11,6 @@ bool triangle_is_degenerate(const Vec3& p0, const Vec3& p1, const Vec3& p2) {
   return !(area2 > 0) || !std::isfinite(area2);
 }
 
-TriangleRay prepare_triangle_ray(const Ray& ray) {
-  // Translate the vertices so that the ray starts at the origin, permute the axes so that the
-  // direction's largest component is z, and shear so that the ray runs along +z. Every vertex
-  // is transformed the same way whichever triangle it belongs to, which makes the edge
-  // functions of a shared edge exactly opposite (watertightness).
-  TriangleRay r;
-  r.origin = ray.origin;
-  const Vec3& d = ray.direction;
-  // max_axis(abs(d)) without its branches, which mispredict for incoherent rays (the largest
-  // axis is a coin toss among three): the same axis, NaN included (comparisons with a NaN are
-  // false in both).
-  const Vec3 m = abs(d);
-  const bool x_over_y = m.x > m.y, x_over_z = m.x > m.z, y_over_z = m.y > m.z;
-  r.kz = 2 - 2 * static_cast<int>(x_over_y & x_over_z) - static_cast<int>(!x_over_y & y_over_z);
-  // The next two axes, cyclically (kx = kz == 2 ? 0 : kz + 1, ky after kx), read from two-bit
-  // tables by shifts: GCC turns the ternaries (and their arithmetic forms) into a branch on kz.
-  r.kx = (0b00'10'01 >> (2 * r.kz)) & 3;
-  r.ky = (0b01'00'10 >> (2 * r.kz)) & 3;
-  const Vec3 dp = permute_axes(d, r.kx, r.ky, r.kz);
-  r.usable = (dp.z != 0) & is_finite(dp);
-  r.sx = -dp.x / dp.z;
-  r.sy = -dp.y / dp.z;
-  r.sz = 1 / dp.z;
-  return r;
-}
-
 bool intersect_triangle(const Vec3& p0, const Vec3& p1, const Vec3& p2, const Ray& ray,
                         double t_max, TriangleHit& hit) {
   if (triangle_is_degenerate(p0, p1, p2)) return false;

@@ -4,11 +4,16 @@
 
 #include <cmath>
 #include <cstdint>
+#include <limits>
 
 #include "common/geometry/local_hit.h"
 #include "common/math/float_error.h"
 #include "common/math/ray.h"
 #include "common/scene/mesh.h"
+
+#if defined(__SSE2__)
+#include <emmintrin.h>
+#endif
 
 namespace tessera {
 
@@ -33,7 +38,6 @@ struct TriangleRay {
   double sx = 0, sy = 0, sz = 0;
   bool usable = false;  // false for a zero or non-finite direction, which hits nothing
 };
-TriangleRay prepare_triangle_ray(const Ray& ray);
 // Zero or non-finite area: never hit.
 bool triangle_is_degenerate(const Vec3& p0, const Vec3& p1, const Vec3& p2);
 // The components of v in the order x, y, z. Indexed through an array rather than Vec3's
@@ -42,6 +46,44 @@ bool triangle_is_degenerate(const Vec3& p0, const Vec3& p1, const Vec3& p2);
 inline Vec3 permute_axes(const Vec3& v, int x, int y, int z) {
   const double c[3] = {v.x, v.y, v.z};
   return {c[x], c[y], c[z]};
+}
+// Inline: a mesh ray makes it once, before its traversal, and as a call its result went through
+// memory field by field (docs/PERFORMANCE.md "An incoherent ray's set-up").
+inline TriangleRay prepare_triangle_ray(const Ray& ray) {
+  // Translate the vertices so that the ray starts at the origin, permute the axes so that the
+  // direction's largest component is z, and shear so that the ray runs along +z. Every vertex
+  // is transformed the same way whichever triangle it belongs to, which makes the edge
+  // functions of a shared edge exactly opposite (watertightness).
+  TriangleRay r;
+  r.origin = ray.origin;
+  const Vec3& d = ray.direction;
+  // max_axis(abs(d)) without its branches, which mispredict for incoherent rays (the largest
+  // axis is a coin toss among three): the same axis, NaN included (comparisons with a NaN are
+  // false in both).
+  const Vec3 m = abs(d);
+  const bool x_over_y = m.x > m.y, x_over_z = m.x > m.z, y_over_z = m.y > m.z;
+  r.kz = 2 - 2 * static_cast<int>(x_over_y & x_over_z) - static_cast<int>(!x_over_y & y_over_z);
+  // The next two axes, cyclically (kx = kz == 2 ? 0 : kz + 1, ky after kx), read from two-bit
+  // tables by shifts: GCC turns the ternaries (and their arithmetic forms) into a branch on kz.
+  r.kx = (0b00'10'01 >> (2 * r.kz)) & 3;
+  r.ky = (0b01'00'10 >> (2 * r.kz)) & 3;
+  const Vec3 dp = permute_axes(d, r.kx, r.ky, r.kz);
+  // is_finite(dp) as is_finite(d) (the same components) without its short-circuit branches: a
+  // magnitude is at most the largest double unless it is infinite or NaN.
+  constexpr double kLargest = std::numeric_limits<double>::max();
+  r.usable = (dp.z != 0) & (m.x <= kLargest) & (m.y <= kLargest) & (m.z <= kLargest);
+#if defined(__SSE2__)
+  // -dp.x / dp.z and -dp.y / dp.z in the lanes of one divpd, the same IEEE divisions: inline,
+  // GCC made the three divisions three divsd, three uses of the divider at the ray's start.
+  const __m128d s = _mm_div_pd(_mm_set_pd(-dp.y, -dp.x), _mm_set1_pd(dp.z));
+  r.sx = _mm_cvtsd_f64(s);
+  r.sy = _mm_cvtsd_f64(_mm_unpackhi_pd(s, s));
+#else
+  r.sx = -dp.x / dp.z;
+  r.sy = -dp.y / dp.z;
+#endif
+  r.sz = 1 / dp.z;
+  return r;
 }
 // For a triangle that is not degenerate. Always inline: the mesh loops call it for every triangle
 // of every leaf they reach, and a caller that ignores the barycentric coordinates (shadow rays)

@@ -70,5 +70,57 @@ TEST(WideBvhRoot, StartingInsideTheRootBoxIsAcceptedByTheSlabTest) {
   EXPECT_GT(outside_missed, 20000);
 }
 
+// starts_inside compares in pairs of SIMD lanes: the same answer as its definition, the six
+// comparisons (false with a NaN) and t_max >= 0, for each coordinate in each place: below, on,
+// just beyond and above each face, signed zeros, infinities and NaNs, in boxes with such corners
+// too (the empty box's infinite ones included).
+TEST(WideBvhRoot, StartsInsideIsItsSixComparisons) {
+  std::mt19937_64 rng(12);
+  std::uniform_real_distribution<double> u(-2, 2);
+  const std::vector<double> specials = {0.0, -0.0, kInfinity, -kInfinity, kNaN, 1e-310, -1e300};
+  const std::vector<double> limits = {kInfinity, 0.0, -0.0, 1e-300, 3, -1e-300, -1, kNaN};
+  const auto pick = [&](const std::vector<double>& from) {
+    return from[static_cast<std::size_t>(rng() % from.size())];
+  };
+  int inside = 0, outside = 0;
+  for (int i = 0; i < 300000; ++i) {
+    Bounds3 box;
+    if (i % 13 != 0) {
+      box.extend(Vec3{u(rng), u(rng), u(rng)});
+      box.extend(Vec3{u(rng), u(rng), u(rng)});
+    }
+    double* corner = &box.lo.x;
+    if (i % 5 == 0) corner[rng() % 6] = pick(specials);
+    const auto coordinate = [&](double lo, double hi) {
+      switch (rng() % 8) {
+        case 0:
+          return lo;
+        case 1:
+          return hi;
+        case 2:
+          return std::nextafter(lo, -kInfinity);
+        case 3:
+          return std::nextafter(hi, kInfinity);
+        case 4:
+          return pick(specials);
+        default:
+          return lo + (hi - lo) * (u(rng) + 2) / 4;
+      }
+    };
+    const Vec3 o{coordinate(box.lo.x, box.hi.x), coordinate(box.lo.y, box.hi.y),
+                 coordinate(box.lo.z, box.hi.z)};
+    const double t_max = pick(limits);
+    const bool defined = box.lo.x <= o.x && o.x <= box.hi.x && box.lo.y <= o.y && o.y <= box.hi.y &&
+                         box.lo.z <= o.z && o.z <= box.hi.z && t_max >= 0;
+    ASSERT_EQ(starts_inside(box, o, t_max), defined)
+        << "box " << box.lo.x << " " << box.lo.y << " " << box.lo.z << " / " << box.hi.x << " "
+        << box.hi.y << " " << box.hi.z << ", origin " << o.x << " " << o.y << " " << o.z
+        << ", t_max " << t_max;
+    (defined ? inside : outside) += 1;
+  }
+  EXPECT_GT(inside, 30000);
+  EXPECT_GT(outside, 30000);
+}
+
 }  // namespace
 }  // namespace tessera

@@ -35,7 +35,11 @@ TEST(TriangleRay, AxesAreTheLargestComponentsAndTheNextTwo) {
   constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
   constexpr double kInf = std::numeric_limits<double>::infinity();
   // Ties of every pair and of all three (either sign), zeros, infinities and NaNs in each place.
-  const std::vector<double> values = {1, -1, 0.5, -0.5, 0, -0.0, 2, kInf, -kInf, kNaN};
+  // The largest double and the smallest subnormal: at the edges of `usable`'s finiteness test.
+  constexpr double kMax = std::numeric_limits<double>::max();
+  constexpr double kTiny = std::numeric_limits<double>::denorm_min();
+  const std::vector<double> values = {1,    -1,    0.5,  -0.5, 0,     -0.0,  2,
+                                      kInf, -kInf, kNaN, kMax, -kMax, kTiny, -kTiny};
   for (const double x : values)
     for (const double y : values)
       for (const double z : values) {
