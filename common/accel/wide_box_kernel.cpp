@@ -29,9 +29,8 @@ WideBoxKernel automatic_choice() {
 // change), and the kernel in use (wide_box_kernel_in_use, below), which force_wide_box_kernel
 // changes: wide_box_kernel() reads it for every mesh ray, and as function-local statics the
 // choice cost a guard's load and test and the forced kernel's another, seven instructions and two
-// branches a ray (docs/PERFORMANCE.md "An incoherent ray's set-up"). A traversal run by another
-// file's static initializer, before these are made, would read the zero-initialized Scalar: the
-// same results, only slower.
+// branches a ray (docs/PERFORMANCE.md "An incoherent ray's set-up"). A traversal run by another file's static initializer, before
+// these are made, would read the zero-initialized Scalar: the same results, only slower.
 const WideBoxKernel automatic = automatic_choice();
 
 }  // namespace

@@ -45,9 +45,8 @@ extern WideBoxKernel wide_box_kernel_in_use;
 // The kernel in use: the forced one if any, else TESSERA_BOX_KERNEL's if the CPU supports it,
 // else the widest the CPU supports. Inline, a load: every mesh ray reads it, and as a call it
 // cost the call and the spills around it, about 12 instructions a ray (docs/PERFORMANCE.md "The
-// rest of an incoherent ray's set-up").
+// kernel in use as a variable").
 inline WideBoxKernel wide_box_kernel() { return wide_box_kernel_in_use; }
-
 // Whether this build and CPU can run `kernel`.
 bool wide_box_kernel_supported(WideBoxKernel kernel);
 // Uses `kernel` from now on (it must be supported); std::nullopt returns to the automatic
