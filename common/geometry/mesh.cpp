@@ -99,10 +99,7 @@ bool intersect_mesh(const MeshAccel& accel, bool interpolate_normals, const Ray&
     };
   });
   if (!found) return false;
-  // Written in place: `hit = triangle_local_hit(...)` built a temporary and copied its 14
-  // doubles and index, on 8 % of incoherent rays (docs/PERFORMANCE.md "The rest of an incoherent
-  // ray's set-up").
-  write_triangle_local_hit(hit, *accel.mesh, found_triangle, leaf_corner(accel, found_position, 0),
+  hit = triangle_local_hit(*accel.mesh, found_triangle, leaf_corner(accel, found_position, 0),
                            leaf_corner(accel, found_position, 1),
                            leaf_corner(accel, found_position, 2), interpolate_normals, nearest);
   return true;

@@ -26,43 +26,33 @@ LocalHit triangle_local_hit(const Mesh& mesh, std::uint32_t index, bool interpol
 
 LocalHit triangle_local_hit(const Mesh& mesh, std::uint32_t index, const Vec3& p0, const Vec3& p1,
                             const Vec3& p2, bool interpolate_normals, const TriangleHit& hit) {
-  LocalHit out;
-  write_triangle_local_hit(out, mesh, index, p0, p1, p2, interpolate_normals, hit);
-  return out;
-}
-
-void write_triangle_local_hit(LocalHit& out, const Mesh& mesh, std::uint32_t index, const Vec3& p0,
-                              const Vec3& p1, const Vec3& p2, bool interpolate_normals,
-                              const TriangleHit& hit) {
-  // Everything read from p0 p1 p2 and `hit` before `out` is written: the compiler cannot rule out
-  // that they overlap it, and would load them again after each store.
   const Vec3 w0 = p0 * hit.b0, w1 = p1 * hit.b1, w2 = p2 * hit.b2;
-  const Vec3 normal = cross(p1 - p0, p2 - p0);
-  const double t = hit.t, b0 = hit.b0, b1 = hit.b1, b2 = hit.b2;
 
-  out.t = t;
+  LocalHit out;
+  out.t = hit.t;
   out.point = w0 + w1 + w2;
   // pbrt-v3 §3.9.6: the barycentric combination is within gamma(7) of its absolute sum.
   out.point_error = (abs(w0) + abs(w1) + abs(w2)) * gamma_bound(7);
-  out.normal = normal;
-  out.shading_normal = normal;
+  out.normal = cross(p1 - p0, p2 - p0);
+  out.shading_normal = out.normal;
   out.part = index;
 
-  if (!interpolate_normals) return;
+  if (!interpolate_normals) return out;
   const MeshTriangle& tri = mesh.triangles[index];
   const bool has_normals = tri.n[0] != MeshTriangle::kNoNormal &&
                            tri.n[1] != MeshTriangle::kNoNormal &&
                            tri.n[2] != MeshTriangle::kNoNormal;
   if (has_normals) {
-    const Vec3 n =
-        mesh.normals[tri.n[0]] * b0 + mesh.normals[tri.n[1]] * b1 + mesh.normals[tri.n[2]] * b2;
+    const Vec3 n = mesh.normals[tri.n[0]] * hit.b0 + mesh.normals[tri.n[1]] * hit.b1 +
+                   mesh.normals[tri.n[2]] * hit.b2;
     // A vanishing interpolation (opposite corner normals) falls back to the geometric normal.
-    const Vec3 geometric = normalize_or(normal, Vec3{0, 0, 1});
+    const Vec3 geometric = normalize_or(out.normal, Vec3{0, 0, 1});
     const double len = length(n);
     if (len > 1e-8 * (length(mesh.normals[tri.n[0]]) + length(mesh.normals[tri.n[1]]) +
                       length(mesh.normals[tri.n[2]])))
       out.shading_normal = normalize_or(n, geometric);
   }
+  return out;
 }
 
 }  // namespace tessera

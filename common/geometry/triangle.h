@@ -160,11 +160,5 @@ LocalHit triangle_local_hit(const Mesh& mesh, std::uint32_t index, bool interpol
 // only for interpolated normals.
 LocalHit triangle_local_hit(const Mesh& mesh, std::uint32_t index, const Vec3& p0, const Vec3& p1,
                             const Vec3& p2, bool interpolate_normals, const TriangleHit& hit);
-// The same written into `out` (every member; p0 p1 p2 and `hit` are read before it is written,
-// so they may lie in it): a mesh trace's caller's LocalHit, written in place rather than copied
-// from a returned temporary.
-void write_triangle_local_hit(LocalHit& out, const Mesh& mesh, std::uint32_t index, const Vec3& p0,
-                              const Vec3& p1, const Vec3& p2, bool interpolate_normals,
-                              const TriangleHit& hit);
 
 }  // namespace tessera
