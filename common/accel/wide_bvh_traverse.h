@@ -67,24 +67,20 @@ template <typename Kernel>
   return bits;
 }
 
-// The loop below the root, making the ray's constants with `set_box_ray(box_ray, ray)`, then the
-// leaf visitor with `make_visit_leaf()`, testing boxes with `test_boxes(node.boxes, box_ray,
-// far_limit, entry)` and passing `kernel` to the leaf visitor. Instantiated once per kernel, each
-// inlined whole (gnu::flatten) into a function compiled for that kernel's instruction set, so that
-// the visitor and the box test run in one loop without calls.
+// The loop below the root, making the ray's constants with `set_box_ray(box_ray, ray)`, testing
+// boxes with `test_boxes(node.boxes, box_ray, far_limit, entry)` and passing `kernel` to the leaf
+// visitor. Instantiated once per kernel, each inlined
+// whole (gnu::flatten) into a function compiled for that kernel's instruction set, so that the
+// visitor and the box test run in one loop without calls.
 template <WideBvhOrder kOrder, typename Kernel, typename SetBoxRay, typename TestBoxes,
-          typename MakeVisitLeaf>
+          typename VisitLeaf>
 inline void traverse_wide_bvh_below_root(const Bvh& bvh, const Ray& ray, double t_max,
-                                         std::uint64_t& nodes_visited,
-                                         MakeVisitLeaf& make_visit_leaf, Kernel kernel,
-                                         SetBoxRay set_box_ray, TestBoxes test_boxes) {
+                                         std::uint64_t& nodes_visited, VisitLeaf& visit_leaf,
+                                         Kernel kernel, SetBoxRay set_box_ray,
+                                         TestBoxes test_boxes) {
   FloatBoxRay box_ray;
   set_box_ray(box_ray, ray);
   FloatBoxLimit far_limit(float_far_limit(t_max));
-  // The leaf visitor (the mesh's lanes ray, with its divisions) is made after the box ray, which
-  // the first node step waits for, so that step's chain starts sooner (docs/PERFORMANCE.md "The
-  // rest of an incoherent ray's set-up").
-  auto visit_leaf = make_visit_leaf();
   // A step pushes at most 7 a level; the AVX2 one stores past the top (wide_bvh_pending.h).
   WideBvhPending stack[(kWideChildren - 1) * kBvhMaxDepth + kWideBvhStackSlack];
   int size = 0;
@@ -159,44 +155,43 @@ inline void traverse_wide_bvh_below_root(const Bvh& bvh, const Ray& ray, double 
   }
 }
 
-template <WideBvhOrder kOrder, typename MakeVisitLeaf>
+template <WideBvhOrder kOrder, typename VisitLeaf>
 [[gnu::flatten]] void traverse_wide_bvh_scalar(const Bvh& bvh, const Ray& ray, double t_max,
                                                std::uint64_t& nodes_visited,
-                                               MakeVisitLeaf& make_visit_leaf) {
+                                               VisitLeaf& visit_leaf) {
   traverse_wide_bvh_below_root<kOrder>(
-      bvh, ray, t_max, nodes_visited, make_visit_leaf, WideBoxKernelTag<WideBoxKernel::Scalar>{},
+      bvh, ray, t_max, nodes_visited, visit_leaf, WideBoxKernelTag<WideBoxKernel::Scalar>{},
       set_float_box_ray_per_axis, intersect_float_child_boxes_scalar);
 }
 
 #if defined(__SSE2__)
-template <WideBvhOrder kOrder, typename MakeVisitLeaf>
+template <WideBvhOrder kOrder, typename VisitLeaf>
 [[gnu::flatten]] void traverse_wide_bvh_sse2(const Bvh& bvh, const Ray& ray, double t_max,
-                                             std::uint64_t& nodes_visited,
-                                             MakeVisitLeaf& make_visit_leaf) {
-  traverse_wide_bvh_below_root<kOrder>(bvh, ray, t_max, nodes_visited, make_visit_leaf,
+                                             std::uint64_t& nodes_visited, VisitLeaf& visit_leaf) {
+  traverse_wide_bvh_below_root<kOrder>(bvh, ray, t_max, nodes_visited, visit_leaf,
                                        WideBoxKernelTag<WideBoxKernel::Sse2>{},
                                        set_float_box_ray_sse2, intersect_float_child_boxes_sse2);
 }
 
 // Compiled for AVX2 (no FMA): the visitor's double arithmetic, inlined here, keeps its IEEE
 // operations, only their encoding changes.
-template <WideBvhOrder kOrder, typename MakeVisitLeaf>
+template <WideBvhOrder kOrder, typename VisitLeaf>
 [[gnu::flatten, gnu::target("avx2")]] void traverse_wide_bvh_avx2(const Bvh& bvh, const Ray& ray,
                                                                   double t_max,
                                                                   std::uint64_t& nodes_visited,
-                                                                  MakeVisitLeaf& make_visit_leaf) {
-  traverse_wide_bvh_below_root<kOrder>(bvh, ray, t_max, nodes_visited, make_visit_leaf,
+                                                                  VisitLeaf& visit_leaf) {
+  traverse_wide_bvh_below_root<kOrder>(bvh, ray, t_max, nodes_visited, visit_leaf,
                                        WideBoxKernelTag<WideBoxKernel::Avx2>{},
                                        set_float_box_ray_avx2, intersect_float_child_boxes_avx2);
 }
 
 // The same code for a CPU with AVX-512F, VL, DQ and BW (WideBoxKernel::Avx512Vl): the AVX2
 // functions inlined here are compiled for this target, so the loop has 32 vector registers.
-template <WideBvhOrder kOrder, typename MakeVisitLeaf>
+template <WideBvhOrder kOrder, typename VisitLeaf>
 [[gnu::flatten, gnu::target(TESSERA_AVX512VL_TARGET)]] void traverse_wide_bvh_avx512vl(
     const Bvh& bvh, const Ray& ray, double t_max, std::uint64_t& nodes_visited,
-    MakeVisitLeaf& make_visit_leaf) {
-  traverse_wide_bvh_below_root<kOrder>(bvh, ray, t_max, nodes_visited, make_visit_leaf,
+    VisitLeaf& visit_leaf) {
+  traverse_wide_bvh_below_root<kOrder>(bvh, ray, t_max, nodes_visited, visit_leaf,
                                        WideBoxKernelTag<WideBoxKernel::Avx512Vl>{},
                                        set_float_box_ray_avx2, intersect_float_child_boxes_avx2);
 }
@@ -253,12 +248,12 @@ void traverse_wide_bvh_leaves(const Bvh& bvh, const Ray& ray, double t_max,
     const Vec3 inv_dir{1 / ray.direction.x, 1 / ray.direction.y, 1 / ray.direction.z};
     if (!intersect_bounds(root.bounds, ray.origin, inv_dir, t_max)) return;
   }
+  auto visit_leaf = make_visit_leaf();
   if (root.count > 0) {
     // A root that is a leaf (a mesh of a few triangles) is visited out of line: inlined here, it
     // made the compiler keep a second copy of the leaf visitor's state for it, a dozen stores a
     // ray on the common path (docs/PERFORMANCE.md "An incoherent ray's set-up").
-    const auto visit_root = [&make_visit_leaf, &root, t_max ]() __attribute__((noinline, cold)) {
-      auto visit_leaf = make_visit_leaf();
+    const auto visit_root = [&visit_leaf, &root, t_max ]() __attribute__((noinline, cold)) {
       visit_leaf(root.first_or_second_child, root.count, t_max,
                  WideBoxKernelTag<WideBoxKernel::Scalar>{});
     };
@@ -268,14 +263,14 @@ void traverse_wide_bvh_leaves(const Bvh& bvh, const Ray& ray, double t_max,
   switch (wide_box_kernel()) {
 #if defined(__SSE2__)
     case WideBoxKernel::Avx512Vl:
-      return traverse_wide_bvh_avx512vl<kOrder>(bvh, ray, t_max, nodes_visited, make_visit_leaf);
+      return traverse_wide_bvh_avx512vl<kOrder>(bvh, ray, t_max, nodes_visited, visit_leaf);
     case WideBoxKernel::Avx2:
-      return traverse_wide_bvh_avx2<kOrder>(bvh, ray, t_max, nodes_visited, make_visit_leaf);
+      return traverse_wide_bvh_avx2<kOrder>(bvh, ray, t_max, nodes_visited, visit_leaf);
     case WideBoxKernel::Sse2:
-      return traverse_wide_bvh_sse2<kOrder>(bvh, ray, t_max, nodes_visited, make_visit_leaf);
+      return traverse_wide_bvh_sse2<kOrder>(bvh, ray, t_max, nodes_visited, visit_leaf);
 #endif
     default:
-      return traverse_wide_bvh_scalar<kOrder>(bvh, ray, t_max, nodes_visited, make_visit_leaf);
+      return traverse_wide_bvh_scalar<kOrder>(bvh, ray, t_max, nodes_visited, visit_leaf);
   }
 }
 
