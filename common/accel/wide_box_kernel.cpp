@@ -26,16 +26,15 @@ WideBoxKernel automatic_choice() {
 }
 
 // The automatic choice, made once when the program starts (the environment and the CPU do not
-// change), and the kernel in use (wide_box_kernel_in_use, below), which force_wide_box_kernel
-// changes: wide_box_kernel() reads it for every mesh ray, and as function-local statics the
-// choice cost a guard's load and test and the forced kernel's another, seven instructions and two
-// branches a ray (docs/PERFORMANCE.md "An incoherent ray's set-up"). A traversal run by another file's static initializer, before
+// change), and the kernel in use, which force_wide_box_kernel changes: wide_box_kernel() reads it
+// for every mesh ray, and as function-local statics the choice cost a guard's load and test and
+// the forced kernel's another, seven instructions and two branches a ray (docs/PERFORMANCE.md
+// "An incoherent ray's set-up"). A traversal run by another file's static initializer, before
 // these are made, would read the zero-initialized Scalar: the same results, only slower.
 const WideBoxKernel automatic = automatic_choice();
+WideBoxKernel in_use = automatic;
 
 }  // namespace
-
-WideBoxKernel wide_box_kernel_in_use = automatic;
 
 bool wide_box_kernel_supported(WideBoxKernel kernel) {
   switch (kernel) {
@@ -65,11 +64,13 @@ bool wide_box_kernel_supported(WideBoxKernel kernel) {
   return false;
 }
 
+WideBoxKernel wide_box_kernel() { return in_use; }
+
 void force_wide_box_kernel(std::optional<WideBoxKernel> kernel) {
   if (kernel && !wide_box_kernel_supported(*kernel))
     throw std::invalid_argument("box kernel " + std::string(wide_box_kernel_name(*kernel)) +
                                 " is not supported here");
-  wide_box_kernel_in_use = kernel.value_or(automatic);
+  in_use = kernel.value_or(automatic);
 }
 
 std::string_view wide_box_kernel_name(WideBoxKernel kernel) {

@@ -38,15 +38,9 @@ static_assert(!has_avx2(WideBoxKernel::Sse2) && has_avx2(WideBoxKernel::Avx512Vl
 template <WideBoxKernel kKernel>
 using WideBoxKernelTag = std::integral_constant<WideBoxKernel, kKernel>;
 
-// The kernel in use, set by wide_box_kernel.cpp's static initializer and force_wide_box_kernel;
-// read only through wide_box_kernel().
-extern WideBoxKernel wide_box_kernel_in_use;
-
 // The kernel in use: the forced one if any, else TESSERA_BOX_KERNEL's if the CPU supports it,
-// else the widest the CPU supports. Inline, a load: every mesh ray reads it, and as a call it
-// cost the call and the spills around it, about 12 instructions a ray (docs/PERFORMANCE.md "The
-// kernel in use as a variable").
-inline WideBoxKernel wide_box_kernel() { return wide_box_kernel_in_use; }
+// else the widest the CPU supports.
+WideBoxKernel wide_box_kernel();
 // Whether this build and CPU can run `kernel`.
 bool wide_box_kernel_supported(WideBoxKernel kernel);
 // Uses `kernel` from now on (it must be supported); std::nullopt returns to the automatic
